@@ -1,0 +1,231 @@
+/* shapedem.h — the public C API of the shapedem DEM engine.
+ *
+ * Worlds are opaque handles. Everything that can fail returns an sd_status
+ * and fills an sd_error (file, line, key and message for scene errors); the
+ * library never prints and never exits. Def structs are made by their
+ * default function and then edited, e.g.
+ *
+ *     sd_world_def d = sd_world_def_default();
+ *     d.dt = 1e-5;
+ *     sd_world *w;
+ *     sd_error err;
+ *     if (sd_world_create(&d, &w, &err) != SD_OK) { ... err.msg ... }
+ *
+ * Units are SI throughout (m, kg, s, N, Pa).
+ */
+#ifndef SHAPEDEM_SHAPEDEM_H
+#define SHAPEDEM_SHAPEDEM_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define SD_VERSION_STRING "0.1.0"
+
+/* ---- status and errors ------------------------------------------------ */
+
+typedef enum sd_status {
+    SD_OK = 0,
+    SD_ERR_INPUT,    /* bad user input (scene, parameters): CLI exit 2 */
+    SD_ERR_IO,       /* file could not be read or written */
+    SD_ERR_MEMORY,   /* an allocation failed */
+    SD_ERR_PHYSICS,  /* the state became invalid (NaN, runaway) */
+    SD_ERR_INTERNAL  /* a broken invariant: a bug in shapedem */
+} sd_status;
+
+typedef struct sd_error {
+    sd_status code;
+    char file[256]; /* scene file, or "" */
+    int line;       /* 1-based line in file, or 0 */
+    char key[128];  /* dotted key path, e.g. "materials[1].density", or "" */
+    char msg[512];  /* what was expected / what went wrong */
+} sd_error;
+
+/* Formats err as "file:line: key: msg" (parts that are empty left out). */
+void sd_error_format(const sd_error *err, char *buf, size_t size);
+const char *sd_status_name(sd_status s);
+
+/* ---- small value types -------------------------------------------------- */
+
+typedef struct sd_v3d {
+    double x, y, z;
+} sd_v3d;
+
+/* ---- contact laws ------------------------------------------------------- */
+
+/* X(enum, scene name, description): the list is the single source for the
+ * enum, the scene-file names and the help text (STYLE.md convention 4). */
+#define SD_CONTACT_LAWS(X)                                                                       \
+    X(SD_LAW_HERTZ_MINDLIN, "hertz_mindlin", "Hertz normal, Mindlin tangential with history (LIGGGHTS form)") \
+    X(SD_LAW_LINEAR, "linear", "linear spring-dashpot-Coulomb, damping from restitution (seed 004 eqs. 10, 16)")
+
+typedef enum sd_contact_law {
+#define SD_X_ENUM(e, name, doc) e,
+    SD_CONTACT_LAWS(SD_X_ENUM)
+#undef SD_X_ENUM
+    SD_LAW_COUNT
+} sd_contact_law;
+
+const char *sd_contact_law_name(sd_contact_law law);
+/* Returns SD_LAW_COUNT when the name is unknown. */
+sd_contact_law sd_contact_law_from_name(const char *name);
+
+/* ---- materials and interactions ----------------------------------------- */
+
+typedef struct sd_material_def {
+    const char *name;
+    double density;           /* kg/m^3, > 0 */
+    double youngs_modulus;    /* Pa, > 0 (Hertz-Mindlin) */
+    double poisson_ratio;     /* -, in (-1, 0.5) */
+    double restitution;       /* -, in (0, 1] */
+    double friction;          /* -, sliding friction coefficient, >= 0 */
+    double rolling_friction;  /* -, rolling resistance coefficient, >= 0 */
+    double stiffness;         /* N/m, normal stiffness k_n of the linear law (0: unset) */
+    double tangential_stiffness_ratio; /* -, k_t / k_n for the linear law */
+    int cookie;               /* set by sd_material_def_default */
+} sd_material_def;
+
+sd_material_def sd_material_def_default(void);
+
+/* Overrides for one pair of materials; a negative value keeps the value
+ * mixed from the two materials (see docs/physics.md). */
+typedef struct sd_interaction_def {
+    double restitution;
+    double friction;
+    double rolling_friction;
+    double stiffness;             /* linear law k_n, N/m */
+    int law;                      /* sd_contact_law, or -1 to keep the world's */
+    int cookie;
+} sd_interaction_def;
+
+sd_interaction_def sd_interaction_def_default(void);
+
+/* ---- world -------------------------------------------------------------- */
+
+typedef struct sd_world sd_world;
+
+typedef struct sd_world_def {
+    int dimension;          /* 3 (2 is reserved for the planar mode) */
+    double dt;              /* s, time step */
+    sd_v3d gravity;         /* m/s^2 */
+    uint64_t seed;          /* random seed for generators */
+    int threads;            /* OpenMP threads; 0 = OMP_NUM_THREADS or all cores */
+    sd_contact_law law;     /* default contact law */
+    double skin;            /* m, Verlet skin; 0 = 0.2 x smallest radius */
+    int cookie;
+} sd_world_def;
+
+sd_world_def sd_world_def_default(void);
+
+sd_status sd_world_create(const sd_world_def *def, sd_world **out, sd_error *err);
+void sd_world_destroy(sd_world *w);
+
+/* Returns the new material's index (>= 0) or -1 with err filled. */
+int sd_world_add_material(sd_world *w, const sd_material_def *def, sd_error *err);
+/* Index of a material by name, or -1. */
+int sd_world_find_material(const sd_world *w, const char *name);
+sd_status sd_world_set_interaction(sd_world *w, int mat_a, int mat_b, const sd_interaction_def *def,
+                                   sd_error *err);
+
+typedef struct sd_sphere_def {
+    sd_v3d position;          /* m */
+    sd_v3d velocity;          /* m/s */
+    sd_v3d angular_velocity;  /* rad/s */
+    double radius;            /* m, > 0 */
+    int material;             /* index from sd_world_add_material */
+} sd_sphere_def;
+
+/* Appends n spheres; stable ids continue from the last one given. */
+sd_status sd_world_add_spheres(sd_world *w, size_t n, const sd_sphere_def *defs, sd_error *err);
+
+/* Walls. Returns the wall index (>= 0) or -1 with err filled. */
+int sd_world_add_plane(sd_world *w, const char *name, sd_v3d point, sd_v3d normal, int material,
+                       sd_error *err);
+
+/* Box faces, for sd_world_add_box's open_faces mask. */
+enum {
+    SD_BOX_XMIN = 1 << 0,
+    SD_BOX_XMAX = 1 << 1,
+    SD_BOX_YMIN = 1 << 2,
+    SD_BOX_YMAX = 1 << 3,
+    SD_BOX_ZMIN = 1 << 4,
+    SD_BOX_ZMAX = 1 << 5
+};
+/* A container: particles stay inside [lo, hi]; faces in open_faces are absent. */
+int sd_world_add_box(sd_world *w, const char *name, sd_v3d lo, sd_v3d hi, unsigned open_faces,
+                     int material, sd_error *err);
+
+/* Computes the initial forces; called by the first sd_world_step when not
+ * called before. Fails on bad parameters (e.g. a linear law with no stiffness). */
+sd_status sd_world_prepare(sd_world *w, sd_error *err);
+sd_status sd_world_step(sd_world *w, long nsteps, sd_error *err);
+
+/* ---- queries ------------------------------------------------------------ */
+
+size_t sd_world_particle_count(const sd_world *w);
+size_t sd_world_wall_count(const sd_world *w);
+long sd_world_step_count(const sd_world *w);
+double sd_world_time(const sd_world *w);
+double sd_world_dt(const sd_world *w);
+int sd_world_threads(const sd_world *w);
+
+typedef struct sd_particle_state {
+    uint64_t id;              /* stable id, fixed for the particle's life */
+    sd_v3d position, velocity, angular_velocity, force, torque;
+    double quat[4];           /* orientation (w, x, y, z) */
+    double radius, mass;
+    int material;
+} sd_particle_state;
+
+/* Particles in storage order (which may change at pair-list rebuilds). */
+sd_status sd_world_get_particle(const sd_world *w, size_t index, sd_particle_state *out);
+/* Storage index of the particle with this stable id, or (size_t)-1. */
+size_t sd_world_find_particle(const sd_world *w, uint64_t id);
+
+typedef struct sd_stats {
+    double time;              /* s */
+    long step;
+    double kinetic_translational;  /* J */
+    double kinetic_rotational;     /* J */
+    double potential_gravity;      /* J, relative to z = 0 along -g */
+    double potential_elastic;      /* J, stored in contact springs */
+    long contacts;            /* particle-particle pairs in contact */
+    long wall_contacts;       /* particle-wall contacts */
+    double max_overlap_ratio; /* max overlap / smaller radius */
+    double max_speed;         /* m/s */
+    long rebuilds;            /* pair-list rebuilds so far */
+    size_t pairs;             /* candidate pairs in the list */
+} sd_stats;
+
+void sd_world_stats(const sd_world *w, sd_stats *out);
+
+typedef struct sd_wall_info {
+    const char *name;
+    int kind;                 /* 0 plane, 1 box */
+    sd_v3d force;             /* N, total force the particles exert on the wall */
+    sd_v3d torque;            /* N m, about the wall's reference point */
+    sd_v3d point, normal;     /* plane: point and unit normal */
+    sd_v3d lo, hi;            /* box: corners */
+    unsigned open_faces;      /* box: open faces mask */
+    int material;
+} sd_wall_info;
+
+sd_status sd_world_get_wall(const sd_world *w, size_t index, sd_wall_info *out);
+
+/* Recommended time step (s) for the current particles and walls (seed 004
+ * eqs. 12, 16 for the linear law; Rayleigh and Hertz durations otherwise).
+ * contact_duration receives the shortest estimated contact duration (s). */
+double sd_world_recommended_dt(const sd_world *w, double *contact_duration);
+
+/* Memory: bytes currently allocated through shapedem's allocator, and the peak. */
+size_t sd_memory_in_use(void);
+size_t sd_memory_peak(void);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

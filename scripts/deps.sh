@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Installs the Debian packages shapedem needs to build and test.
+# As root it runs apt-get; otherwise it prints the exact command to run.
+set -euo pipefail
+
+# build: compiler, CMake, YAML parser; tests: none beyond these yet.
+need_pkgs=(build-essential cmake pkg-config libyaml-dev)
+if [[ "${SHAPEDEM_WITH_BENCH:-0}" == 1 ]]; then
+  need_pkgs+=(liggghts)
+fi
+
+missing=()
+for p in "${need_pkgs[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [[ ${#missing[@]} -eq 0 ]]; then
+  exit 0
+fi
+
+if ! command -v apt-get >/dev/null 2>&1; then
+  echo "shapedem: missing packages: ${missing[*]} (no apt-get here; install them with your package manager)" >&2
+  exit 1
+fi
+
+if [[ $(id -u) -eq 0 ]]; then
+  echo "shapedem: installing ${missing[*]}" >&2
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get install -y --no-install-recommends "${missing[@]}" >/dev/null 2>&1 || {
+    apt-get update >/dev/null && apt-get install -y --no-install-recommends "${missing[@]}"
+  }
+else
+  echo "shapedem: missing packages: ${missing[*]}" >&2
+  echo "run:  sudo apt-get install -y ${missing[*]}" >&2
+  exit 1
+fi

@@ -1,0 +1,22 @@
+/* loops.h — the CPU backend: OpenMP loops over particles and pairs. No
+ * physics lives here; each loop body calls the single-source SD_HD
+ * functions of contact/, geom/ and dynamics/ (DESIGN.md rule 1). */
+#ifndef SD_BACKEND_CPU_LOOPS_H
+#define SD_BACKEND_CPU_LOOPS_H
+
+#include "world/world.h"
+
+/* First half kick and drift of every particle (velocity Verlet). */
+void sd_cpu_kick_drift(sd_world *w);
+/* Second half kick. */
+void sd_cpu_kick(sd_world *w);
+/* Force and torques of every particle-particle pair, into the pair list. */
+void sd_cpu_pair_forces(sd_world *w);
+/* Force and torque of every particle-wall pair, into the wall pair list. */
+void sd_cpu_wall_forces(sd_world *w);
+/* Each particle sums its pairs in list order (deterministic reduction). */
+void sd_cpu_gather(sd_world *w);
+/* Total force and torque on each wall, summed in pair order. */
+void sd_cpu_wall_totals(sd_world *w);
+
+#endif

@@ -1,0 +1,62 @@
+/* pairs.h — candidate pair lists, the unit of parallel work (DESIGN.md
+ * rule 3), and the cell grid that builds them.
+ *
+ * Invariants: pairs are built from per-particle counts and a prefix sum, so
+ * their order depends only on the particle order, never on thread count.
+ * Each pair stores its own force and torques; particles sum their pairs in
+ * the fixed order of the gather lists (rule 4: no atomics, same bits with any
+ * number of threads). History (the tangential spring) is keyed by stable ids
+ * and carried across rebuilds by binary search (rule 5).
+ */
+#ifndef SD_BROAD_PAIRS_H
+#define SD_BROAD_PAIRS_H
+
+#include "core/vec.h"
+
+typedef struct sd_pair_list {
+    size_t n, cap;
+    uint32_t *i, *j;       /* storage indices, i < j */
+    uint64_t *key;         /* (min id << 32) | max id */
+    sd_vec3 *ds;           /* m, tangential spring (history), global frame */
+    sd_vec3 *f;            /* N, force on i */
+    sd_vec3 *ti, *tj;      /* N m, torque on i and on j */
+    sd_real *delta;        /* m, overlap at the last evaluation (<= 0 apart) */
+    sd_real *energy;       /* J, elastic energy at the last evaluation */
+    /* gather lists: particle k owns entries gstart[k] .. gstart[k+1]-1 of
+     * gidx; an entry is 2 * pair + (0 if k is the pair's i, 1 if j) */
+    uint32_t *gstart, *gidx;
+    size_t gstart_cap, gidx_cap;
+} sd_pair_list;
+
+typedef struct sd_wall_pair_list {
+    size_t n, cap;
+    uint32_t *i;           /* storage index of the particle */
+    uint16_t *wall, *sub;  /* wall index; face of a box (0..5), 0 for planes */
+    uint64_t *key;         /* (id << 20) | (wall << 4) | sub */
+    sd_vec3 *ds, *f, *t;   /* spring, force and torque on the particle */
+    sd_vec3 *c;            /* m, contact point (for the wall's torque) */
+    sd_real *delta, *energy;
+    uint32_t *start;       /* particle k owns pairs start[k] .. start[k+1]-1 */
+    size_t start_cap;
+} sd_wall_pair_list;
+
+typedef struct sd_grid {
+    sd_vec3 lo;            /* m, lower corner */
+    sd_real h;             /* m, cell edge */
+    int nx, ny, nz;
+    size_t ncell, cell_cap;
+    uint32_t *cell_start;  /* ncell + 1 entries */
+    uint32_t *cell;        /* per particle, its cell */
+    uint32_t *perm;        /* per particle, scratch for the counting sort */
+    uint32_t *count;       /* per particle, scratch counts */
+    void *scratch;         /* permutation scratch, 16 bytes per particle */
+    size_t pcap;
+} sd_grid;
+
+/* History entry for the carry-over at rebuilds. */
+typedef struct sd_history {
+    uint64_t key;
+    sd_vec3 ds;
+} sd_history;
+
+#endif

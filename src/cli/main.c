@@ -1,0 +1,384 @@
+/* main.c — the shapedem program: run, check and help.
+ *
+ * The only place that prints and exits. Exit status: 0 success, 1 a run
+ * that failed while stepping or writing, 2 bad input (command line or
+ * scene), 130 interrupted. Bad input is reported as one line before any
+ * output directory is created.
+ */
+#define _POSIX_C_SOURCE 200809L
+
+#include <errno.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <shapedem/shapedem.h>
+
+#include "io/output.h"
+#include "io/scene.h"
+
+static volatile sig_atomic_t sd_interrupted;
+
+static void sd_on_signal(int sig)
+{
+    (void)sig;
+    sd_interrupted = 1;
+}
+
+static double sd_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static size_t sd_peak_rss(void)
+{
+    struct rusage ru;
+    if (getrusage(RUSAGE_SELF, &ru) != 0)
+        return 0;
+    return (size_t)ru.ru_maxrss * 1024u; /* Linux reports KiB */
+}
+
+static void sd_usage(FILE *f)
+{
+    fprintf(f,
+            "usage: shapedem run SCENE.yaml [-o DIR] [--threads N] [--steps N] [--quiet] [--bench NAME]\n"
+            "       shapedem check SCENE.yaml [--threads N]\n"
+            "       shapedem help [scene [--markdown]]\n"
+            "       shapedem --version\n"
+            "\n"
+            "  run     simulate the scene; writes frames.pvd (VTK), stats.csv and summary.txt\n"
+            "          to DIR (default: output.directory of the scene, else out/<scene name>)\n"
+            "  check   validate the scene and print what it would simulate\n"
+            "  help    this text; 'help scene' lists every scene key with unit and default\n"
+            "\n"
+            "  -o DIR       output directory\n"
+            "  --threads N  OpenMP threads (default: simulation.threads, else OMP_NUM_THREADS)\n"
+            "  --steps N    run N steps instead of the scene's (short runs)\n"
+            "  --quiet      no progress line and no summary on the terminal\n"
+            "  --bench NAME write no files; print one JSON line of timings for case NAME\n");
+}
+
+static int sd_fail_input(const sd_error *err)
+{
+    char buf[1024];
+    sd_error_format(err, buf, sizeof buf);
+    fprintf(stderr, "shapedem: %s\n", buf);
+    return 2;
+}
+
+static int sd_usage_error(const char *fmt, const char *arg)
+{
+    fprintf(stderr, "shapedem: ");
+    fprintf(stderr, fmt, arg);
+    fprintf(stderr, " (see 'shapedem help')\n");
+    return 2;
+}
+
+typedef struct sd_cli {
+    const char *command;
+    const char *scene;
+    const char *outdir;
+    const char *bench;
+    long threads;
+    long steps;
+    int quiet;
+    int markdown;
+} sd_cli;
+
+static int sd_parse_long(const char *s, long lo, long *out)
+{
+    char *end;
+    errno = 0;
+    long v = strtol(s, &end, 10);
+    if (errno || end == s || *end || v < lo)
+        return -1;
+    *out = v;
+    return 0;
+}
+
+static int sd_parse_args(int argc, char **argv, sd_cli *c)
+{
+    memset(c, 0, sizeof *c);
+    c->threads = -1;
+    c->steps = -1;
+    if (argc < 2)
+        return sd_usage_error("%s", "no command given");
+    c->command = argv[1];
+    for (int k = 2; k < argc; ++k) {
+        const char *a = argv[k];
+        const char *next = k + 1 < argc ? argv[k + 1] : NULL;
+        if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
+            if (!next)
+                return sd_usage_error("%s needs a directory", a);
+            c->outdir = argv[++k];
+        } else if (!strcmp(a, "--threads")) {
+            if (!next || sd_parse_long(next, 1, &c->threads))
+                return sd_usage_error("--threads needs a whole number >= 1, got '%s'", next ? next : "");
+            ++k;
+        } else if (!strcmp(a, "--steps")) {
+            if (!next || sd_parse_long(next, 0, &c->steps))
+                return sd_usage_error("--steps needs a whole number >= 0, got '%s'", next ? next : "");
+            ++k;
+        } else if (!strcmp(a, "--bench")) {
+            if (!next)
+                return sd_usage_error("%s needs a case name", a);
+            c->bench = argv[++k];
+        } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
+            c->quiet = 1;
+        } else if (!strcmp(a, "--markdown")) {
+            c->markdown = 1;
+        } else if (a[0] == '-' && a[1]) {
+            return sd_usage_error("unknown option '%s'", a);
+        } else if (!c->scene) {
+            c->scene = a;
+        } else {
+            return sd_usage_error("unexpected argument '%s'", a);
+        }
+    }
+    return 0;
+}
+
+/* Loads, applies the command-line overrides, builds. */
+static int sd_load_world(const sd_cli *c, sd_scene **scene, sd_world **world)
+{
+    sd_error err;
+    memset(&err, 0, sizeof err);
+    if (!c->scene)
+        return sd_usage_error("%s needs a scene file", c->command);
+    if (sd_scene_load(c->scene, scene, &err) != SD_OK)
+        return sd_fail_input(&err);
+    if (c->threads > 0)
+        (*scene)->world.threads = (int)c->threads;
+    if (c->steps >= 0)
+        (*scene)->steps = c->steps;
+    if (sd_scene_build(*scene, world, &err) != SD_OK) {
+        sd_scene_free(*scene);
+        *scene = NULL;
+        return sd_fail_input(&err);
+    }
+    return 0;
+}
+
+static void sd_default_outdir(const char *scene, char *buf, size_t size)
+{
+    const char *base = strrchr(scene, '/');
+    base = base ? base + 1 : scene;
+    size_t n = strlen(base);
+    const char *dot = strrchr(base, '.');
+    if (dot && dot != base)
+        n = (size_t)(dot - base);
+    snprintf(buf, size, "out/%.*s", (int)n, base);
+}
+
+static void sd_format_duration(double s, char *buf, size_t size)
+{
+    if (!(s >= 0) || s > 1e7)
+        snprintf(buf, size, "--");
+    else if (s < 60)
+        snprintf(buf, size, "%.0fs", s);
+    else if (s < 3600)
+        snprintf(buf, size, "%dm%02ds", (int)(s / 60), (int)s % 60);
+    else
+        snprintf(buf, size, "%dh%02dm", (int)(s / 3600), ((int)s % 3600) / 60);
+}
+
+static int sd_cmd_run(const sd_cli *c)
+{
+    sd_scene *scene = NULL;
+    sd_world *w = NULL;
+    int rc = sd_load_world(c, &scene, &w);
+    if (rc)
+        return rc;
+    sd_error err;
+    memset(&err, 0, sizeof err);
+    long steps = scene->steps;
+    long every = scene->output.every > 0 ? scene->output.every : 1;
+    long stats_every = scene->output.stats_every > 0 ? scene->output.stats_every : every;
+    sd_output *out = NULL;
+    char dir[SD_SCENE_PATH_MAX + 16];
+    if (!c->bench) {
+        if (c->outdir)
+            snprintf(dir, sizeof dir, "%s", c->outdir);
+        else if (scene->output.directory[0])
+            snprintf(dir, sizeof dir, "%s", scene->output.directory);
+        else
+            sd_default_outdir(c->scene, dir, sizeof dir);
+        sd_output_def od = {dir, (scene->output.formats & SD_OUT_VTK) != 0, (scene->output.formats & SD_OUT_CSV) != 0,
+                            c->scene};
+        if (sd_output_open(&od, w, &out, &err) != SD_OK) {
+            sd_world_destroy(w);
+            sd_scene_free(scene);
+            return sd_fail_input(&err);
+        }
+    }
+    signal(SIGINT, sd_on_signal);
+    signal(SIGTERM, sd_on_signal);
+
+    int tty = !c->quiet && !c->bench && isatty(STDERR_FILENO);
+    size_t n = sd_world_particle_count(w);
+    double stepping = 0, last_print = 0;
+    int failed = 0;
+    if (out && (sd_output_frame(out, w, &err) != SD_OK || sd_output_stats(out, w, &err) != SD_OK))
+        failed = 1;
+    long done = 0;
+    while (!failed && done < steps && !sd_interrupted) {
+        /* step up to the next output event */
+        long next = steps;
+        long to_frame = every - done % every, to_stats = stats_every - done % stats_every;
+        if (done + to_frame < next)
+            next = done + to_frame;
+        if (done + to_stats < next)
+            next = done + to_stats;
+        if (tty && next - done > 200)
+            next = done + 200; /* keep the progress line alive */
+        double t0 = sd_now();
+        if (sd_world_step(w, next - done, &err) != SD_OK) {
+            failed = 1;
+            break;
+        }
+        stepping += sd_now() - t0;
+        done = next;
+        if (out && done % stats_every == 0 && sd_output_stats(out, w, &err) != SD_OK)
+            failed = 1;
+        if (out && !failed && (done % every == 0 || done == steps) && sd_output_frame(out, w, &err) != SD_OK)
+            failed = 1;
+        if (tty && (stepping - last_print > 0.5 || done == steps)) {
+            last_print = stepping;
+            double rate = stepping > 0 ? (double)n * (double)done / stepping : 0;
+            char left[32];
+            sd_format_duration(rate > 0 ? (double)n * (double)(steps - done) / rate : -1, left, sizeof left);
+            fprintf(stderr, "\rstep %ld/%ld  t = %.6g s  %5.1f%%  %.3g particle-steps/s  %s left   ", done, steps,
+                    sd_world_time(w), steps ? 100.0 * (double)done / (double)steps : 100.0, rate, left);
+            fflush(stderr);
+        }
+    }
+    if (tty)
+        fputc('\n', stderr);
+
+    sd_run_summary sum;
+    memset(&sum, 0, sizeof sum);
+    sum.steps = done;
+    sum.wall_seconds = stepping;
+    sum.particle_steps_per_second = stepping > 0 ? (double)n * (double)done / stepping : 0;
+    sum.threads = sd_world_threads(w);
+    sum.peak_memory = sd_memory_peak();
+    sum.peak_rss = sd_peak_rss();
+    if (failed) {
+        char buf[1024];
+        sd_error_format(&err, buf, sizeof buf);
+        fprintf(stderr, "shapedem: run stopped at step %ld: %s\n", sd_world_step_count(w), buf);
+    }
+    if (out) {
+        sd_error cerr;
+        memset(&cerr, 0, sizeof cerr);
+        if (sd_output_close(out, w, &sum, &cerr) != SD_OK && !failed) {
+            char buf[1024];
+            sd_error_format(&cerr, buf, sizeof buf);
+            fprintf(stderr, "shapedem: %s\n", buf);
+            failed = 1;
+        }
+    }
+    if (c->bench) {
+        printf("{\"case\":\"%s\",\"particles\":%zu,\"steps\":%ld,\"threads\":%d,\"wall_s\":%.6f,\"psps\":%.6g,"
+               "\"peak_rss_mib\":%.2f,\"peak_alloc_mib\":%.2f}\n",
+               c->bench, n, done, sum.threads, stepping, sum.particle_steps_per_second,
+               (double)sum.peak_rss / 1048576.0, (double)sum.peak_memory / 1048576.0);
+    } else if (!c->quiet) {
+        sd_stats st;
+        sd_world_stats(w, &st);
+        printf("shapedem: %zu particles, %ld steps (t = %.6g s) in %.2f s: %.3g particle-steps/s on %d thread%s\n", n,
+               done, sd_world_time(w), stepping, sum.particle_steps_per_second, sum.threads,
+               sum.threads == 1 ? "" : "s");
+        printf("          kinetic energy %.6g J, %ld contacts, max overlap %.3g %% of radius; output in %s\n",
+               st.kinetic_translational + st.kinetic_rotational, st.contacts, 100 * st.max_overlap_ratio, dir);
+    }
+    sd_world_destroy(w);
+    sd_scene_free(scene);
+    if (sd_interrupted) {
+        fprintf(stderr, "shapedem: interrupted at step %ld; the files written so far are complete\n", done);
+        return 130;
+    }
+    return failed ? 1 : 0;
+}
+
+static int sd_cmd_check(const sd_cli *c)
+{
+    size_t mem0 = sd_memory_in_use();
+    sd_scene *scene = NULL;
+    sd_world *w = NULL;
+    int rc = sd_load_world(c, &scene, &w);
+    if (rc)
+        return rc;
+    size_t mem = sd_memory_in_use() - mem0;
+    size_t n = sd_world_particle_count(w);
+    double tc = 0, rec = sd_world_recommended_dt(w, &tc);
+    double dt = sd_world_dt(w);
+    printf("scene        %s\n", c->scene);
+    printf("particles    %zu spheres", n);
+    if (n) {
+        double rmin = 1e300, rmax = 0;
+        for (size_t k = 0; k < n; ++k) {
+            sd_particle_state p;
+            sd_world_get_particle(w, k, &p);
+            rmin = p.radius < rmin ? p.radius : rmin;
+            rmax = p.radius > rmax ? p.radius : rmax;
+        }
+        printf(", radius %.4g .. %.4g m", rmin, rmax);
+    }
+    printf("\nmaterials    %zu:", scene->material_count);
+    for (size_t k = 0; k < scene->material_count; ++k)
+        printf(" %s", scene->materials[k].name);
+    printf("\ncontact law  %s (default)\n", sd_contact_law_name(scene->world.law));
+    printf("walls        %zu\n", sd_world_wall_count(w));
+    printf("steps        %ld x dt %.4g s = %.6g s simulated\n", scene->steps, dt, (double)scene->steps * dt);
+    printf("contact      shortest estimated contact duration %.4g s (%.1f steps)\n", tc, tc / dt);
+    printf("time step    %.4g s recommended; stability limit %.4g s\n", rec, tc / 5);
+    printf("threads      %d\n", sd_world_threads(w));
+    printf("memory       about %.1f MiB (%.0f bytes per particle) once the pair lists are built\n",
+           (double)mem / 1048576.0, n ? (double)mem / (double)n : 0.0);
+    int warnings = 0;
+    if (dt > rec) {
+        printf("warning      dt = %.4g s is above the recommended %.4g s: contacts are resolved in %.1f steps\n", dt,
+               rec, tc / dt);
+        warnings++;
+    }
+    printf("%s\n", warnings ? "check: ok, with warnings" : "check: ok");
+    sd_world_destroy(w);
+    sd_scene_free(scene);
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc >= 2 && (!strcmp(argv[1], "--version") || !strcmp(argv[1], "version"))) {
+        printf("shapedem %s\n", SD_VERSION_STRING);
+        return 0;
+    }
+    if (argc >= 2 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
+        sd_usage(stdout);
+        return 0;
+    }
+    sd_cli c;
+    int rc = sd_parse_args(argc, argv, &c);
+    if (rc)
+        return rc;
+    if (!strcmp(c.command, "run"))
+        return sd_cmd_run(&c);
+    if (!strcmp(c.command, "check"))
+        return sd_cmd_check(&c);
+    if (!strcmp(c.command, "help")) {
+        if (c.scene && !strcmp(c.scene, "scene")) {
+            sd_scene_print_keys(stdout, c.markdown);
+            return 0;
+        }
+        sd_usage(stdout);
+        return 0;
+    }
+    return sd_usage_error("unknown command '%s'", c.command);
+}

@@ -1,0 +1,111 @@
+/* law.h — contact laws: force from contact geometry, relative velocity and
+ * the tangential spring history. Single source for CPU and GPU (SD_HD).
+ *
+ * Conventions: n is the unit normal pointing from body j to body i, delta > 0
+ * the overlap, v_rel = v_i - v_j at the contact point, w_rel = w_i - w_j.
+ * The returned force acts on i (j receives its opposite).
+ *
+ * Laws (both with the tangential spring of Cundall–Strack, kept in the
+ * global frame, turned into the current tangent plane each step and capped
+ * by Coulomb; DESIGN.md engineering notes):
+ *  - SD_LAW_LINEAR: seed 004 eq. 10, F_n = k_n delta - 2 gamma_n m* u_n with
+ *    gamma_n from e_n by seed 004 eq. 16 (omega_0^2 = k_n / m*), the same
+ *    gamma in the tangential dashpot, k_t = ratio * k_n.
+ *  - SD_LAW_HERTZ_MINDLIN: the LIGGGHTS `hertz tangential history` form,
+ *    k_n = 4/3 Y* sqrt(R* delta), S_n = 2 Y* sqrt(R* delta),
+ *    k_t = S_t = 8 G* sqrt(R* delta), gamma = -2 sqrt(5/6) beta sqrt(S m*).
+ * Neither law clips the normal force at zero, so e_n is exactly the
+ * restitution of seed 004 eq. 15 for the linear law.
+ * Rolling resistance: constant directional torque (LIGGGHTS `cdt`),
+ * T_r = -mu_r R* |F_n| w_rel/|w_rel|.
+ */
+#ifndef SD_CONTACT_LAW_H
+#define SD_CONTACT_LAW_H
+
+#include <shapedem/shapedem.h>
+
+#include "contact/params.h"
+#include "core/vec.h"
+
+typedef struct sd_contact_out {
+    sd_vec3 force;        /* N, on body i */
+    sd_vec3 roll_torque;  /* N m, on body i (j gets the opposite) */
+    sd_real fn;           /* N, signed normal force magnitude */
+    sd_real energy;       /* J, elastic energy stored in the contact */
+} sd_contact_out;
+
+/* Turns the stored spring into the plane normal to n, keeping its length. */
+SD_HD static SD_INLINE sd_vec3 sd_law_rotate_spring(sd_vec3 ds, sd_vec3 n)
+{
+    sd_real len2 = sd_v3_norm2(ds);
+    if (len2 <= SD_R(0.0))
+        return ds;
+    sd_vec3 t = sd_v3_madd(ds, -sd_v3_dot(ds, n), n);
+    sd_real tl2 = sd_v3_norm2(t);
+    if (tl2 <= SD_R(0.0))
+        return sd_v3_zero();
+    return sd_v3_scale(t, sd_sqrt(len2 / tl2));
+}
+
+/* Evaluates the pair's law. ds is the tangential spring (m), updated in
+ * place; dt the time step; r_star the effective radius (m); m_star the
+ * effective mass (kg). */
+SD_HD static SD_INLINE sd_contact_out sd_law_eval(const sd_pair_params *p, sd_vec3 n, sd_real delta, sd_real r_star,
+                                                  sd_real m_star, sd_vec3 v_rel, sd_vec3 w_rel, sd_vec3 *ds,
+                                                  sd_real dt)
+{
+    sd_contact_out out;
+    sd_real un = sd_v3_dot(v_rel, n);
+    sd_vec3 vt = sd_v3_madd(v_rel, -un, n);
+    sd_real kn, kt, gn, gt;
+    if (p->law == SD_LAW_LINEAR) {
+        kn = p->kn;
+        kt = p->kt_ratio * p->kn;
+        /* seed 004 eq. 16 with omega_0 = sqrt(k_n / m*); eq. 10 damps with 2 gamma m* */
+        sd_real omega0 = sd_sqrt(kn / m_star);
+        sd_real gamma = -omega0 * p->log_e_factor;
+        gn = SD_R(2.0) * gamma * m_star;
+        gt = gn;
+        out.energy = SD_R(0.5) * kn * delta * delta;
+    } else {
+        sd_real a = sd_sqrt(r_star * delta);
+        sd_real sn = SD_R(2.0) * p->y_star * a;
+        sd_real st = SD_R(8.0) * p->g_star * a;
+        kn = SD_R(4.0) / SD_R(3.0) * p->y_star * a;
+        kt = st;
+        /* -2 sqrt(5/6) beta sqrt(S m*), beta <= 0 */
+        sd_real c = SD_R(-1.8257418583505538) * p->log_e_factor;
+        gn = c * sd_sqrt(sn * m_star);
+        gt = c * sd_sqrt(st * m_star);
+        /* integral of 4/3 Y* sqrt(R*) d^{3/2} */
+        out.energy = SD_R(0.4) * kn * delta * delta;
+    }
+    sd_real fn = kn * delta - gn * un;
+    out.fn = fn;
+
+    /* tangential spring: rotate, integrate, cap (Coulomb) */
+    sd_vec3 s = sd_law_rotate_spring(*ds, n);
+    s = sd_v3_madd(s, dt, vt);
+    sd_vec3 ft = sd_v3_sub(sd_v3_scale(s, -kt), sd_v3_scale(vt, gt));
+    sd_real ft_max = p->friction * sd_fabs(fn);
+    sd_real ft2 = sd_v3_norm2(ft);
+    if (ft2 > ft_max * ft_max) {
+        sd_real ftn = sd_sqrt(ft2);
+        ft = sd_v3_scale(ft, ft_max / ftn);
+        /* keep the spring consistent with the sliding force */
+        s = kt > SD_R(0.0) ? sd_v3_scale(sd_v3_madd(ft, gt, vt), SD_R(-1.0) / kt) : sd_v3_zero();
+    }
+    *ds = s;
+    out.energy += SD_R(0.5) * kt * sd_v3_norm2(s);
+    out.force = sd_v3_madd(ft, fn, n);
+
+    out.roll_torque = sd_v3_zero();
+    if (p->rolling > SD_R(0.0)) {
+        sd_real wl = sd_v3_norm(w_rel);
+        if (wl > SD_R(1e-12))
+            out.roll_torque = sd_v3_scale(w_rel, -p->rolling * r_star * sd_fabs(fn) / wl);
+    }
+    return out;
+}
+
+#endif

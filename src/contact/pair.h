@@ -1,0 +1,82 @@
+/* pair.h — one contact, end to end: geometry, relative motion at the
+ * contact point, law, and the force and torques on both bodies. Single
+ * source (SD_HD): the CPU loops and the CUDA kernels call these per pair.
+ */
+#ifndef SD_CONTACT_PAIR_H
+#define SD_CONTACT_PAIR_H
+
+#include "contact/law.h"
+#include "geom/sphere.h"
+
+/* The state of one body as the pair evaluation needs it. */
+typedef struct sd_body {
+    sd_vec3 x, v, w;
+    sd_real radius, inv_mass;
+} sd_body;
+
+typedef struct sd_pair_result {
+    sd_vec3 f;       /* N, on i */
+    sd_vec3 ti, tj;  /* N m, on i and on j about their centres */
+    sd_real delta;   /* m, overlap (negative gap when apart) */
+    sd_real energy;  /* J */
+} sd_pair_result;
+
+/* Applies a contact to the two bodies once the geometry is known. */
+SD_HD static SD_INLINE sd_pair_result sd_pair_apply(const sd_pair_params *prm, const sd_body *a, const sd_body *b,
+                                                    const sd_contact_geom *g, sd_real r_star, sd_vec3 *ds, sd_real dt)
+{
+    sd_pair_result r;
+    sd_vec3 arm_i = sd_v3_sub(g->point, a->x);
+    sd_vec3 arm_j = sd_v3_sub(g->point, b->x);
+    sd_vec3 vi = sd_v3_add(a->v, sd_v3_cross(a->w, arm_i));
+    sd_vec3 vj = sd_v3_add(b->v, sd_v3_cross(b->w, arm_j));
+    sd_real inv = a->inv_mass + b->inv_mass;
+    sd_real m_star = inv > SD_R(0.0) ? SD_R(1.0) / inv : SD_R(0.0);
+    sd_contact_out o = sd_law_eval(prm, g->n, g->delta, r_star, m_star, sd_v3_sub(vi, vj), sd_v3_sub(a->w, b->w), ds, dt);
+    r.f = o.force;
+    r.ti = sd_v3_add(sd_v3_cross(arm_i, o.force), o.roll_torque);
+    r.tj = sd_v3_sub(sd_v3_cross(arm_j, sd_v3_neg(o.force)), o.roll_torque);
+    r.delta = g->delta;
+    r.energy = o.energy;
+    return r;
+}
+
+static SD_HD SD_INLINE sd_pair_result sd_pair_none(sd_real gap, sd_vec3 *ds)
+{
+    sd_pair_result r;
+    r.f = r.ti = r.tj = sd_v3_zero();
+    r.delta = -gap;
+    r.energy = SD_R(0.0);
+    *ds = sd_v3_zero(); /* a broken contact forgets its spring */
+    return r;
+}
+
+/* Sphere–sphere. */
+SD_HD static SD_INLINE sd_pair_result sd_pair_spheres(const sd_pair_params *prm, const sd_body *a, const sd_body *b,
+                                                      sd_vec3 *ds, sd_real dt)
+{
+    sd_contact_geom g;
+    if (!sd_sphere_sphere(a->x, a->radius, b->x, b->radius, &g))
+        return sd_pair_none(sd_v3_norm(sd_v3_sub(a->x, b->x)) - a->radius - b->radius, ds);
+    sd_real r_star = a->radius * b->radius / (a->radius + b->radius);
+    return sd_pair_apply(prm, a, b, &g, r_star, ds, dt);
+}
+
+/* Sphere against a wall feature: the wall is a body of infinite mass at
+ * rest (moving walls will set v and w). */
+SD_HD static SD_INLINE sd_pair_result sd_pair_sphere_wall(const sd_pair_params *prm, const sd_body *a,
+                                                          const sd_contact_geom *g, int touching, sd_vec3 *ds,
+                                                          sd_real dt)
+{
+    if (!touching)
+        return sd_pair_none(SD_R(0.0), ds);
+    sd_body wall;
+    wall.x = g->point;
+    wall.v = sd_v3_zero();
+    wall.w = sd_v3_zero();
+    wall.radius = SD_R(0.0);
+    wall.inv_mass = SD_R(0.0);
+    return sd_pair_apply(prm, a, &wall, g, a->radius, ds, dt);
+}
+
+#endif

@@ -1,0 +1,23 @@
+/* params.h — contact parameters of one pair of materials, mixed once at
+ * prepare time (world/material.c) so the per-pair loop only reads them.
+ *
+ * Plain struct, SD_HD-safe: the GPU kernels read the same table.
+ */
+#ifndef SD_CONTACT_PARAMS_H
+#define SD_CONTACT_PARAMS_H
+
+#include "core/base.h"
+
+typedef struct sd_pair_params {
+    int law;             /* sd_contact_law */
+    sd_real y_star;      /* Pa, effective Young's modulus 1/((1-v1^2)/E1 + (1-v2^2)/E2) */
+    sd_real g_star;      /* Pa, effective shear modulus */
+    sd_real kn;          /* N/m, linear law normal stiffness */
+    sd_real kt_ratio;    /* -, linear law k_t / k_n */
+    sd_real restitution; /* -, e_n */
+    sd_real log_e_factor;/* -, beta = ln e / sqrt(ln^2 e + pi^2) (<= 0) */
+    sd_real friction;    /* -, mu */
+    sd_real rolling;     /* -, rolling resistance coefficient */
+} sd_pair_params;
+
+#endif

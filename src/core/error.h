@@ -1,0 +1,18 @@
+/* error.h — filling sd_error values (errors are values: DESIGN.md rule 8). */
+#ifndef SD_CORE_ERROR_H
+#define SD_CORE_ERROR_H
+
+#include <shapedem/shapedem.h>
+
+#if defined(__GNUC__)
+#define SD_PRINTF(a, b) __attribute__((format(printf, a, b)))
+#else
+#define SD_PRINTF(a, b)
+#endif
+
+/* Sets every field of err (err may be NULL) and returns code. */
+sd_status sd_error_set(sd_error *err, sd_status code, const char *file, int line, const char *key,
+                       const char *fmt, ...) SD_PRINTF(6, 7);
+void sd_error_clear(sd_error *err);
+
+#endif

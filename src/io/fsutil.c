@@ -1,0 +1,211 @@
+/* fsutil.c — mkdir -p, directory listing and atomic file replacement
+ * (see fsutil.h for the invariant). Errors become sd_status values with the
+ * path in err->file and strerror(errno) in err->msg.
+ */
+#define _POSIX_C_SOURCE 200809L
+
+#include "io/fsutil.h"
+
+#include "core/alloc.h"
+#include "core/error.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+#include <unistd.h>
+
+char *sd_fs_join(const char *dir, const char *name)
+{
+    size_t nd = strlen(dir), nn = strlen(name);
+    int slash = nd > 0 && dir[nd - 1] != '/';
+    char *p = sd_malloc(nd + (size_t)slash + nn + 1);
+    if (!p)
+        return NULL;
+    memcpy(p, dir, nd);
+    if (slash)
+        p[nd] = '/';
+    memcpy(p + nd + (size_t)slash, name, nn + 1);
+    return p;
+}
+
+/* mkdir that treats an existing directory as success. */
+static int sd_fs_mkdir_one(const char *path)
+{
+    if (mkdir(path, 0777) == 0)
+        return 0;
+    int e = errno;
+    struct stat st;
+    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode))
+        return 0;
+    errno = (e == EEXIST) ? ENOTDIR : e;
+    return -1;
+}
+
+sd_status sd_fs_mkdir_p(const char *path, sd_error *err)
+{
+    if (!path || !path[0])
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "output.directory",
+                            "the output directory name is empty");
+    size_t n = strlen(path);
+    char *buf = sd_malloc(n + 1);
+    if (!buf)
+        return sd_error_set(err, SD_ERR_MEMORY, path, 0, "", "out of memory");
+    memcpy(buf, path, n + 1);
+    /* Create each prefix ending before a '/', then the whole path. */
+    for (size_t i = 1; i <= n; ++i) {
+        if (i < n && buf[i] != '/')
+            continue;
+        if (i < n && buf[i - 1] == '/')
+            continue; /* "a//b": the prefix was made already */
+        char saved = buf[i];
+        buf[i] = '\0';
+        int rc = sd_fs_mkdir_one(buf);
+        int e = errno;
+        buf[i] = saved;
+        if (rc != 0) {
+            buf[i] = '\0';
+            sd_status s = sd_error_set(err, SD_ERR_IO, buf, 0, "output.directory",
+                                       "cannot create directory: %s", strerror(e));
+            sd_free(buf);
+            return s;
+        }
+    }
+    sd_free(buf);
+    return SD_OK;
+}
+
+int sd_fs_is_regular_file(const char *path)
+{
+    struct stat st;
+    return lstat(path, &st) == 0 && S_ISREG(st.st_mode);
+}
+
+sd_status sd_fs_list_dir(const char *dir, int (*visit)(const char *name, void *ctx), void *ctx,
+                         sd_error *err)
+{
+    DIR *d = opendir(dir);
+    if (!d)
+        return sd_error_set(err, SD_ERR_IO, dir, 0, "", "cannot list directory: %s",
+                            strerror(errno));
+    struct dirent *e;
+    errno = 0;
+    while ((e = readdir(d)) != NULL) {
+        if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0)
+            continue;
+        if (visit(e->d_name, ctx))
+            break;
+        errno = 0;
+    }
+    int failed = (e == NULL && errno != 0);
+    int saved = errno;
+    closedir(d);
+    if (failed)
+        return sd_error_set(err, SD_ERR_IO, dir, 0, "", "cannot list directory: %s",
+                            strerror(saved));
+    return SD_OK;
+}
+
+static void sd_atomic_release(sd_atomic_file *af)
+{
+    sd_free(af->tmp_path);
+    sd_free(af->final_path);
+    af->fp = NULL;
+    af->tmp_path = NULL;
+    af->final_path = NULL;
+}
+
+sd_status sd_fs_atomic_begin(sd_atomic_file *af, const char *dir, const char *name, sd_error *err)
+{
+    af->fp = NULL;
+    af->final_path = sd_fs_join(dir, name);
+    size_t nn = strlen(name);
+    char *tmp_name = sd_malloc(nn + 6);
+    if (tmp_name) {
+        tmp_name[0] = '.';
+        memcpy(tmp_name + 1, name, nn);
+        memcpy(tmp_name + 1 + nn, ".tmp", 5);
+    }
+    af->tmp_path = tmp_name ? sd_fs_join(dir, tmp_name) : NULL;
+    sd_free(tmp_name);
+    if (!af->final_path || !af->tmp_path) {
+        sd_atomic_release(af);
+        return sd_error_set(err, SD_ERR_MEMORY, dir, 0, "", "out of memory");
+    }
+    af->fp = fopen(af->tmp_path, "wb");
+    if (!af->fp) {
+        sd_status s = sd_error_set(err, SD_ERR_IO, af->tmp_path, 0, "",
+                                   "cannot create file: %s", strerror(errno));
+        sd_atomic_release(af);
+        return s;
+    }
+    return SD_OK;
+}
+
+/* Makes the rename itself durable; best effort (some file systems refuse). */
+static void sd_fs_sync_parent(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    char *dir = NULL;
+    if (slash) {
+        size_t n = slash == path ? 1 : (size_t)(slash - path);
+        dir = sd_malloc(n + 1);
+        if (!dir)
+            return;
+        memcpy(dir, path, n);
+        dir[n] = '\0';
+    }
+    int fd = open(dir ? dir : ".", O_RDONLY);
+    if (fd >= 0) {
+        (void)fsync(fd);
+        close(fd);
+    }
+    sd_free(dir);
+}
+
+sd_status sd_fs_atomic_commit(sd_atomic_file *af, sd_error *err)
+{
+    if (!af->fp)
+        return sd_error_set(err, SD_ERR_INTERNAL, "", 0, "", "atomic file committed twice");
+    int e = 0;
+    if (ferror(af->fp))
+        e = errno ? errno : EIO;
+    if (!e && fflush(af->fp) != 0)
+        e = errno;
+    if (!e && fsync(fileno(af->fp)) != 0)
+        e = errno;
+    if (fclose(af->fp) != 0 && !e)
+        e = errno;
+    af->fp = NULL;
+    if (e) {
+        sd_status s = sd_error_set(err, SD_ERR_IO, af->final_path, 0, "", "cannot write file: %s",
+                                   strerror(e));
+        remove(af->tmp_path);
+        sd_atomic_release(af);
+        return s;
+    }
+    if (rename(af->tmp_path, af->final_path) != 0) {
+        sd_status s = sd_error_set(err, SD_ERR_IO, af->final_path, 0, "",
+                                   "cannot rename the finished file into place: %s",
+                                   strerror(errno));
+        remove(af->tmp_path);
+        sd_atomic_release(af);
+        return s;
+    }
+    sd_fs_sync_parent(af->final_path);
+    sd_atomic_release(af);
+    return SD_OK;
+}
+
+void sd_fs_atomic_abort(sd_atomic_file *af)
+{
+    if (af->fp) {
+        fclose(af->fp);
+        af->fp = NULL;
+    }
+    if (af->tmp_path)
+        remove(af->tmp_path);
+    sd_atomic_release(af);
+}

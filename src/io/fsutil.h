@@ -1,0 +1,46 @@
+/* fsutil.h — the few file-system operations the output module needs:
+ * mkdir -p, listing a directory, and atomic file replacement.
+ *
+ * Invariant: a file written through sd_fs_atomic_* appears under its final
+ * name complete or not at all. It is written to ".<name>.tmp" in the same
+ * directory (so rename() stays on one file system), flushed, fsync'ed and
+ * renamed over the final name; on any failure the temporary is removed.
+ *
+ * POSIX only (mkdir, opendir, fsync, rename).
+ */
+#ifndef SD_IO_FSUTIL_H
+#define SD_IO_FSUTIL_H
+
+#include <shapedem/shapedem.h>
+#include <stdio.h>
+
+/* "dir/name" in memory from sd_malloc (free with sd_free), or NULL. */
+char *sd_fs_join(const char *dir, const char *name);
+
+/* Creates path and every missing parent (mode 0777 before umask). An
+ * existing directory is fine; an existing non-directory is SD_ERR_IO. */
+sd_status sd_fs_mkdir_p(const char *path, sd_error *err);
+
+/* 1 if path names a regular file (symbolic links are not followed). */
+int sd_fs_is_regular_file(const char *path);
+
+/* Calls visit(name, ctx) for each entry of dir except "." and "..";
+ * stops early when visit returns non-zero. */
+sd_status sd_fs_list_dir(const char *dir, int (*visit)(const char *name, void *ctx), void *ctx,
+                         sd_error *err);
+
+typedef struct sd_atomic_file {
+    FILE *fp;         /* write here between begin and commit/abort */
+    char *tmp_path;   /* dir/.name.tmp */
+    char *final_path; /* dir/name */
+} sd_atomic_file;
+
+/* Opens dir/.name.tmp for writing ("wb"). On failure af holds nothing. */
+sd_status sd_fs_atomic_begin(sd_atomic_file *af, const char *dir, const char *name, sd_error *err);
+/* Checks for write errors, flushes, fsyncs, closes and renames into place;
+ * on failure removes the temporary. af is released either way. */
+sd_status sd_fs_atomic_commit(sd_atomic_file *af, sd_error *err);
+/* Closes and removes the temporary; af is released. Safe on a released af. */
+void sd_fs_atomic_abort(sd_atomic_file *af);
+
+#endif

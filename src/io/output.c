@@ -1,0 +1,493 @@
+/* output.c — the run output directory: frames (VTK XML), frames.pvd,
+ * stats.csv and summary.txt.
+ *
+ * Invariants (see output.h): nothing is written into a non-empty directory
+ * that lacks the .shapedem-output marker; a directory with the marker loses
+ * only files whose names shapedem itself writes (particles_<digits>.vtu,
+ * walls_<digits>.vtp, frames.pvd, stats.csv, summary.txt and their
+ * ".<name>.tmp" temporaries); every file except stats.csv is replaced
+ * atomically; stats.csv is only ever appended to, one flushed row per call,
+ * so a crash loses at most the row being written.
+ *
+ * The world is read only through the public API in shapedem.h.
+ */
+#define _POSIX_C_SOURCE 200809L
+
+#include "io/output.h"
+
+#include "core/alloc.h"
+#include "core/error.h"
+#include "io/fsutil.h"
+#include "io/vtk.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <string.h>
+
+#define SD_OUTPUT_MARKER ".shapedem-output"
+#define SD_OUTPUT_KEY "output.directory"
+
+struct sd_output {
+    char *dir;
+    char *scene;
+    int vtk, csv;
+    long frames;          /* frames written so far = next frame number */
+    double *frame_times;  /* s, one per frame, for frames.pvd */
+    size_t frame_cap;
+    FILE *stats;          /* stats.csv, opened at the first row */
+    size_t stats_walls;   /* walls in the header */
+    long stats_rows;
+};
+
+static char *sd_output_strdup(const char *s)
+{
+    size_t n = strlen(s);
+    char *p = sd_malloc(n + 1);
+    if (p)
+        memcpy(p, s, n + 1);
+    return p;
+}
+
+/* ---- which files are ours ------------------------------------------------ */
+
+static int sd_output_has_suffix(const char *s, size_t n, const char *suffix)
+{
+    size_t m = strlen(suffix);
+    return n >= m && memcmp(s + n - m, suffix, m) == 0;
+}
+
+/* prefix, one or more digits, suffix — the frame file names. */
+static int sd_output_is_frame_name(const char *s, size_t n, const char *prefix, const char *suffix)
+{
+    size_t a = strlen(prefix), b = strlen(suffix);
+    if (n <= a + b || memcmp(s, prefix, a) != 0 || !sd_output_has_suffix(s, n, suffix))
+        return 0;
+    for (size_t i = a; i < n - b; ++i)
+        if (s[i] < '0' || s[i] > '9')
+            return 0;
+    return 1;
+}
+
+static int sd_output_is_ours(const char *name)
+{
+    const char *s = name;
+    size_t n = strlen(name);
+    if (n > 5 && name[0] == '.' && sd_output_has_suffix(name, n, ".tmp")) {
+        s = name + 1; /* a temporary left by an interrupted run */
+        n -= 5;
+    }
+    static const char *fixed[] = {"frames.pvd", "stats.csv", "summary.txt"};
+    for (size_t k = 0; k < sizeof fixed / sizeof fixed[0]; ++k)
+        if (n == strlen(fixed[k]) && memcmp(s, fixed[k], n) == 0)
+            return 1;
+    return sd_output_is_frame_name(s, n, "particles_", ".vtu") ||
+           sd_output_is_frame_name(s, n, "walls_", ".vtp");
+}
+
+typedef struct sd_output_scan {
+    size_t entries;
+    const char *example; /* a foreign entry's name, for the message */
+    char example_buf[128];
+} sd_output_scan;
+
+static int sd_output_scan_visit(const char *name, void *ctx)
+{
+    sd_output_scan *sc = ctx;
+    if (sc->entries++ == 0) {
+        snprintf(sc->example_buf, sizeof sc->example_buf, "%s", name);
+        sc->example = sc->example_buf;
+    }
+    return 0;
+}
+
+typedef struct sd_output_clean {
+    const char *dir;
+    sd_status status;
+    sd_error *err;
+} sd_output_clean;
+
+static int sd_output_clean_visit(const char *name, void *ctx)
+{
+    sd_output_clean *c = ctx;
+    if (!sd_output_is_ours(name))
+        return 0;
+    char *path = sd_fs_join(c->dir, name);
+    if (!path) {
+        c->status = sd_error_set(c->err, SD_ERR_MEMORY, c->dir, 0, "", "out of memory");
+        return 1;
+    }
+    /* Only plain files: a directory or link under one of our names was made
+     * by someone else and is left alone (the rename over it will then fail). */
+    if (sd_fs_is_regular_file(path) && remove(path) != 0) {
+        c->status = sd_error_set(c->err, SD_ERR_IO, path, 0, "",
+                                 "cannot remove the previous run's file: %s", strerror(errno));
+        sd_free(path);
+        return 1;
+    }
+    sd_free(path);
+    return 0;
+}
+
+/* ---- open ------------------------------------------------------------------ */
+
+static sd_status sd_output_prepare_dir(const char *dir, sd_error *err)
+{
+    sd_status s = sd_fs_mkdir_p(dir, err);
+    if (s != SD_OK)
+        return s;
+    char *marker = sd_fs_join(dir, SD_OUTPUT_MARKER);
+    if (!marker)
+        return sd_error_set(err, SD_ERR_MEMORY, dir, 0, "", "out of memory");
+    int marked = sd_fs_is_regular_file(marker);
+    sd_free(marker);
+
+    if (!marked) {
+        sd_output_scan sc;
+        memset(&sc, 0, sizeof sc);
+        s = sd_fs_list_dir(dir, sd_output_scan_visit, &sc, err);
+        if (s != SD_OK)
+            return s;
+        if (sc.entries > 0)
+            return sd_error_set(err, SD_ERR_IO, dir, 0, SD_OUTPUT_KEY,
+                                "the directory holds files shapedem did not write (e.g. '%s') and "
+                                "has no " SD_OUTPUT_MARKER " marker; shapedem will not write there, "
+                                "so nothing you made is lost: choose a new or empty directory",
+                                sc.example ? sc.example : "?");
+    } else {
+        sd_output_clean c = {dir, SD_OK, err};
+        s = sd_fs_list_dir(dir, sd_output_clean_visit, &c, err);
+        if (s != SD_OK)
+            return s;
+        if (c.status != SD_OK)
+            return c.status;
+    }
+
+    sd_atomic_file af;
+    s = sd_fs_atomic_begin(&af, dir, SD_OUTPUT_MARKER, err);
+    if (s != SD_OK)
+        return s;
+    fprintf(af.fp,
+            "This directory was written by shapedem %s.\n"
+            "The next run writing here replaces particles_*.vtu, walls_*.vtp, frames.pvd,\n"
+            "stats.csv and summary.txt; any other file is left alone.\n",
+            SD_VERSION_STRING);
+    return sd_fs_atomic_commit(&af, err);
+}
+
+sd_status sd_output_open(const sd_output_def *def, const sd_world *w, sd_output **out, sd_error *err)
+{
+    (void)w;
+    if (!out)
+        return sd_error_set(err, SD_ERR_INTERNAL, "", 0, "", "sd_output_open: out is NULL");
+    *out = NULL;
+    if (!def || !def->directory || !def->directory[0])
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, SD_OUTPUT_KEY,
+                            "no output directory given");
+    sd_status s = sd_output_prepare_dir(def->directory, err);
+    if (s != SD_OK)
+        return s;
+    sd_output *o = sd_calloc(1, sizeof *o);
+    if (!o)
+        return sd_error_set(err, SD_ERR_MEMORY, def->directory, 0, "", "out of memory");
+    o->dir = sd_output_strdup(def->directory);
+    o->scene = sd_output_strdup(def->scene ? def->scene : "");
+    if (!o->dir || !o->scene) {
+        sd_free(o->dir);
+        sd_free(o->scene);
+        sd_free(o);
+        return sd_error_set(err, SD_ERR_MEMORY, def->directory, 0, "", "out of memory");
+    }
+    o->vtk = def->vtk;
+    o->csv = def->csv;
+    *out = o;
+    return SD_OK;
+}
+
+/* ---- frames ---------------------------------------------------------------- */
+
+/* The error from a writer names no file; give it the one being written. */
+static sd_status sd_output_fail(sd_atomic_file *af, sd_status s, sd_error *err)
+{
+    if (err && !err->file[0] && af->final_path)
+        snprintf(err->file, sizeof err->file, "%s", af->final_path);
+    sd_fs_atomic_abort(af);
+    return s;
+}
+
+static sd_status sd_output_write_pvd(sd_output *o, sd_error *err)
+{
+    size_t n = 2 * (size_t)o->frames;
+    sd_vtk_dataset *sets = sd_malloc((n ? n : 1) * sizeof *sets);
+    char *names = sd_malloc((n ? n : 1) * 32);
+    if (!sets || !names) {
+        sd_free(sets);
+        sd_free(names);
+        return sd_error_set(err, SD_ERR_MEMORY, o->dir, 0, "", "out of memory");
+    }
+    for (long f = 0; f < o->frames; ++f) {
+        for (int part = 0; part < 2; ++part) {
+            size_t k = 2 * (size_t)f + (size_t)part;
+            char *name = names + 32 * k;
+            snprintf(name, 32, part ? "walls_%06ld.vtp" : "particles_%06ld.vtu", f);
+            sets[k].time = o->frame_times[f];
+            sets[k].part = part;
+            sets[k].file = name;
+        }
+    }
+    sd_atomic_file af;
+    sd_status s = sd_fs_atomic_begin(&af, o->dir, "frames.pvd", err);
+    if (s == SD_OK) {
+        s = sd_vtk_write_collection(af.fp, n, sets, err);
+        s = (s == SD_OK) ? sd_fs_atomic_commit(&af, err) : sd_output_fail(&af, s, err);
+    }
+    sd_free(sets);
+    sd_free(names);
+    return s;
+}
+
+sd_status sd_output_frame(sd_output *o, const sd_world *w, sd_error *err)
+{
+    if (!o || !w)
+        return sd_error_set(err, SD_ERR_INTERNAL, "", 0, "", "sd_output_frame: NULL argument");
+    if (!o->vtk)
+        return SD_OK;
+    if ((size_t)o->frames == o->frame_cap) {
+        size_t cap = o->frame_cap ? 2 * o->frame_cap : 64;
+        double *t = sd_realloc(o->frame_times, cap * sizeof *t);
+        if (!t)
+            return sd_error_set(err, SD_ERR_MEMORY, o->dir, 0, "", "out of memory");
+        o->frame_times = t;
+        o->frame_cap = cap;
+    }
+    char name[64];
+    sd_atomic_file af;
+
+    snprintf(name, sizeof name, "particles_%06ld.vtu", o->frames);
+    sd_status s = sd_fs_atomic_begin(&af, o->dir, name, err);
+    if (s != SD_OK)
+        return s;
+    s = sd_vtk_write_particles(af.fp, w, err);
+    s = (s == SD_OK) ? sd_fs_atomic_commit(&af, err) : sd_output_fail(&af, s, err);
+    if (s != SD_OK)
+        return s;
+
+    snprintf(name, sizeof name, "walls_%06ld.vtp", o->frames);
+    s = sd_fs_atomic_begin(&af, o->dir, name, err);
+    if (s != SD_OK)
+        return s;
+    s = sd_vtk_write_walls(af.fp, w, sd_vtk_plane_side(w), err);
+    s = (s == SD_OK) ? sd_fs_atomic_commit(&af, err) : sd_output_fail(&af, s, err);
+    if (s != SD_OK)
+        return s;
+
+    o->frame_times[o->frames++] = sd_world_time(w);
+    return sd_output_write_pvd(o, err);
+}
+
+/* ---- stats.csv -------------------------------------------------------------- */
+
+static int sd_output_is_identifier(const char *s)
+{
+    if (!s || !s[0] || strlen(s) > 64)
+        return 0;
+    for (size_t i = 0; s[i]; ++i) {
+        char c = s[i];
+        int alpha = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_';
+        int digit = c >= '0' && c <= '9';
+        if (!alpha && !(digit && i > 0))
+            return 0;
+    }
+    return 1;
+}
+
+#define SD_OUTPUT_PREFIX_MAX 80
+
+/* Column prefix for each wall: its name when that is an identifier not taken
+ * by an earlier wall, else wall<index> (made unique the same way). */
+static sd_status sd_output_wall_prefixes(const sd_world *w, size_t nw, char *pre, sd_error *err)
+{
+    for (size_t i = 0; i < nw; ++i) {
+        sd_wall_info wi;
+        sd_status s = sd_world_get_wall(w, i, &wi);
+        if (s != SD_OK)
+            return sd_error_set(err, s, "", 0, "", "cannot read wall %zu of the world", i);
+        char *p = pre + i * SD_OUTPUT_PREFIX_MAX;
+        if (sd_output_is_identifier(wi.name))
+            snprintf(p, SD_OUTPUT_PREFIX_MAX, "%s", wi.name);
+        else
+            snprintf(p, SD_OUTPUT_PREFIX_MAX, "wall%zu", i);
+        for (int attempt = 0;; ++attempt) {
+            int taken = 0;
+            for (size_t j = 0; j < i && !taken; ++j)
+                taken = strcmp(p, pre + j * SD_OUTPUT_PREFIX_MAX) == 0;
+            if (!taken)
+                break;
+            if (attempt == 0)
+                snprintf(p, SD_OUTPUT_PREFIX_MAX, "wall%zu", i);
+            else
+                snprintf(p, SD_OUTPUT_PREFIX_MAX, "wall%zu_%d", i, attempt);
+        }
+    }
+    return SD_OK;
+}
+
+static sd_status sd_output_stats_header(sd_output *o, const sd_world *w, size_t nw, sd_error *err)
+{
+    char *pre = sd_malloc((nw ? nw : 1) * SD_OUTPUT_PREFIX_MAX);
+    if (!pre)
+        return sd_error_set(err, SD_ERR_MEMORY, o->dir, 0, "", "out of memory");
+    sd_status s = sd_output_wall_prefixes(w, nw, pre, err);
+    if (s == SD_OK) {
+        fprintf(o->stats, "step,time,kinetic_translational,kinetic_rotational,potential_gravity,"
+                          "potential_elastic,total_energy,contacts,wall_contacts,"
+                          "max_overlap_ratio,max_speed,rebuilds");
+        for (size_t i = 0; i < nw; ++i) {
+            const char *p = pre + i * SD_OUTPUT_PREFIX_MAX;
+            fprintf(o->stats, ",%s_fx,%s_fy,%s_fz", p, p, p);
+        }
+        fputc('\n', o->stats);
+        o->stats_walls = nw;
+    }
+    sd_free(pre);
+    return s;
+}
+
+sd_status sd_output_stats(sd_output *o, const sd_world *w, sd_error *err)
+{
+    if (!o || !w)
+        return sd_error_set(err, SD_ERR_INTERNAL, "", 0, "", "sd_output_stats: NULL argument");
+    if (!o->csv)
+        return SD_OK;
+    char *path = sd_fs_join(o->dir, "stats.csv");
+    if (!path)
+        return sd_error_set(err, SD_ERR_MEMORY, o->dir, 0, "", "out of memory");
+    sd_status s = SD_OK;
+    size_t nw = sd_world_wall_count(w);
+    if (!o->stats) {
+        /* Append mode: a write can never truncate earlier rows. */
+        o->stats = fopen(path, "a");
+        if (!o->stats) {
+            s = sd_error_set(err, SD_ERR_IO, path, 0, "", "cannot open for appending: %s",
+                             strerror(errno));
+            goto done;
+        }
+        s = sd_output_stats_header(o, w, nw, err);
+        if (s != SD_OK)
+            goto done;
+    } else if (nw != o->stats_walls) {
+        s = sd_error_set(err, SD_ERR_INPUT, path, 0, "",
+                         "the world has %zu walls but stats.csv was started with %zu; "
+                         "walls must be added before the first stats row",
+                         nw, o->stats_walls);
+        goto done;
+    }
+
+    sd_stats st;
+    sd_world_stats(w, &st);
+    double total = st.kinetic_translational + st.kinetic_rotational + st.potential_gravity +
+                   st.potential_elastic;
+    fprintf(o->stats, "%ld,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%ld,%ld,%.10g,%.10g,%ld", st.step,
+            st.time, st.kinetic_translational, st.kinetic_rotational, st.potential_gravity,
+            st.potential_elastic, total, st.contacts, st.wall_contacts, st.max_overlap_ratio,
+            st.max_speed, st.rebuilds);
+    for (size_t i = 0; i < nw; ++i) {
+        sd_wall_info wi;
+        if (sd_world_get_wall(w, i, &wi) != SD_OK) {
+            /* Keep the column count: the row stays well-formed. */
+            memset(&wi, 0, sizeof wi);
+            s = sd_error_set(err, SD_ERR_INTERNAL, "", 0, "", "cannot read wall %zu", i);
+        }
+        fprintf(o->stats, ",%.10g,%.10g,%.10g", wi.force.x, wi.force.y, wi.force.z);
+    }
+    fputc('\n', o->stats);
+    if (fflush(o->stats) != 0 || ferror(o->stats)) {
+        s = sd_error_set(err, SD_ERR_IO, path, 0, "", "cannot write: %s", strerror(errno));
+        goto done;
+    }
+    o->stats_rows++;
+done:
+    sd_free(path);
+    return s;
+}
+
+/* ---- close and summary.txt -------------------------------------------------- */
+
+static void sd_output_summary_text(FILE *fp, const sd_output *o, const sd_world *w,
+                                   const sd_run_summary *sum)
+{
+    const double mib = 1024.0 * 1024.0;
+    fprintf(fp, "# shapedem %s run summary (SI units)\n", SD_VERSION_STRING);
+    fprintf(fp, "scene: %s\n", o->scene[0] ? o->scene : "(none)");
+    if (w) {
+        fprintf(fp, "particles: %zu\n", sd_world_particle_count(w));
+        fprintf(fp, "walls: %zu\n", sd_world_wall_count(w));
+    }
+    if (sum)
+        fprintf(fp, "steps_run: %ld\n", sum->steps);
+    if (w) {
+        fprintf(fp, "step: %ld\n", sd_world_step_count(w));
+        fprintf(fp, "time_step_s: %.10g\n", sd_world_dt(w));
+        fprintf(fp, "simulated_time_s: %.10g\n", sd_world_time(w));
+    }
+    if (sum) {
+        fprintf(fp, "wall_seconds: %.6g\n", sum->wall_seconds);
+        fprintf(fp, "particle_steps_per_second: %.6g\n", sum->particle_steps_per_second);
+        fprintf(fp, "threads: %d\n", sum->threads);
+        fprintf(fp, "peak_memory_MiB: %.3f\n", (double)sum->peak_memory / mib);
+        fprintf(fp, "peak_rss_MiB: %.3f\n", (double)sum->peak_rss / mib);
+    }
+    fprintf(fp, "frames: %ld\n", o->frames);
+    fprintf(fp, "stats_rows: %ld\n", o->stats_rows);
+    if (!w)
+        return;
+    sd_stats st;
+    sd_world_stats(w, &st);
+    fprintf(fp, "kinetic_translational_J: %.10g\n", st.kinetic_translational);
+    fprintf(fp, "kinetic_rotational_J: %.10g\n", st.kinetic_rotational);
+    fprintf(fp, "potential_gravity_J: %.10g\n", st.potential_gravity);
+    fprintf(fp, "potential_elastic_J: %.10g\n", st.potential_elastic);
+    fprintf(fp, "total_energy_J: %.10g\n", st.kinetic_translational + st.kinetic_rotational +
+                                               st.potential_gravity + st.potential_elastic);
+    fprintf(fp, "contacts: %ld\n", st.contacts);
+    fprintf(fp, "wall_contacts: %ld\n", st.wall_contacts);
+    fprintf(fp, "max_overlap_ratio: %.10g\n", st.max_overlap_ratio);
+    fprintf(fp, "max_speed_m_per_s: %.10g\n", st.max_speed);
+    fprintf(fp, "pair_list_rebuilds: %ld\n", st.rebuilds);
+    size_t nw = sd_world_wall_count(w);
+    for (size_t i = 0; i < nw; ++i) {
+        sd_wall_info wi;
+        if (sd_world_get_wall(w, i, &wi) != SD_OK)
+            continue;
+        fprintf(fp, "wall %zu (%s) force_N: %.10g %.10g %.10g\n", i,
+                wi.name && wi.name[0] ? wi.name : "unnamed", wi.force.x, wi.force.y, wi.force.z);
+    }
+}
+
+sd_status sd_output_close(sd_output *o, const sd_world *w, const sd_run_summary *sum, sd_error *err)
+{
+    if (!o)
+        return SD_OK;
+    sd_status s = SD_OK;
+    if (o->stats) {
+        if (fclose(o->stats) != 0)
+            s = sd_error_set(err, SD_ERR_IO, o->dir, 0, "", "cannot close stats.csv: %s",
+                             strerror(errno));
+        o->stats = NULL;
+    }
+    /* The first error is the one reported. */
+    sd_error err2;
+    sd_error *e2 = (s == SD_OK) ? err : &err2;
+    sd_atomic_file af;
+    sd_status s2 = sd_fs_atomic_begin(&af, o->dir, "summary.txt", e2);
+    if (s2 == SD_OK) {
+        sd_output_summary_text(af.fp, o, w, sum);
+        s2 = sd_fs_atomic_commit(&af, e2);
+    }
+    if (s == SD_OK)
+        s = s2;
+    sd_free(o->frame_times);
+    sd_free(o->scene);
+    sd_free(o->dir);
+    sd_free(o);
+    return s;
+}

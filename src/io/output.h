@@ -1,0 +1,39 @@
+/* output.h — what a run writes: VTK XML frames (.vtu particles, .vtp
+ * walls) gathered in frames.pvd, stats.csv and summary.txt.
+ *
+ * Invariant: every file is written to a temporary name in the same
+ * directory and renamed into place, so an interrupted run never leaves a
+ * truncated file; frames.pvd is rewritten the same way after each frame.
+ * A directory that is not empty and was not made by shapedem (no
+ * .shapedem-output marker) is never written into.
+ */
+#ifndef SD_IO_OUTPUT_H
+#define SD_IO_OUTPUT_H
+
+#include <shapedem/shapedem.h>
+
+typedef struct sd_output sd_output;
+
+typedef struct sd_output_def {
+    const char *directory;
+    int vtk;            /* write frames */
+    int csv;            /* write stats.csv */
+    const char *scene;  /* scene path, recorded in the summary */
+} sd_output_def;
+
+typedef struct sd_run_summary {
+    long steps;               /* steps run */
+    double wall_seconds;      /* of stepping only */
+    double particle_steps_per_second;
+    int threads;
+    size_t peak_memory;       /* bytes, shapedem allocator peak */
+    size_t peak_rss;          /* bytes, process peak resident set */
+} sd_run_summary;
+
+sd_status sd_output_open(const sd_output_def *def, const sd_world *w, sd_output **out, sd_error *err);
+sd_status sd_output_frame(sd_output *o, const sd_world *w, sd_error *err);
+sd_status sd_output_stats(sd_output *o, const sd_world *w, sd_error *err);
+/* Writes summary.txt and frees o (also on error). */
+sd_status sd_output_close(sd_output *o, const sd_world *w, const sd_run_summary *sum, sd_error *err);
+
+#endif

@@ -1,0 +1,420 @@
+/* scene_keys.c — the table of scene-file keys, and the help text made from
+ * it (`shapedem help scene`, docs/scene-format.md).
+ *
+ * Invariant: this table is the only list of scene keys. The parser
+ * (scene_parse.c) rejects any key not in it, checks types and ranges with
+ * its type and range columns, and takes numeric defaults from its default
+ * column; sd_scene_print_keys prints the same rows, so the docs describe
+ * exactly what the parser does.
+ */
+#include "io/scene_keys.h"
+
+#include <stdio.h>
+#include <string.h>
+
+#include "io/scene.h"
+
+/* Contact-law names come from the public X-macro list (STYLE.md
+ * convention 4); the trailing '|' is skipped by the choice readers. */
+#define SD_X_CHOICE(e, name, doc) name "|"
+#define SD_LAW_CHOICES SD_CONTACT_LAWS(SD_X_CHOICE)
+
+#define ALL SD_KIND_ALL
+#define LAT (1u << SD_GEN_LATTICE)
+#define RND (1u << SD_GEN_RANDOM)
+#define LST (1u << SD_GEN_LIST)
+#define CSV (1u << SD_GEN_CSV)
+#define PLANE 1u
+#define BOX 2u
+
+/* section, key, type, range, choices, applies to, required for, unit, default, meaning */
+const sd_scene_key sd_scene_keys[] = {
+    {SD_SEC_ROOT, "simulation", SD_KT_MAP, SD_KR_ANY, NULL, ALL, ALL, "", "required",
+     "time step, run length and global settings"},
+    {SD_SEC_ROOT, "materials", SD_KT_LIST, SD_KR_ANY, NULL, ALL, ALL, "", "required",
+     "materials, at least one; their order gives the material index"},
+    {SD_SEC_ROOT, "interactions", SD_KT_LIST, SD_KR_ANY, NULL, ALL, 0, "", "[]",
+     "overrides for pairs of materials"},
+    {SD_SEC_ROOT, "particles", SD_KT_LIST, SD_KR_ANY, NULL, ALL, ALL, "", "required",
+     "particle generators, at least one; particle ids follow their order"},
+    {SD_SEC_ROOT, "walls", SD_KT_LIST, SD_KR_ANY, NULL, ALL, 0, "", "[]", "planes and boxes"},
+    {SD_SEC_ROOT, "output", SD_KT_MAP, SD_KR_ANY, NULL, ALL, 0, "", "{}",
+     "where and how often results are written"},
+
+    {SD_SEC_SIMULATION, "dimension", SD_KT_INT, SD_KR_ANY, NULL, ALL, 0, "", "3",
+     "3 (the planar mode, 2, is not available yet)"},
+    {SD_SEC_SIMULATION, "dt", SD_KT_NUMBER, SD_KR_POS, NULL, ALL, ALL, "s", "required",
+     "time step; must not exceed 1/5 of the shortest contact duration"},
+    {SD_SEC_SIMULATION, "steps", SD_KT_INT, SD_KR_NONNEG, NULL, ALL, 0, "", "-",
+     "number of steps to run; give exactly one of steps and duration"},
+    {SD_SEC_SIMULATION, "duration", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "s", "-",
+     "simulated time to run: steps = ceil(duration / dt)"},
+    {SD_SEC_SIMULATION, "gravity", SD_KT_VEC3, SD_KR_ANY, NULL, ALL, 0, "m/s^2", "[0, 0, -9.81]",
+     "gravitational acceleration"},
+    {SD_SEC_SIMULATION, "seed", SD_KT_INT, SD_KR_NONNEG, NULL, ALL, 0, "", "1",
+     "seed of every random choice (random generator, radii, velocity jitter)"},
+    {SD_SEC_SIMULATION, "threads", SD_KT_INT, SD_KR_NONNEG, NULL, ALL, 0, "", "0",
+     "OpenMP threads; 0 = OMP_NUM_THREADS or all cores"},
+    {SD_SEC_SIMULATION, "contact_law", SD_KT_ENUM, SD_KR_ANY, SD_LAW_CHOICES, ALL, 0, "",
+     "hertz_mindlin", "default contact law for every pair of materials"},
+    {SD_SEC_SIMULATION, "skin", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "m", "0",
+     "Verlet skin of the pair list; 0 = 0.2 x the smallest radius"},
+
+    {SD_SEC_MATERIAL, "name", SD_KT_STRING, SD_KR_NONEMPTY, NULL, ALL, ALL, "", "required",
+     "unique name, used by particles, walls and interactions"},
+    {SD_SEC_MATERIAL, "density", SD_KT_NUMBER, SD_KR_POS, NULL, ALL, ALL, "kg/m^3", "required",
+     "mass density"},
+    {SD_SEC_MATERIAL, "youngs_modulus", SD_KT_NUMBER, SD_KR_POS, NULL, ALL, 0, "Pa", "unset",
+     "Young's modulus; required when a hertz_mindlin contact involves the material"},
+    {SD_SEC_MATERIAL, "poisson_ratio", SD_KT_NUMBER, SD_KR_POISSON, NULL, ALL, 0, "", "0.3",
+     "Poisson's ratio"},
+    {SD_SEC_MATERIAL, "restitution", SD_KT_NUMBER, SD_KR_UNIT, NULL, ALL, 0, "", "0.5",
+     "normal coefficient of restitution"},
+    {SD_SEC_MATERIAL, "friction", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "", "0.5",
+     "sliding (Coulomb) friction coefficient"},
+    {SD_SEC_MATERIAL, "rolling_friction", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "", "0",
+     "rolling resistance coefficient"},
+    {SD_SEC_MATERIAL, "stiffness", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "N/m", "0",
+     "normal stiffness k_n of the linear law; 0 = unset, required when a linear contact "
+     "involves the material and its interaction sets no stiffness"},
+    {SD_SEC_MATERIAL, "tangential_stiffness_ratio", SD_KT_NUMBER, SD_KR_POS, NULL, ALL, 0, "",
+     "0.2857142857142857", "k_t / k_n of the linear law (2/7)"},
+
+    {SD_SEC_INTERACTION, "between", SD_KT_NAME_PAIR, SD_KR_NONEMPTY, NULL, ALL, ALL, "",
+     "required", "the two material names (may be the same)"},
+    {SD_SEC_INTERACTION, "restitution", SD_KT_NUMBER, SD_KR_UNIT, NULL, ALL, 0, "", "mixed",
+     "normal coefficient of restitution of the pair"},
+    {SD_SEC_INTERACTION, "friction", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "", "mixed",
+     "sliding friction coefficient of the pair"},
+    {SD_SEC_INTERACTION, "rolling_friction", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "",
+     "mixed", "rolling resistance coefficient of the pair"},
+    {SD_SEC_INTERACTION, "stiffness", SD_KT_NUMBER, SD_KR_POS, NULL, ALL, 0, "N/m", "mixed",
+     "linear-law normal stiffness of the pair"},
+    {SD_SEC_INTERACTION, "contact_law", SD_KT_ENUM, SD_KR_ANY, SD_LAW_CHOICES, ALL, 0, "",
+     "simulation.contact_law", "contact law of the pair"},
+
+    {SD_SEC_PARTICLES, "generator", SD_KT_ENUM, SD_KR_ANY, "lattice|random|list|csv", ALL, ALL,
+     "", "required", "how the particles are made"},
+    {SD_SEC_PARTICLES, "material", SD_KT_STRING, SD_KR_NONEMPTY, NULL, ALL, LAT | RND | CSV, "",
+     "required", "material name (list: the default of entries that name none)"},
+    {SD_SEC_PARTICLES, "radius", SD_KT_NUM_OR_RANGE, SD_KR_POS, NULL, LAT | RND, LAT | RND, "m",
+     "required", "sphere radius, or {min, max} for radii uniform in [min, max]"},
+    {SD_SEC_PARTICLES, "origin", SD_KT_VEC3, SD_KR_ANY, NULL, LAT, LAT, "m", "required",
+     "centre of the first sphere"},
+    {SD_SEC_PARTICLES, "spacing", SD_KT_NUM_OR_VEC3, SD_KR_POS, NULL, LAT, LAT, "m", "required",
+     "distance between neighbouring centres, per axis; >= 2 x the largest radius"},
+    {SD_SEC_PARTICLES, "count", SD_KT_INT3, SD_KR_ONE, NULL, LAT, LAT, "", "required",
+     "spheres along x, y and z (x varies fastest in id order)"},
+    {SD_SEC_PARTICLES, "box", SD_KT_BOX, SD_KR_ANY, NULL, RND, RND, "m", "required",
+     "region the spheres lie fully inside"},
+    {SD_SEC_PARTICLES, "number", SD_KT_INT, SD_KR_ONE, NULL, RND, RND, "", "required",
+     "number of spheres, placed without overlap by random sequential addition"},
+    {SD_SEC_PARTICLES, "spheres", SD_KT_LIST, SD_KR_ANY, NULL, LST, LST, "", "required",
+     "the spheres, one mapping each (keys under particles[].spheres[])"},
+    {SD_SEC_PARTICLES, "file", SD_KT_STRING, SD_KR_NONEMPTY, NULL, CSV, CSV, "", "required",
+     "CSV file, relative to the scene file; header x,y,z,radius[,vx,vy,vz]"},
+    {SD_SEC_PARTICLES, "velocity", SD_KT_VEC3, SD_KR_ANY, NULL, ALL, 0, "m/s", "[0, 0, 0]",
+     "initial velocity (list entries and CSV columns override it)"},
+    {SD_SEC_PARTICLES, "velocity_jitter", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "m/s", "0",
+     "uniform random velocity in [-j, j] added to each component"},
+
+    {SD_SEC_SPHERE, "position", SD_KT_VEC3, SD_KR_ANY, NULL, ALL, ALL, "m", "required",
+     "centre"},
+    {SD_SEC_SPHERE, "radius", SD_KT_NUMBER, SD_KR_POS, NULL, ALL, ALL, "m", "required", "radius"},
+    {SD_SEC_SPHERE, "velocity", SD_KT_VEC3, SD_KR_ANY, NULL, ALL, 0, "m/s",
+     "generator's velocity", "initial velocity"},
+    {SD_SEC_SPHERE, "angular_velocity", SD_KT_VEC3, SD_KR_ANY, NULL, ALL, 0, "rad/s",
+     "[0, 0, 0]", "initial angular velocity"},
+    {SD_SEC_SPHERE, "material", SD_KT_STRING, SD_KR_NONEMPTY, NULL, ALL, 0, "",
+     "generator's material", "material name"},
+
+    {SD_SEC_WALL, "name", SD_KT_STRING, SD_KR_NONEMPTY, NULL, ALL, 0, "", "wall<index>",
+     "name in output and messages"},
+    {SD_SEC_WALL, "type", SD_KT_ENUM, SD_KR_ANY, "plane|box", ALL, ALL, "", "required",
+     "an infinite plane or a box container"},
+    {SD_SEC_WALL, "material", SD_KT_STRING, SD_KR_NONEMPTY, NULL, ALL, ALL, "", "required",
+     "material name"},
+    {SD_SEC_WALL, "point", SD_KT_VEC3, SD_KR_ANY, NULL, PLANE, PLANE, "m", "required",
+     "a point on the plane"},
+    {SD_SEC_WALL, "normal", SD_KT_VEC3, SD_KR_ANY, NULL, PLANE, PLANE, "", "required",
+     "non-zero normal (normalised); particles live on the side it points to"},
+    {SD_SEC_WALL, "min", SD_KT_VEC3, SD_KR_ANY, NULL, BOX, BOX, "m", "required",
+     "lower corner"},
+    {SD_SEC_WALL, "max", SD_KT_VEC3, SD_KR_ANY, NULL, BOX, BOX, "m", "required",
+     "upper corner, > min on every axis; particles stay inside"},
+    {SD_SEC_WALL, "open", SD_KT_ENUM_LIST, SD_KR_ANY, "xmin|xmax|ymin|ymax|zmin|zmax", BOX, 0, "",
+     "[]", "faces left out of the box"},
+
+    {SD_SEC_OUTPUT, "directory", SD_KT_STRING, SD_KR_ANY, NULL, ALL, 0, "", "\"\"",
+     "output directory, relative to the current directory; \"\" = out/<scene file stem>"},
+    {SD_SEC_OUTPUT, "every", SD_KT_INT, SD_KR_ONE, NULL, ALL, 0, "", "steps/100",
+     "steps between frames (the default is at least 1)"},
+    {SD_SEC_OUTPUT, "stats_every", SD_KT_INT, SD_KR_ONE, NULL, ALL, 0, "", "every/10",
+     "steps between rows of stats.csv (the default is at least 1)"},
+    {SD_SEC_OUTPUT, "formats", SD_KT_ENUM_LIST, SD_KR_ANY, "vtk|csv", ALL, 0, "", "[vtk, csv]",
+     "what to write: vtk frames, csv statistics"},
+};
+
+const size_t sd_scene_key_count = sizeof sd_scene_keys / sizeof sd_scene_keys[0];
+
+const char sd_scene_example[] =
+    "# Spheres settling in an open-top box.\n"
+    "simulation:\n"
+    "  dt: 2.0e-6\n"
+    "  duration: 0.01\n"
+    "  gravity: [0, 0, -9.81]\n"
+    "  seed: 7\n"
+    "  contact_law: hertz_mindlin\n"
+    "materials:\n"
+    "  - name: glass\n"
+    "    density: 2500\n"
+    "    youngs_modulus: 1.0e7\n"
+    "    poisson_ratio: 0.3\n"
+    "    restitution: 0.5\n"
+    "    friction: 0.5\n"
+    "  - name: steel\n"
+    "    density: 7800\n"
+    "    youngs_modulus: 2.0e8\n"
+    "interactions:\n"
+    "  - between: [glass, steel]\n"
+    "    friction: 0.3\n"
+    "particles:\n"
+    "  - generator: lattice\n"
+    "    material: glass\n"
+    "    radius: {min: 0.0009, max: 0.0011}\n"
+    "    origin: [0.002, 0.002, 0.002]\n"
+    "    spacing: 0.0025\n"
+    "    count: [4, 4, 4]\n"
+    "    velocity_jitter: 0.01\n"
+    "  - generator: list\n"
+    "    material: glass\n"
+    "    spheres:\n"
+    "      - {position: [0.005, 0.005, 0.02], radius: 0.001, velocity: [0, 0, -0.5]}\n"
+    "walls:\n"
+    "  - name: container\n"
+    "    type: box\n"
+    "    min: [0, 0, 0]\n"
+    "    max: [0.012, 0.012, 0.05]\n"
+    "    open: [zmax]\n"
+    "    material: steel\n"
+    "output:\n"
+    "  directory: out/example\n"
+    "  every: 500\n"
+    "  formats: [vtk, csv]\n";
+
+static const char *const sd_section_names[SD_SEC_COUNT] = {
+    "(top level)", "simulation", "materials[]", "interactions[]", "particles[]",
+    "particles[].spheres[]", "walls[]", "output",
+};
+
+const char *sd_scene_section_name(sd_scene_section sec)
+{
+    return (unsigned)sec < SD_SEC_COUNT ? sd_section_names[sec] : "?";
+}
+
+const char *sd_scene_section_kinds(sd_scene_section sec)
+{
+    /* The bit order matches sd_gen_kind and the wall kinds (0 plane, 1 box). */
+    if (sec == SD_SEC_PARTICLES)
+        return "lattice|random|list|csv";
+    if (sec == SD_SEC_WALL)
+        return "plane|box";
+    return NULL;
+}
+
+const sd_scene_key *sd_scene_key_find(sd_scene_section sec, const char *key)
+{
+    for (size_t i = 0; i < sd_scene_key_count; ++i)
+        if (sd_scene_keys[i].section == sec && strcmp(sd_scene_keys[i].key, key) == 0)
+            return &sd_scene_keys[i];
+    return NULL;
+}
+
+const char *sd_scene_range_text(sd_scene_range r)
+{
+    switch (r) {
+    case SD_KR_POS: return "> 0";
+    case SD_KR_NONNEG: return ">= 0";
+    case SD_KR_UNIT: return "in (0, 1]";
+    case SD_KR_POISSON: return "in (-1, 0.5)";
+    case SD_KR_ONE: return ">= 1";
+    case SD_KR_NONEMPTY: return "non-empty";
+    case SD_KR_ANY: break;
+    }
+    return "";
+}
+
+int sd_scene_range_ok(sd_scene_range r, double v)
+{
+    switch (r) {
+    case SD_KR_POS: return v > 0.0;
+    case SD_KR_NONNEG: return v >= 0.0;
+    case SD_KR_UNIT: return v > 0.0 && v <= 1.0;
+    case SD_KR_POISSON: return v > -1.0 && v < 0.5;
+    case SD_KR_ONE: return v >= 1.0;
+    case SD_KR_NONEMPTY:
+    case SD_KR_ANY: break;
+    }
+    return 1;
+}
+
+/* "a|b|c|" -> "a, b, c" */
+static void sd_choices_text(const char *choices, char *buf, size_t size)
+{
+    size_t used = 0;
+    buf[0] = '\0';
+    for (const char *p = choices; *p && used + 1 < size;) {
+        size_t n = strcspn(p, "|");
+        if (n > 0) {
+            int w = snprintf(buf + used, size - used, "%s%.*s", used ? ", " : "", (int)n, p);
+            used += w > 0 ? (size_t)w : 0;
+        }
+        p += n;
+        if (*p == '|')
+            ++p;
+    }
+}
+
+const char *sd_scene_type_text(const sd_scene_key *k, char *buf, size_t size)
+{
+    const char *r = sd_scene_range_text(k->range);
+    const char *sp = r[0] ? " " : "";
+    char ch[160];
+    switch (k->type) {
+    case SD_KT_MAP: snprintf(buf, size, "mapping"); break;
+    case SD_KT_LIST: snprintf(buf, size, "list of mappings"); break;
+    case SD_KT_NUMBER: snprintf(buf, size, "number%s%s", sp, r); break;
+    case SD_KT_INT: snprintf(buf, size, "integer%s%s", sp, r); break;
+    case SD_KT_STRING: snprintf(buf, size, "%sstring", k->range == SD_KR_NONEMPTY ? "non-empty " : ""); break;
+    case SD_KT_ENUM:
+        sd_choices_text(k->choices, ch, sizeof ch);
+        snprintf(buf, size, "one of: %s", ch);
+        break;
+    case SD_KT_ENUM_LIST:
+        sd_choices_text(k->choices, ch, sizeof ch);
+        snprintf(buf, size, "list of: %s", ch);
+        break;
+    case SD_KT_VEC3: snprintf(buf, size, "[x, y, z]%s%s", sp, r); break;
+    case SD_KT_INT3: snprintf(buf, size, "[nx, ny, nz] integers%s%s", sp, r); break;
+    case SD_KT_NUM_OR_VEC3: snprintf(buf, size, "number or [x, y, z]%s%s", sp, r); break;
+    case SD_KT_NUM_OR_RANGE: snprintf(buf, size, "number or {min, max}%s%s", sp, r); break;
+    case SD_KT_BOX: snprintf(buf, size, "{min: [x, y, z], max: [x, y, z]}"); break;
+    case SD_KT_NAME_PAIR: snprintf(buf, size, "[name, name]"); break;
+    }
+    return buf;
+}
+
+/* Kinds in mask as "lattice, random", or "" when the key applies to all. */
+static void sd_kinds_text(sd_scene_section sec, unsigned mask, char *buf, size_t size)
+{
+    const char *kinds = sd_scene_section_kinds(sec);
+    buf[0] = '\0';
+    if (!kinds || mask == SD_KIND_ALL)
+        return;
+    size_t used = 0;
+    unsigned bit = 0;
+    for (const char *p = kinds; *p; ++bit) {
+        size_t n = strcspn(p, "|");
+        if (mask & (1u << bit)) {
+            int w = snprintf(buf + used, size - used, "%s%.*s", used ? ", " : "", (int)n, p);
+            used += w > 0 && (size_t)w < size - used ? (size_t)w : 0;
+        }
+        p += n;
+        if (*p == '|')
+            ++p;
+    }
+}
+
+/* Section column: "particles[] (lattice)" when the key applies to some kinds. */
+static void sd_section_text(const sd_scene_key *k, char *buf, size_t size)
+{
+    char kinds[96];
+    sd_kinds_text(k->section, k->kinds, kinds, sizeof kinds);
+    if (kinds[0])
+        snprintf(buf, size, "%s (%s)", sd_scene_section_name(k->section), kinds);
+    else
+        snprintf(buf, size, "%s", sd_scene_section_name(k->section));
+}
+
+/* Default column: "required", "required (lattice, random)", or the default. */
+static void sd_default_text(const sd_scene_key *k, char *buf, size_t size)
+{
+    char kinds[96];
+    if (k->required == 0) {
+        snprintf(buf, size, "%s", k->def);
+        return;
+    }
+    sd_kinds_text(k->section, k->required == k->kinds ? SD_KIND_ALL : k->required, kinds,
+                  sizeof kinds);
+    if (kinds[0])
+        snprintf(buf, size, "required (%s)", kinds);
+    else
+        snprintf(buf, size, "required");
+}
+
+/* Rules the table cannot say, printed under it in both formats. */
+static const char *const sd_scene_rules[] = {
+    "Numbers may be written as YAML integers or floats (2500, 1e7, 1.0e-5); keys are "
+    "case-sensitive; a key not listed here is an error.",
+    "simulation: give exactly one of steps and duration; with duration, steps = "
+    "ceil(duration / dt).",
+    "simulation.dt above 1/5 of the shortest contact duration is rejected (time step above "
+    "the stability limit); `shapedem check` prints the recommended step.",
+    "Material, interaction and particle values are checked when the scene loads; errors name "
+    "the file, the line and the key (e.g. materials[1].density).",
+    "particles: one generator per entry, each with its own keys (the section column says which). "
+    "lattice: count[0] x count[1] x count[2] spheres at origin + (i, j, k) * spacing. "
+    "random: random sequential addition inside box, deterministic from simulation.seed; it "
+    "fails with an error when the box is too full. list: spheres given one by one. csv: one "
+    "sphere per row of a CSV file with a header line naming the columns x, y, z, radius and "
+    "optionally vx, vy, vz (comma-separated; blank lines and lines starting with # are "
+    "skipped).",
+    "Particles may not overlap at the start by more than 1e-6 of the smaller radius, and must "
+    "start inside every wall: on the side a plane's normal points to, and inside each closed "
+    "face of a box.",
+    "Random choices (radii in {min, max}, velocity_jitter, the random generator) come from "
+    "simulation.seed: the same scene gives the same particles.",
+};
+
+void sd_scene_print_keys(FILE *f, int markdown)
+{
+    char sec[96], type[192], def[96];
+    size_t nrules = sizeof sd_scene_rules / sizeof sd_scene_rules[0];
+    if (markdown) {
+        fprintf(f, "# Scene file format\n\n");
+        fprintf(f, "<!-- Generated by `shapedem help scene --markdown` from src/io/scene_keys.c; "
+                   "do not edit. -->\n\n");
+        fprintf(f, "A scene is a YAML file that describes one simulation: materials, particles, "
+                   "walls and output. Run it with `shapedem run SCENE`; check it without running "
+                   "with `shapedem check SCENE`. Units are SI.\n\n");
+        fprintf(f, "## Example\n\n```yaml\n%s```\n\n", sd_scene_example);
+        fprintf(f, "## Keys\n\n");
+        fprintf(f, "| section | key | type | unit | default | meaning |\n");
+        fprintf(f, "| --- | --- | --- | --- | --- | --- |\n");
+        for (size_t i = 0; i < sd_scene_key_count; ++i) {
+            const sd_scene_key *k = &sd_scene_keys[i];
+            sd_section_text(k, sec, sizeof sec);
+            sd_scene_type_text(k, type, sizeof type);
+            sd_default_text(k, def, sizeof def);
+            fprintf(f, "| %s | `%s` | %s | %s | %s | %s |\n", sec, k->key, type, k->unit, def,
+                    k->doc);
+        }
+        fprintf(f, "\n## Rules\n\n");
+        for (size_t i = 0; i < nrules; ++i)
+            fprintf(f, "- %s\n", sd_scene_rules[i]);
+        return;
+    }
+    fprintf(f, "Scene file keys (YAML; SI units):\n\n");
+    fprintf(f, "%-36s %-28s %-40s %-7s %-22s %s\n", "section", "key", "type", "unit", "default",
+            "meaning");
+    for (size_t i = 0; i < sd_scene_key_count; ++i) {
+        const sd_scene_key *k = &sd_scene_keys[i];
+        sd_section_text(k, sec, sizeof sec);
+        sd_scene_type_text(k, type, sizeof type);
+        sd_default_text(k, def, sizeof def);
+        fprintf(f, "%-36s %-28s %-40s %-7s %-22s %s\n", sec, k->key, type, k->unit, def, k->doc);
+    }
+    fprintf(f, "\nRules:\n");
+    for (size_t i = 0; i < nrules; ++i)
+        fprintf(f, "  - %s\n", sd_scene_rules[i]);
+}

@@ -1,0 +1,37 @@
+/* vtk.h — VTK XML writers: particles as an UnstructuredGrid (.vtu), walls
+ * as PolyData (.vtp) and the time-series Collection (.pvd).
+ *
+ * Invariant: the binary blocks are raw appended data, each a UInt64 byte
+ * count followed by the values, always in little-endian byte order whatever
+ * the host (values are encoded byte by byte), so the files declare
+ * byte_order="LittleEndian" header_type="UInt64" truthfully everywhere.
+ * The writers only read the world through the public API.
+ */
+#ifndef SD_IO_VTK_H
+#define SD_IO_VTK_H
+
+#include <shapedem/shapedem.h>
+#include <stdio.h>
+
+/* Writes every particle of w as one VTK_VERTEX with its point data.
+ * Returns SD_ERR_IO when a write failed (errors on fp are also left for the
+ * caller's ferror check) or the world could not be read. */
+sd_status sd_vtk_write_particles(FILE *fp, const sd_world *w, sd_error *err);
+
+/* Side (m) of the square drawn for plane walls: 1.2 x the diagonal of the
+ * particles' bounding box (radii included), at least 1e-3 m. */
+double sd_vtk_plane_side(const sd_world *w);
+
+/* Writes planes as squares of side plane_side centred at their point and
+ * boxes as their closed faces; cell data: wall index and wall force. */
+sd_status sd_vtk_write_walls(FILE *fp, const sd_world *w, double plane_side, sd_error *err);
+
+typedef struct sd_vtk_dataset {
+    double time;       /* s */
+    int part;          /* 0 particles, 1 walls */
+    const char *file;  /* relative to the .pvd */
+} sd_vtk_dataset;
+
+sd_status sd_vtk_write_collection(FILE *fp, size_t n, const sd_vtk_dataset *sets, sd_error *err);
+
+#endif

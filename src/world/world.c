@@ -1,0 +1,422 @@
+/* world.c — creating a world and filling it: materials, interactions,
+ * particles, walls; the queries of the public API.
+ *
+ * Invariant: a def struct is accepted only when made by its default function
+ * (the cookie), so a caller cannot pass an uninitialised one by mistake.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "broad/cells.h"
+#include "core/alloc.h"
+#include "core/error.h"
+#include "world/world.h"
+
+#define SD_COOKIE 0x5D5D
+
+/* ---- defs ------------------------------------------------------------------ */
+
+sd_world_def sd_world_def_default(void)
+{
+    sd_world_def d;
+    memset(&d, 0, sizeof d);
+    d.dimension = 3;
+    d.dt = 1e-5;
+    d.gravity.z = -9.81;
+    d.seed = 1;
+    d.threads = 0;
+    d.law = SD_LAW_HERTZ_MINDLIN;
+    d.skin = 0;
+    d.cookie = SD_COOKIE;
+    return d;
+}
+
+sd_material_def sd_material_def_default(void)
+{
+    sd_material_def m;
+    memset(&m, 0, sizeof m);
+    m.name = "default";
+    m.density = 2500;
+    m.youngs_modulus = 0;
+    m.poisson_ratio = 0.3;
+    m.restitution = 0.5;
+    m.friction = 0.5;
+    m.rolling_friction = 0;
+    m.stiffness = 0;
+    m.tangential_stiffness_ratio = 2.0 / 7.0;
+    m.cookie = SD_COOKIE;
+    return m;
+}
+
+sd_interaction_def sd_interaction_def_default(void)
+{
+    sd_interaction_def d;
+    d.restitution = -1;
+    d.friction = -1;
+    d.rolling_friction = -1;
+    d.stiffness = -1;
+    d.law = -1;
+    d.cookie = SD_COOKIE;
+    return d;
+}
+
+static const char *const sd_law_names[] = {
+#define SD_X_NAME(e, name, doc) name,
+    SD_CONTACT_LAWS(SD_X_NAME)
+#undef SD_X_NAME
+};
+
+const char *sd_contact_law_name(sd_contact_law law)
+{
+    return (law >= 0 && law < SD_LAW_COUNT) ? sd_law_names[law] : "unknown";
+}
+
+sd_contact_law sd_contact_law_from_name(const char *name)
+{
+    for (int k = 0; k < SD_LAW_COUNT; ++k)
+        if (name && strcmp(name, sd_law_names[k]) == 0)
+            return (sd_contact_law)k;
+    return SD_LAW_COUNT;
+}
+
+/* ---- particles ---------------------------------------------------------------- */
+
+sd_status sd_particles_reserve(sd_particles *p, size_t cap)
+{
+    if (cap <= p->cap)
+        return SD_OK;
+    cap = cap + cap / 2 + 64;
+#define SD_X_GROW(type, name, unit, doc)                          \
+    {                                                             \
+        type *q = sd_realloc(p->name, cap * sizeof(type));        \
+        if (!q)                                                   \
+            return SD_ERR_MEMORY;                                 \
+        p->name = q;                                              \
+    }
+    SD_PARTICLE_FIELDS(SD_X_GROW)
+#undef SD_X_GROW
+    p->cap = cap;
+    return SD_OK;
+}
+
+void sd_particles_free(sd_particles *p)
+{
+#define SD_X_FREE(type, name, unit, doc) sd_free(p->name);
+    SD_PARTICLE_FIELDS(SD_X_FREE)
+#undef SD_X_FREE
+    memset(p, 0, sizeof *p);
+}
+
+void sd_particles_permute(sd_particles *p, const uint32_t *perm, void *scratch)
+{
+    size_t n = p->n;
+#define SD_X_PERMUTE(type, name, unit, doc)                           \
+    {                                                                 \
+        _Static_assert(sizeof(type) <= 32, "scratch too small");      \
+        type *tmp = (type *)scratch;                                  \
+        for (size_t k = 0; k < n; ++k)                                \
+            tmp[k] = p->name[perm[k]];                                \
+        memcpy(p->name, tmp, n * sizeof(type));                       \
+    }
+    SD_PARTICLE_FIELDS(SD_X_PERMUTE)
+#undef SD_X_PERMUTE
+}
+
+/* ---- world ------------------------------------------------------------------------ */
+
+static int sd_pick_threads(int requested)
+{
+#ifdef _OPENMP
+    if (requested > 0)
+        return requested;
+    return omp_get_max_threads(); /* honours OMP_NUM_THREADS */
+#else
+    (void)requested;
+    return 1;
+#endif
+}
+
+sd_status sd_world_create(const sd_world_def *def, sd_world **out, sd_error *err)
+{
+    *out = NULL;
+    if (!def || def->cookie != SD_COOKIE)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "", "world def not made by sd_world_def_default");
+    if (def->dimension != 3)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.dimension",
+                            "only dimension 3 is available (the planar mode is not built yet)");
+    if (!(def->dt > 0) || !isfinite(def->dt))
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.dt", "expected a time step > 0, got %g", def->dt);
+    if (def->law < 0 || def->law >= SD_LAW_COUNT)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.contact_law", "unknown contact law %d", (int)def->law);
+    if (def->skin < 0)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.skin", "expected a skin >= 0, got %g", def->skin);
+    sd_world *w = sd_calloc(1, sizeof *w);
+    if (!w)
+        return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory creating the world");
+    w->def = *def;
+    w->threads = sd_pick_threads(def->threads);
+    w->dt = (sd_real)def->dt;
+    w->gravity = sd_v3((sd_real)def->gravity.x, (sd_real)def->gravity.y, (sd_real)def->gravity.z);
+    *out = w;
+    return SD_OK;
+}
+
+void sd_world_destroy(sd_world *w)
+{
+    if (!w)
+        return;
+    sd_particles_free(&w->p);
+    sd_broad_free(&w->pairs, &w->wpairs, &w->grid);
+    sd_free(w->materials);
+    sd_free(w->interactions);
+    sd_free(w->mix);
+    sd_free(w->walls);
+    sd_free(w);
+}
+
+int sd_world_add_material(sd_world *w, const sd_material_def *d, sd_error *err)
+{
+    if (!d || d->cookie != SD_COOKIE) {
+        sd_error_set(err, SD_ERR_INPUT, "", 0, "materials", "material def not made by sd_material_def_default");
+        return -1;
+    }
+    const char *name = d->name ? d->name : "";
+    if (!(d->density > 0)) {
+        sd_error_set(err, SD_ERR_INPUT, "", 0, "density", "expected a density > 0, got %g", d->density);
+        return -1;
+    }
+    if (!(d->restitution > 0 && d->restitution <= 1)) {
+        sd_error_set(err, SD_ERR_INPUT, "", 0, "restitution", "expected a restitution in (0, 1], got %g",
+                     d->restitution);
+        return -1;
+    }
+    if (!(d->poisson_ratio > -1 && d->poisson_ratio < 0.5)) {
+        sd_error_set(err, SD_ERR_INPUT, "", 0, "poisson_ratio", "expected a Poisson ratio in (-1, 0.5), got %g",
+                     d->poisson_ratio);
+        return -1;
+    }
+    if (d->youngs_modulus < 0 || d->friction < 0 || d->rolling_friction < 0 || d->stiffness < 0 ||
+        !(d->tangential_stiffness_ratio > 0)) {
+        sd_error_set(err, SD_ERR_INPUT, "", 0, "", "material '%s': moduli, stiffness and friction must be >= 0",
+                     name);
+        return -1;
+    }
+    if (sd_world_find_material(w, name) >= 0) {
+        sd_error_set(err, SD_ERR_INPUT, "", 0, "name", "material '%s' defined twice", name);
+        return -1;
+    }
+    sd_material *m = sd_realloc(w->materials, (w->material_count + 1) * sizeof *m);
+    if (!m) {
+        sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory");
+        return -1;
+    }
+    w->materials = m;
+    m += w->material_count;
+    memset(m, 0, sizeof *m);
+    strncpy(m->name, name, sizeof m->name - 1);
+    m->def = *d;
+    m->def.name = NULL;
+    w->prepared = 0;
+    return (int)w->material_count++;
+}
+
+int sd_world_find_material(const sd_world *w, const char *name)
+{
+    for (size_t k = 0; k < w->material_count; ++k)
+        if (name && strcmp(w->materials[k].name, name) == 0)
+            return (int)k;
+    return -1;
+}
+
+sd_status sd_world_set_interaction(sd_world *w, int a, int b, const sd_interaction_def *d, sd_error *err)
+{
+    if (!d || d->cookie != SD_COOKIE)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "interactions", "def not made by sd_interaction_def_default");
+    if (a < 0 || b < 0 || (size_t)a >= w->material_count || (size_t)b >= w->material_count)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "interactions", "unknown material index");
+    if (d->restitution > 1 || d->restitution == 0)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "restitution", "expected a restitution in (0, 1], got %g",
+                            d->restitution);
+    if (d->law >= SD_LAW_COUNT)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "contact_law", "unknown contact law %d", d->law);
+    sd_interaction *it = sd_realloc(w->interactions, (w->interaction_count + 1) * sizeof *it);
+    if (!it)
+        return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory");
+    w->interactions = it;
+    it[w->interaction_count].a = a;
+    it[w->interaction_count].b = b;
+    it[w->interaction_count].def = *d;
+    w->interaction_count++;
+    w->prepared = 0;
+    return SD_OK;
+}
+
+sd_status sd_world_add_spheres(sd_world *w, size_t n, const sd_sphere_def *defs, sd_error *err)
+{
+    for (size_t k = 0; k < n; ++k) {
+        const sd_sphere_def *d = &defs[k];
+        if (!(d->radius > 0) || !isfinite(d->radius))
+            return sd_error_set(err, SD_ERR_INPUT, "", 0, "radius", "sphere %zu: expected a radius > 0, got %g", k,
+                                d->radius);
+        if (d->material < 0 || (size_t)d->material >= w->material_count)
+            return sd_error_set(err, SD_ERR_INPUT, "", 0, "material", "sphere %zu: unknown material index %d", k,
+                                d->material);
+        if (!isfinite(d->position.x) || !isfinite(d->position.y) || !isfinite(d->position.z))
+            return sd_error_set(err, SD_ERR_INPUT, "", 0, "position", "sphere %zu: position is not finite", k);
+    }
+    sd_particles *p = &w->p;
+    if (sd_particles_reserve(p, p->n + n))
+        return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory adding %zu spheres", n);
+    for (size_t k = 0; k < n; ++k) {
+        const sd_sphere_def *d = &defs[k];
+        size_t e = p->n + k;
+        sd_real r = (sd_real)d->radius;
+        sd_real rho = (sd_real)w->materials[d->material].def.density;
+        sd_real mass = rho * SD_R(4.0) / SD_R(3.0) * SD_PI * r * r * r;
+        sd_real inertia = SD_R(0.4) * mass * r * r;
+        p->x[e] = sd_v3((sd_real)d->position.x, (sd_real)d->position.y, (sd_real)d->position.z);
+        p->v[e] = sd_v3((sd_real)d->velocity.x, (sd_real)d->velocity.y, (sd_real)d->velocity.z);
+        p->w[e] = sd_v3((sd_real)d->angular_velocity.x, (sd_real)d->angular_velocity.y,
+                        (sd_real)d->angular_velocity.z);
+        p->q[e] = sd_quat_identity();
+        p->f[e] = sd_v3_zero();
+        p->t[e] = sd_v3_zero();
+        p->radius[e] = r;
+        p->inv_mass[e] = SD_R(1.0) / mass;
+        p->inv_inertia[e] = sd_v3(SD_R(1.0) / inertia, SD_R(1.0) / inertia, SD_R(1.0) / inertia);
+        p->x_ref[e] = p->x[e];
+        p->material[e] = d->material;
+        p->shape[e] = 0;
+        p->id[e] = w->next_id++;
+    }
+    p->n += n;
+    w->dirty = 1;
+    w->prepared = 0;
+    return SD_OK;
+}
+
+static int sd_add_wall(sd_world *w, const sd_wall *proto, sd_error *err)
+{
+    if (proto->material < 0 || (size_t)proto->material >= w->material_count) {
+        sd_error_set(err, SD_ERR_INPUT, "", 0, "material", "wall: unknown material index %d", proto->material);
+        return -1;
+    }
+    if (w->wall_count >= 4096) {
+        sd_error_set(err, SD_ERR_INPUT, "", 0, "walls", "too many walls (at most 4096)");
+        return -1;
+    }
+    sd_wall *wl = sd_realloc(w->walls, (w->wall_count + 1) * sizeof *wl);
+    if (!wl) {
+        sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory");
+        return -1;
+    }
+    w->walls = wl;
+    wl[w->wall_count] = *proto;
+    w->dirty = 1;
+    w->prepared = 0;
+    return (int)w->wall_count++;
+}
+
+int sd_world_add_plane(sd_world *w, const char *name, sd_v3d point, sd_v3d normal, int material, sd_error *err)
+{
+    sd_wall wl;
+    memset(&wl, 0, sizeof wl);
+    sd_vec3 nv = sd_v3((sd_real)normal.x, (sd_real)normal.y, (sd_real)normal.z);
+    if (!(sd_v3_norm(nv) > 0)) {
+        sd_error_set(err, SD_ERR_INPUT, "", 0, "normal", "plane normal must be non-zero");
+        return -1;
+    }
+    wl.kind = SD_WALL_PLANE;
+    wl.point = sd_v3((sd_real)point.x, (sd_real)point.y, (sd_real)point.z);
+    wl.normal = sd_v3_normalize(nv);
+    wl.material = material;
+    snprintf(wl.name, sizeof wl.name, "%s", name && name[0] ? name : "plane");
+    return sd_add_wall(w, &wl, err);
+}
+
+int sd_world_add_box(sd_world *w, const char *name, sd_v3d lo, sd_v3d hi, unsigned open_faces, int material,
+                     sd_error *err)
+{
+    sd_wall wl;
+    memset(&wl, 0, sizeof wl);
+    if (!(hi.x > lo.x && hi.y > lo.y && hi.z > lo.z)) {
+        sd_error_set(err, SD_ERR_INPUT, "", 0, "max", "box max must exceed min on every axis");
+        return -1;
+    }
+    wl.kind = SD_WALL_BOX;
+    wl.lo = sd_v3((sd_real)lo.x, (sd_real)lo.y, (sd_real)lo.z);
+    wl.hi = sd_v3((sd_real)hi.x, (sd_real)hi.y, (sd_real)hi.z);
+    wl.point = sd_v3_scale(sd_v3_add(wl.lo, wl.hi), SD_R(0.5));
+    wl.open_faces = open_faces & 63u;
+    wl.material = material;
+    snprintf(wl.name, sizeof wl.name, "%s", name && name[0] ? name : "box");
+    return sd_add_wall(w, &wl, err);
+}
+
+/* ---- queries ---------------------------------------------------------------------- */
+
+size_t sd_world_particle_count(const sd_world *w) { return w->p.n; }
+size_t sd_world_wall_count(const sd_world *w) { return w->wall_count; }
+long sd_world_step_count(const sd_world *w) { return w->step; }
+double sd_world_time(const sd_world *w) { return w->time; }
+double sd_world_dt(const sd_world *w) { return (double)w->dt; }
+int sd_world_threads(const sd_world *w) { return w->threads; }
+
+static sd_v3d sd_v3d_of(sd_vec3 v)
+{
+    sd_v3d r = {(double)v.x, (double)v.y, (double)v.z};
+    return r;
+}
+
+sd_status sd_world_get_particle(const sd_world *w, size_t k, sd_particle_state *out)
+{
+    const sd_particles *p = &w->p;
+    if (k >= p->n)
+        return SD_ERR_INPUT;
+    out->id = p->id[k];
+    out->position = sd_v3d_of(p->x[k]);
+    out->velocity = sd_v3d_of(p->v[k]);
+    out->angular_velocity = sd_v3d_of(p->w[k]);
+    out->force = sd_v3d_of(p->f[k]);
+    out->torque = sd_v3d_of(p->t[k]);
+    out->quat[0] = (double)p->q[k].w;
+    out->quat[1] = (double)p->q[k].x;
+    out->quat[2] = (double)p->q[k].y;
+    out->quat[3] = (double)p->q[k].z;
+    out->radius = (double)p->radius[k];
+    out->mass = p->inv_mass[k] > 0 ? 1.0 / (double)p->inv_mass[k] : (double)INFINITY;
+    out->material = p->material[k];
+    return SD_OK;
+}
+
+size_t sd_world_find_particle(const sd_world *w, uint64_t id)
+{
+    for (size_t k = 0; k < w->p.n; ++k)
+        if (w->p.id[k] == id)
+            return k;
+    return (size_t)-1;
+}
+
+sd_status sd_world_get_wall(const sd_world *w, size_t k, sd_wall_info *out)
+{
+    if (k >= w->wall_count)
+        return SD_ERR_INPUT;
+    const sd_wall *wl = &w->walls[k];
+    out->name = wl->name;
+    out->kind = wl->kind;
+    out->force = sd_v3d_of(wl->force);
+    out->torque = sd_v3d_of(wl->torque);
+    out->point = sd_v3d_of(wl->point);
+    out->normal = sd_v3d_of(wl->normal);
+    out->lo = sd_v3d_of(wl->lo);
+    out->hi = sd_v3d_of(wl->hi);
+    out->open_faces = wl->open_faces;
+    out->material = wl->material;
+    return SD_OK;
+}

@@ -1,0 +1,105 @@
+/* world.h — the world's state: particle arrays (structure of arrays),
+ * materials, walls, the pair lists and the clock.
+ *
+ * Invariant: particle fields are declared once in SD_PARTICLE_FIELDS; the
+ * arrays, their growth, their permutation at re-sorting and (later) output,
+ * checkpoints and MPI packing are generated from that list (STYLE.md
+ * convention 5). Storage order may change at every pair-list rebuild; the
+ * stable id never does.
+ */
+#ifndef SD_WORLD_WORLD_H
+#define SD_WORLD_WORLD_H
+
+#include <shapedem/shapedem.h>
+
+#include "broad/pairs.h"
+#include "contact/params.h"
+#include "core/quat.h"
+
+/* X(type, name, unit, meaning) — hot per-step fields first. */
+#define SD_PARTICLE_FIELDS(X)                                                           \
+    X(sd_vec3, x, "m", "position of the centre of mass")                                \
+    X(sd_vec3, v, "m/s", "velocity")                                                    \
+    X(sd_vec3, w, "rad/s", "angular velocity, world frame")                             \
+    X(sd_quat, q, "-", "orientation, body frame to world frame")                        \
+    X(sd_vec3, f, "N", "total contact force of the last step")                          \
+    X(sd_vec3, t, "N m", "total contact torque of the last step")                       \
+    X(sd_real, radius, "m", "radius (bounding radius for non-spheres)")                 \
+    X(sd_real, inv_mass, "1/kg", "inverse mass, 0 for a fixed body")                    \
+    X(sd_vec3, inv_inertia, "1/(kg m^2)", "inverse principal moments, body frame")      \
+    X(sd_vec3, x_ref, "m", "position at the last pair-list rebuild")                    \
+    X(int32_t, material, "-", "material index")                                         \
+    X(int32_t, shape, "-", "shape kind (0 = sphere)")                                   \
+    X(uint64_t, id, "-", "stable id")
+
+typedef struct sd_particles {
+    size_t n, cap;
+#define SD_X_FIELD(type, name, unit, doc) type *name;
+    SD_PARTICLE_FIELDS(SD_X_FIELD)
+#undef SD_X_FIELD
+} sd_particles;
+
+typedef struct sd_material {
+    char name[64];
+    sd_material_def def;
+} sd_material;
+
+typedef struct sd_interaction {
+    int a, b;
+    sd_interaction_def def;
+} sd_interaction;
+
+enum { SD_WALL_PLANE = 0, SD_WALL_BOX = 1 };
+
+typedef struct sd_wall {
+    char name[64];
+    int kind;
+    sd_vec3 point, normal;  /* plane */
+    sd_vec3 lo, hi;         /* box */
+    unsigned open_faces;
+    int material;
+    sd_vec3 force, torque;  /* on the wall, last step */
+} sd_wall;
+
+struct sd_world {
+    sd_world_def def;
+    int threads;
+    sd_real dt;
+    sd_vec3 gravity;
+    sd_real skin;          /* m, in use */
+    long step;
+    double time;
+    uint64_t next_id;
+
+    sd_particles p;
+
+    size_t material_count;
+    sd_material *materials;
+    size_t interaction_count;
+    sd_interaction *interactions;
+    /* mixed parameters, index (a * nm + b); walls use their own material */
+    sd_pair_params *mix;
+
+    size_t wall_count;
+    sd_wall *walls;
+
+    sd_pair_list pairs;       /* particle-particle candidates */
+    sd_wall_pair_list wpairs; /* particle-wall candidates */
+    sd_grid grid;
+    long rebuilds;
+    int prepared;
+    int dirty;                /* particles added since the last rebuild */
+};
+
+/* Grows the particle arrays to hold at least cap particles. */
+sd_status sd_particles_reserve(sd_particles *p, size_t cap);
+void sd_particles_free(sd_particles *p);
+/* Reorders every field: new[k] = old[perm[k]]; scratch holds cap*16 bytes. */
+void sd_particles_permute(sd_particles *p, const uint32_t *perm, void *scratch);
+
+/* material.c: fills w->mix; fails for a linear law without stiffness etc. */
+sd_status sd_world_mix_materials(sd_world *w, sd_error *err);
+/* Fails when a pair of materials that can meet lacks what its law needs. */
+sd_status sd_world_check_params(const sd_world *w, sd_error *err);
+
+#endif
