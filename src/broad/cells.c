@@ -18,8 +18,6 @@
 #include "geom/sphere.h"
 #include "world/world.h"
 
-#define SD_OMP_FOR _Pragma("omp parallel for schedule(static) num_threads(w->threads)")
-
 static sd_status sd_grow(void **p, size_t need, size_t elem)
 {
     void *q = sd_realloc(*p, need * elem);
@@ -159,7 +157,7 @@ static sd_status sd_grid_setup(sd_world *w)
     if (n > g->pcap) {
         size_t cap = n + n / 4 + 16;
         if (sd_grow((void **)&g->cell, cap, sizeof *g->cell) || sd_grow((void **)&g->perm, cap, sizeof *g->perm) ||
-            sd_grow((void **)&g->count, cap + 1, sizeof *g->count) || sd_grow(&g->scratch, cap, 16))
+            sd_grow((void **)&g->count, cap + 1, sizeof *g->count) || sd_grow(&g->scratch, cap, 32))
             return SD_ERR_MEMORY;
         g->pcap = cap;
     }
@@ -181,7 +179,7 @@ static void sd_grid_sort(sd_world *w)
     sd_grid *g = &w->grid;
     sd_particles *p = &w->p;
     size_t n = p->n;
-    SD_OMP_FOR
+    SD_PARALLEL_FOR
     for (size_t k = 0; k < n; ++k)
         g->cell[k] = sd_grid_cell(g, p->x[k]);
     memset(g->cell_start, 0, (g->ncell + 1) * sizeof *g->cell_start);
@@ -251,7 +249,7 @@ static sd_status sd_pairs_build(sd_world *w)
     if (!hist)
         return SD_ERR_MEMORY;
 
-    SD_OMP_FOR
+    SD_PARALLEL_FOR
     for (size_t i = 0; i < n; ++i)
         cnt[i] = sd_pairs_of(w, i, NULL);
     size_t total = 0;
@@ -265,7 +263,7 @@ static sd_status sd_pairs_build(sd_world *w)
         return SD_ERR_MEMORY;
     }
     l->n = total;
-    SD_OMP_FOR
+    SD_PARALLEL_FOR
     for (size_t i = 0; i < n; ++i) {
         uint32_t off = cnt[i];
         uint32_t m = sd_pairs_of(w, i, l->j + off);
@@ -362,7 +360,7 @@ static sd_status sd_wall_pairs_build(sd_world *w)
     sd_history *hist = sd_history_collect(l->n, l->key, l->ds, &nhist);
     if (!hist)
         return SD_ERR_MEMORY;
-    SD_OMP_FOR
+    SD_PARALLEL_FOR
     for (size_t i = 0; i < n; ++i)
         l->start[i + 1] = sd_wall_pairs_of(w, i, NULL, 0);
     l->start[0] = 0;
@@ -374,7 +372,7 @@ static sd_status sd_wall_pairs_build(sd_world *w)
         return SD_ERR_MEMORY;
     }
     l->n = total;
-    SD_OMP_FOR
+    SD_PARALLEL_FOR
     for (size_t i = 0; i < n; ++i) {
         size_t off = l->start[i];
         uint32_t m = sd_wall_pairs_of(w, i, l, off);
@@ -417,7 +415,7 @@ sd_status sd_broad_rebuild(sd_world *w, sd_error *err)
     if (st != SD_OK)
         return sd_error_set(err, st, "", 0, "", "out of memory while building the pair list (%zu particles)", p->n);
     size_t n = p->n;
-    SD_OMP_FOR
+    SD_PARALLEL_FOR
     for (size_t k = 0; k < n; ++k)
         p->x_ref[k] = p->x[k];
     w->rebuilds++;
@@ -434,7 +432,7 @@ int sd_broad_needs_rebuild(const sd_world *w)
     sd_real lim2 = sd_sq(SD_R(0.5) * w->skin);
     int need = 0;
     /* spheres only so far: the bounding sphere does not change with rotation */
-#pragma omp parallel for schedule(static) num_threads(w->threads) reduction(| : need)
+SD_PARALLEL_FOR_REDUCE_OR(need)
     for (size_t k = 0; k < n; ++k)
         need |= sd_v3_norm2(sd_v3_sub(p->x[k], p->x_ref[k])) > lim2;
     return need;

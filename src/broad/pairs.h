@@ -49,7 +49,7 @@ typedef struct sd_grid {
     uint32_t *cell;        /* per particle, its cell */
     uint32_t *perm;        /* per particle, scratch for the counting sort */
     uint32_t *count;       /* per particle, scratch counts */
-    void *scratch;         /* permutation scratch, 16 bytes per particle */
+    void *scratch;         /* permutation scratch, 32 bytes per particle */
     size_t pcap;
 } sd_grid;
 

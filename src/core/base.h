@@ -47,6 +47,16 @@ typedef double sd_real;
 #define sd_floor floor
 #endif
 
+/* CPU parallel loops over `n` items of world `w` (static schedule: each
+ * thread always gets the same block, and every item writes only its own
+ * slot, so results do not depend on the thread count). Small loops stay
+ * serial: forking threads costs more than they save. */
+#define SD_PARALLEL_MIN 2048
+#define SD_PRAGMA(x) _Pragma(#x)
+#define SD_PARALLEL_FOR SD_PRAGMA(omp parallel for schedule(static) num_threads(w->threads) if (n > SD_PARALLEL_MIN))
+#define SD_PARALLEL_FOR_REDUCE_OR(v) \
+    SD_PRAGMA(omp parallel for schedule(static) num_threads(w->threads) if (n > SD_PARALLEL_MIN) reduction(| : v))
+
 #define SD_PI SD_R(3.14159265358979323846)
 #define SD_PI_D 3.14159265358979323846 /* always double: parameter set-up */
 

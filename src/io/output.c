@@ -26,6 +26,7 @@
 
 #define SD_OUTPUT_MARKER ".shapedem-output"
 #define SD_OUTPUT_KEY "output.directory"
+#define SD_OUTPUT_NAME_MAX 48 /* "particles_" + up to 20 digits + ".vtu" */
 
 struct sd_output {
     char *dir;
@@ -218,7 +219,7 @@ static sd_status sd_output_write_pvd(sd_output *o, sd_error *err)
 {
     size_t n = 2 * (size_t)o->frames;
     sd_vtk_dataset *sets = sd_malloc((n ? n : 1) * sizeof *sets);
-    char *names = sd_malloc((n ? n : 1) * 32);
+    char *names = sd_malloc((n ? n : 1) * SD_OUTPUT_NAME_MAX);
     if (!sets || !names) {
         sd_free(sets);
         sd_free(names);
@@ -227,8 +228,8 @@ static sd_status sd_output_write_pvd(sd_output *o, sd_error *err)
     for (long f = 0; f < o->frames; ++f) {
         for (int part = 0; part < 2; ++part) {
             size_t k = 2 * (size_t)f + (size_t)part;
-            char *name = names + 32 * k;
-            snprintf(name, 32, part ? "walls_%06ld.vtp" : "particles_%06ld.vtu", f);
+            char *name = names + SD_OUTPUT_NAME_MAX * k;
+            snprintf(name, SD_OUTPUT_NAME_MAX, part ? "walls_%06ld.vtp" : "particles_%06ld.vtu", f);
             sets[k].time = o->frame_times[f];
             sets[k].part = part;
             sets[k].file = name;
@@ -259,7 +260,7 @@ sd_status sd_output_frame(sd_output *o, const sd_world *w, sd_error *err)
         o->frame_times = t;
         o->frame_cap = cap;
     }
-    char name[64];
+    char name[SD_OUTPUT_NAME_MAX];
     sd_atomic_file af;
 
     snprintf(name, sizeof name, "particles_%06ld.vtu", o->frames);

@@ -322,7 +322,7 @@ sd_status sd_vtk_write_walls(FILE *fp, const sd_world *w, double plane_side, sd_
     size_t nw = sd_world_wall_count(w);
     sd_wall_info wi;
     sd_v3d q[6][4];
-    int nq;
+    int nq = 0;
     size_t ncells = 0;
     for (size_t i = 0; i < nw; ++i) {
         sd_status s = sd_vtk_wall(w, i, plane_side, &wi, q, &nq, err);

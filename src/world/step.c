@@ -66,7 +66,7 @@ static sd_status sd_world_check_finite(const sd_world *w, sd_error *err)
     const sd_particles *p = &w->p;
     int bad = 0;
     size_t n = p->n;
-#pragma omp parallel for schedule(static) num_threads(w->threads) reduction(| : bad)
+SD_PARALLEL_FOR_REDUCE_OR(bad)
     for (size_t k = 0; k < n; ++k)
         bad |= !isfinite(p->x[k].x + p->x[k].y + p->x[k].z + p->v[k].x + p->v[k].y + p->v[k].z);
     if (bad)

@@ -94,7 +94,7 @@ struct sd_world {
 /* Grows the particle arrays to hold at least cap particles. */
 sd_status sd_particles_reserve(sd_particles *p, size_t cap);
 void sd_particles_free(sd_particles *p);
-/* Reorders every field: new[k] = old[perm[k]]; scratch holds cap*16 bytes. */
+/* Reorders every field: new[k] = old[perm[k]]; scratch holds n * 32 bytes. */
 void sd_particles_permute(sd_particles *p, const uint32_t *perm, void *scratch);
 
 /* material.c: fills w->mix; fails for a linear law without stiffness etc. */

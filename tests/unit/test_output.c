@@ -339,6 +339,7 @@ static sd_world *make_world(size_t nspheres, int with_walls)
     if (!w)
         return NULL;
     sd_material_def m = sd_material_def_default();
+    m.youngs_modulus = 1e7; /* Pa; the default law (Hertz-Mindlin) needs it */
     int mat = sd_world_add_material(w, &m, &err);
     CHECK(mat >= 0);
     sd_sphere_def s[8];

@@ -25,7 +25,7 @@ void sd_cpu_kick_drift(sd_world *w)
     size_t n = p->n;
     sd_real h = SD_R(0.5) * w->dt, dt = w->dt;
     sd_vec3 g = w->gravity;
-#pragma omp parallel for schedule(static) num_threads(w->threads)
+SD_PARALLEL_FOR
     for (size_t k = 0; k < n; ++k) {
         sd_integrate_kick(&p->v[k], &p->w[k], p->q[k], p->f[k], p->t[k], p->inv_mass[k], p->inv_inertia[k], g, h);
         if (p->inv_mass[k] > 0)
@@ -39,7 +39,7 @@ void sd_cpu_kick(sd_world *w)
     size_t n = p->n;
     sd_real h = SD_R(0.5) * w->dt;
     sd_vec3 g = w->gravity;
-#pragma omp parallel for schedule(static) num_threads(w->threads)
+SD_PARALLEL_FOR
     for (size_t k = 0; k < n; ++k)
         sd_integrate_kick(&p->v[k], &p->w[k], p->q[k], p->f[k], p->t[k], p->inv_mass[k], p->inv_inertia[k], g, h);
 }
@@ -50,7 +50,7 @@ void sd_cpu_pair_forces(sd_world *w)
     sd_pair_list *l = &w->pairs;
     size_t n = l->n, nm = w->material_count;
     sd_real dt = w->dt;
-#pragma omp parallel for schedule(static) num_threads(w->threads)
+SD_PARALLEL_FOR
     for (size_t e = 0; e < n; ++e) {
         uint32_t i = l->i[e], j = l->j[e];
         sd_body a = sd_body_of(p, i), b = sd_body_of(p, j);
@@ -70,7 +70,7 @@ void sd_cpu_wall_forces(sd_world *w)
     sd_wall_pair_list *l = &w->wpairs;
     size_t n = l->n, nm = w->material_count;
     sd_real dt = w->dt;
-#pragma omp parallel for schedule(static) num_threads(w->threads)
+SD_PARALLEL_FOR
     for (size_t e = 0; e < n; ++e) {
         uint32_t i = l->i[e];
         const sd_wall *wl = &w->walls[l->wall[e]];
@@ -103,7 +103,7 @@ void sd_cpu_gather(sd_world *w)
     const sd_pair_list *l = &w->pairs;
     const sd_wall_pair_list *wl = &w->wpairs;
     size_t n = p->n;
-#pragma omp parallel for schedule(static) num_threads(w->threads)
+SD_PARALLEL_FOR
     for (size_t k = 0; k < n; ++k) {
         sd_vec3 f = sd_v3_zero(), t = sd_v3_zero();
         for (uint32_t g = l->gstart[k]; g < l->gstart[k + 1]; ++g) {

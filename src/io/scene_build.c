@@ -1,0 +1,228 @@
+/* scene_build.c — turns a loaded scene into a world, through the public
+ * API only (shapedem.h), and checks what can only be checked once the
+ * particles exist: overlaps at the start, particles outside walls, and a
+ * time step above the stability limit.
+ *
+ * Invariant: sd_scene_build returns either a complete world that passed
+ * every check, or an error naming the scene file (or the CSV file a sphere
+ * came from), the line and the key, and no world. Scene material i is world
+ * material i, and particle ids follow generation order.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "core/error.h"
+#include "io/scene.h"
+
+/* Overlap at the start allowed, as a fraction of the smaller radius: what
+ * rounding leaves of spheres meant to touch. */
+#define SD_SCENE_OVERLAP_TOL 1e-6
+/* How far (x radius) a sphere may cross a closed wall at the start. */
+#define SD_SCENE_WALL_TOL 1e-6
+
+/* An error from the world API, completed with where in the scene it comes from. */
+static sd_status sd_where(sd_error *err, sd_status st, const sd_scene *s, int line, const char *key)
+{
+    if (!err)
+        return st;
+    err->code = st;
+    if (!err->file[0])
+        snprintf(err->file, sizeof err->file, "%.*s", (int)sizeof err->file - 1, s->path);
+    if (err->line <= 0)
+        err->line = line;
+    if (!err->key[0])
+        snprintf(err->key, sizeof err->key, "%.*s", (int)sizeof err->key - 1, key);
+    return st;
+}
+
+/* Names a sphere by where it was given: file, line and key. */
+typedef struct sd_origin {
+    const char *file;
+    int line;
+    char key[64];
+} sd_origin;
+
+static sd_origin sd_sphere_origin(const sd_scene *s, const sd_scene_spheres *sp, size_t k)
+{
+    sd_origin o;
+    const sd_scene_generator *g = &s->generators[sp->gen[k]];
+    o.file = g->kind == SD_GEN_CSV ? g->file : s->path;
+    o.line = sp->line[k];
+    if (g->kind == SD_GEN_LIST)
+        snprintf(o.key, sizeof o.key, "particles[%d].spheres[%d]", sp->gen[k], sp->entry[k]);
+    else
+        snprintf(o.key, sizeof o.key, "particles[%d]", sp->gen[k]);
+    return o;
+}
+
+static sd_status sd_check_overlaps(const sd_scene *s, const sd_scene_spheres *sp, sd_error *err)
+{
+    size_t i, j;
+    int found = sd_scene_find_overlap(sp->count, sp->defs, SD_SCENE_OVERLAP_TOL, &i, &j);
+    if (found < 0)
+        return sd_error_set(err, SD_ERR_MEMORY, s->path, 0, "", "out of memory");
+    if (!found)
+        return SD_OK;
+    const sd_sphere_def *a = &sp->defs[i], *b = &sp->defs[j];
+    double dx = a->position.x - b->position.x, dy = a->position.y - b->position.y,
+           dz = a->position.z - b->position.z;
+    double overlap = a->radius + b->radius - sqrt(dx * dx + dy * dy + dz * dz);
+    double smaller = a->radius < b->radius ? a->radius : b->radius;
+    sd_origin oa = sd_sphere_origin(s, sp, i), ob = sd_sphere_origin(s, sp, j);
+    return sd_error_set(err, SD_ERR_INPUT, ob.file, ob.line, ob.key,
+                        "particles overlap at the start by %.3g m (%.3g%% of the smaller radius): "
+                        "sphere %zu at (%g, %g, %g) r %g and sphere %zu at (%g, %g, %g) r %g "
+                        "from %s (line %d)",
+                        overlap, 100.0 * overlap / smaller, j, b->position.x, b->position.y,
+                        b->position.z, b->radius, i, a->position.x, a->position.y, a->position.z,
+                        a->radius, oa.key, oa.line);
+}
+
+/* How far sphere d crosses wall w (m, > 0 means outside), and which side. */
+static double sd_wall_excess(const sd_scene_wall *w, const sd_sphere_def *d, const char **side)
+{
+    if (w->kind == 0) {
+        *side = "plane";
+        /* A plane keeps centres on the side its normal points to. */
+        return -((d->position.x - w->point.x) * w->normal.x +
+                 (d->position.y - w->point.y) * w->normal.y +
+                 (d->position.z - w->point.z) * w->normal.z);
+    }
+    static const char *const faces[6] = {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
+    const double c[3] = {d->position.x, d->position.y, d->position.z};
+    const double lo[3] = {w->lo.x, w->lo.y, w->lo.z}, hi[3] = {w->hi.x, w->hi.y, w->hi.z};
+    double worst = -INFINITY;
+    *side = "";
+    for (int a = 0; a < 3; ++a) {
+        /* Open faces do not hold anything in: spheres may start beyond them
+         * (poured into an open-top box from above). */
+        if (!(w->open_faces & (1u << (2 * a))) && lo[a] - (c[a] - d->radius) > worst) {
+            worst = lo[a] - (c[a] - d->radius);
+            *side = faces[2 * a];
+        }
+        if (!(w->open_faces & (1u << (2 * a + 1))) && (c[a] + d->radius) - hi[a] > worst) {
+            worst = (c[a] + d->radius) - hi[a];
+            *side = faces[2 * a + 1];
+        }
+    }
+    return worst;
+}
+
+static sd_status sd_check_walls(const sd_scene *s, const sd_scene_spheres *sp, sd_error *err)
+{
+    for (size_t k = 0; k < sp->count; ++k) {
+        const sd_sphere_def *d = &sp->defs[k];
+        for (size_t wi = 0; wi < s->wall_count; ++wi) {
+            const sd_scene_wall *w = &s->walls[wi];
+            const char *side;
+            double excess = sd_wall_excess(w, d, &side);
+            if (!(excess > SD_SCENE_WALL_TOL * d->radius))
+                continue;
+            sd_origin o = sd_sphere_origin(s, sp, k);
+            if (w->kind == 0)
+                return sd_error_set(err, SD_ERR_INPUT, o.file, o.line, o.key,
+                                    "particle outside the walls: sphere %zu at (%g, %g, %g) has its "
+                                    "centre %.3g m behind plane '%s' (walls[%zu], line %d)",
+                                    k, d->position.x, d->position.y, d->position.z, excess, w->name,
+                                    wi, w->line);
+            return sd_error_set(err, SD_ERR_INPUT, o.file, o.line, o.key,
+                                "particle outside the walls: sphere %zu at (%g, %g, %g) r %g "
+                                "crosses the closed %s face of box '%s' (walls[%zu], line %d) by "
+                                "%.3g m",
+                                k, d->position.x, d->position.y, d->position.z, d->radius, side,
+                                w->name, wi, w->line, excess);
+        }
+    }
+    return SD_OK;
+}
+
+static sd_status sd_build(const sd_scene *s, sd_world *w, sd_scene_spheres *sp, sd_error *err)
+{
+    char key[96];
+    sd_status st;
+    for (size_t i = 0; i < s->material_count; ++i) {
+        const sd_scene_material *m = &s->materials[i];
+        sd_material_def d = m->def;
+        d.name = m->name;
+        snprintf(key, sizeof key, "materials[%zu]", i);
+        int idx = sd_world_add_material(w, &d, err);
+        if (idx < 0)
+            return sd_where(err, err->code != SD_OK ? err->code : SD_ERR_INPUT, s, m->line, key);
+        if (idx != (int)i)
+            return sd_error_set(err, SD_ERR_INTERNAL, s->path, m->line, key,
+                                "the world gave material index %d, expected %zu", idx, i);
+    }
+    for (size_t i = 0; i < s->interaction_count; ++i) {
+        const sd_scene_interaction *in = &s->interactions[i];
+        snprintf(key, sizeof key, "interactions[%zu]", i);
+        if ((st = sd_world_set_interaction(w, in->mat_a, in->mat_b, &in->def, err)) != SD_OK)
+            return sd_where(err, st, s, in->line, key);
+    }
+    for (size_t i = 0; i < s->wall_count; ++i) {
+        const sd_scene_wall *wl = &s->walls[i];
+        snprintf(key, sizeof key, "walls[%zu]", i);
+        int idx = wl->kind == 0
+                      ? sd_world_add_plane(w, wl->name, wl->point, wl->normal, wl->material, err)
+                      : sd_world_add_box(w, wl->name, wl->lo, wl->hi, wl->open_faces, wl->material,
+                                         err);
+        if (idx < 0)
+            return sd_where(err, err->code != SD_OK ? err->code : SD_ERR_INPUT, s, wl->line, key);
+    }
+
+    if ((st = sd_scene_generate(s, sp, err)) != SD_OK)
+        return st;
+    /* Check the spheres before the world sees them: cheaper, and the
+     * messages can name the scene line each sphere came from. */
+    if ((st = sd_check_overlaps(s, sp, err)) != SD_OK)
+        return st;
+    if ((st = sd_check_walls(s, sp, err)) != SD_OK)
+        return st;
+    /* One call per generator keeps ids in generation order. */
+    for (size_t at = 0; at < sp->count;) {
+        size_t end = at;
+        while (end < sp->count && sp->gen[end] == sp->gen[at])
+            ++end;
+        snprintf(key, sizeof key, "particles[%d]", sp->gen[at]);
+        if ((st = sd_world_add_spheres(w, end - at, sp->defs + at, err)) != SD_OK)
+            return sd_where(err, st, s, s->generators[sp->gen[at]].line, key);
+        at = end;
+    }
+
+    if ((st = sd_world_prepare(w, err)) != SD_OK)
+        return sd_where(err, st, s, s->simulation_line, "simulation");
+    double tc = 0.0;
+    double rec = sd_world_recommended_dt(w, &tc);
+    /* Five steps per contact is the least that resolves a collision; with
+     * fewer, contacts gain energy and the packing explodes. */
+    if (tc > 0.0 && isfinite(tc) && s->world.dt > tc / 5.0)
+        return sd_error_set(err, SD_ERR_INPUT, s->path, s->dt_line, "simulation.dt",
+                            "time step above the stability limit: dt = %g s but the shortest "
+                            "contact lasts about %g s, so dt must be at most %g s (1/5 of it); "
+                            "recommended dt = %g s",
+                            s->world.dt, tc, tc / 5.0, rec);
+    return SD_OK;
+}
+
+sd_status sd_scene_build(const sd_scene *s, sd_world **out, sd_error *err)
+{
+    sd_world *w = NULL;
+    sd_scene_spheres sp;
+    sd_error local;
+    if (!err)
+        err = &local; /* the world API calls below read err back */
+    memset(&sp, 0, sizeof sp);
+    *out = NULL;
+    sd_error_clear(err);
+    sd_status st = sd_world_create(&s->world, &w, err);
+    if (st != SD_OK)
+        return sd_where(err, st, s, s->simulation_line, "simulation");
+    st = sd_build(s, w, &sp, err);
+    sd_scene_spheres_free(&sp);
+    if (st != SD_OK) {
+        sd_world_destroy(w);
+        return st;
+    }
+    *out = w;
+    return SD_OK;
+}

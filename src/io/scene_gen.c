@@ -1,0 +1,309 @@
+/* scene_gen.c — the particle generators of a scene (lattice, random, list,
+ * csv) and the cell grid that finds overlapping spheres.
+ *
+ * Invariant: the spheres depend only on the scene: each generator draws
+ * from its own xoshiro stream seeded from (simulation.seed, generator
+ * index), so the same scene gives the same spheres bit for bit, and editing
+ * one generator does not change the spheres of another. Overlap searches
+ * use a hashed cell grid with cells at least one largest diameter wide, so
+ * they cost O(N) for spheres of similar size, never O(N^2).
+ */
+#include <math.h>
+#include <string.h>
+
+#include "core/alloc.h"
+#include "core/error.h"
+#include "core/rng.h"
+#include "io/scene.h"
+
+/* ---- hashed cell grid --------------------------------------------------- */
+
+#define SD_GRID_NONE ((size_t)-1)
+
+typedef struct sd_grid {
+    double cell;     /* m, cell edge >= the largest diameter */
+    size_t mask;     /* bucket count - 1 (a power of two) */
+    size_t *head;    /* bucket -> last sphere inserted, or SD_GRID_NONE */
+    size_t *next;    /* sphere -> previous sphere in its bucket */
+} sd_grid;
+
+static int sd_grid_init(sd_grid *g, size_t capacity, double cell)
+{
+    size_t nb = 1024;
+    while (nb < 2 * capacity)
+        nb *= 2;
+    g->cell = cell;
+    g->mask = nb - 1;
+    g->head = sd_malloc(nb * sizeof *g->head);
+    g->next = sd_malloc((capacity ? capacity : 1) * sizeof *g->next);
+    if (!g->head || !g->next) {
+        sd_free(g->head);
+        sd_free(g->next);
+        return 0;
+    }
+    for (size_t i = 0; i < nb; ++i)
+        g->head[i] = SD_GRID_NONE;
+    return 1;
+}
+
+static void sd_grid_free(sd_grid *g)
+{
+    sd_free(g->head);
+    sd_free(g->next);
+}
+
+/* Cell coordinate of x, clamped so far-away spheres cannot overflow. */
+static int64_t sd_grid_coord(const sd_grid *g, double x)
+{
+    double c = floor(x / g->cell);
+    if (!(c > -4.0e18))
+        c = -4.0e18;
+    if (c > 4.0e18)
+        c = 4.0e18;
+    return (int64_t)c;
+}
+
+/* Distinct cells may share a bucket: queries check true distances, so a
+ * collision only costs time. */
+static size_t sd_grid_bucket(const sd_grid *g, int64_t ix, int64_t iy, int64_t iz)
+{
+    uint64_t h = (uint64_t)ix * 0x9E3779B97F4A7C15ull;
+    h ^= (uint64_t)iy * 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2);
+    h ^= (uint64_t)iz * 0x165667B19E3779F9ull + (h << 6) + (h >> 2);
+    h ^= h >> 29;
+    return (size_t)(h & g->mask);
+}
+
+static void sd_grid_insert(sd_grid *g, size_t i, sd_v3d p)
+{
+    size_t b = sd_grid_bucket(g, sd_grid_coord(g, p.x), sd_grid_coord(g, p.y), sd_grid_coord(g, p.z));
+    g->next[i] = g->head[b];
+    g->head[b] = i;
+}
+
+/* Smallest index of an inserted sphere that overlaps (p, r) by more than
+ * tol x the smaller radius, or SD_GRID_NONE. */
+static size_t sd_grid_first_overlap(const sd_grid *g, const sd_sphere_def *defs, sd_v3d p, double r,
+                                    double tol)
+{
+    int64_t cx = sd_grid_coord(g, p.x), cy = sd_grid_coord(g, p.y), cz = sd_grid_coord(g, p.z);
+    size_t best = SD_GRID_NONE;
+    for (int dz = -1; dz <= 1; ++dz)
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+                size_t b = sd_grid_bucket(g, cx + dx, cy + dy, cz + dz);
+                for (size_t k = g->head[b]; k != SD_GRID_NONE; k = g->next[k]) {
+                    if (k >= best)
+                        continue;
+                    double ex = defs[k].position.x - p.x, ey = defs[k].position.y - p.y,
+                           ez = defs[k].position.z - p.z;
+                    double rs = defs[k].radius + r;
+                    double smaller = defs[k].radius < r ? defs[k].radius : r;
+                    double d2 = ex * ex + ey * ey + ez * ez;
+                    if (d2 >= rs * rs)
+                        continue;
+                    if (rs - sqrt(d2) > tol * smaller)
+                        best = k;
+                }
+            }
+    return best;
+}
+
+int sd_scene_find_overlap(size_t n, const sd_sphere_def *defs, double tol, size_t *oi, size_t *oj)
+{
+    double rmax = 0.0;
+    for (size_t k = 0; k < n; ++k)
+        if (defs[k].radius > rmax)
+            rmax = defs[k].radius;
+    if (n < 2 || !(rmax > 0.0))
+        return 0;
+    sd_grid g;
+    if (!sd_grid_init(&g, n, 2.0 * rmax))
+        return -1;
+    int found = 0;
+    for (size_t j = 0; j < n && !found; ++j) {
+        size_t i = sd_grid_first_overlap(&g, defs, defs[j].position, defs[j].radius, tol);
+        if (i != SD_GRID_NONE) {
+            *oi = i;
+            *oj = j;
+            found = 1;
+        }
+        sd_grid_insert(&g, j, defs[j].position);
+    }
+    sd_grid_free(&g);
+    return found;
+}
+
+/* ---- generators --------------------------------------------------------- */
+
+/* One stream per generator, so generators do not shift each other's draws. */
+static sd_rng sd_gen_rng(uint64_t seed, size_t g)
+{
+    uint64_t x = seed ^ (0xD1B54A32D192ED03ull * (uint64_t)(g + 1));
+    return sd_rng_seed(sd_rng_splitmix(&x));
+}
+
+static double sd_gen_radius(sd_rng *rng, const sd_scene_generator *g)
+{
+    /* Always one draw, so the stream does not depend on min == max. */
+    return sd_rng_range(rng, g->radius_min, g->radius_max);
+}
+
+static void sd_gen_jitter(sd_rng *rng, const sd_scene_generator *g, sd_sphere_def *d)
+{
+    if (g->velocity_jitter > 0.0) {
+        double j = g->velocity_jitter;
+        d->velocity.x += sd_rng_range(rng, -j, j);
+        d->velocity.y += sd_rng_range(rng, -j, j);
+        d->velocity.z += sd_rng_range(rng, -j, j);
+    }
+}
+
+static size_t sd_gen_count(const sd_scene_generator *g)
+{
+    switch (g->kind) {
+    case SD_GEN_LATTICE: return (size_t)g->count[0] * (size_t)g->count[1] * (size_t)g->count[2];
+    case SD_GEN_RANDOM: return (size_t)g->number;
+    case SD_GEN_LIST:
+    case SD_GEN_CSV: return g->list_count;
+    }
+    return 0;
+}
+
+/* Random sequential addition: each sphere draws its radius once, then
+ * positions until one overlaps none of the spheres placed before it. The
+ * attempt budget bounds the time when the box is too full to finish. */
+static sd_status sd_gen_random(const sd_scene *s, size_t gi, sd_rng *rng, sd_sphere_def *defs,
+                               sd_error *err)
+{
+    const sd_scene_generator *g = &s->generators[gi];
+    size_t n = (size_t)g->number;
+    sd_grid grid;
+    /* Hashed cells one largest diameter wide: memory follows n, not the box. */
+    if (!sd_grid_init(&grid, n, 2.0 * g->radius_max))
+        return sd_error_set(err, SD_ERR_MEMORY, s->path, g->line, "", "out of memory");
+    const double budget = 100.0 * (double)n + 100000.0;
+    double attempts = 0.0;
+    size_t placed = 0;
+    while (placed < n && attempts < budget) {
+        sd_sphere_def *d = &defs[placed];
+        double r = sd_gen_radius(rng, g);
+        int ok = 0;
+        while (!ok && attempts < budget) {
+            attempts += 1.0;
+            sd_v3d p = {sd_rng_range(rng, g->box_lo.x + r, g->box_hi.x - r),
+                        sd_rng_range(rng, g->box_lo.y + r, g->box_hi.y - r),
+                        sd_rng_range(rng, g->box_lo.z + r, g->box_hi.z - r)};
+            /* Zero tolerance: generated spheres may touch, never overlap. */
+            if (sd_grid_first_overlap(&grid, defs, p, r, 0.0) == SD_GRID_NONE) {
+                memset(d, 0, sizeof *d);
+                d->position = p;
+                d->radius = r;
+                ok = 1;
+            }
+        }
+        if (!ok)
+            break;
+        d->velocity = g->velocity;
+        d->material = g->material;
+        sd_gen_jitter(rng, g, d);
+        sd_grid_insert(&grid, placed, d->position);
+        ++placed;
+    }
+    sd_grid_free(&grid);
+    if (placed < n) {
+        double vol = 0.0;
+        for (size_t k = 0; k < placed; ++k)
+            vol += 4.0 / 3.0 * 3.14159265358979323846 * defs[k].radius * defs[k].radius *
+                   defs[k].radius;
+        double box = (g->box_hi.x - g->box_lo.x) * (g->box_hi.y - g->box_lo.y) *
+                     (g->box_hi.z - g->box_lo.z);
+        char key[64];
+        snprintf(key, sizeof key, "particles[%zu].number", gi);
+        return sd_error_set(err, SD_ERR_INPUT, s->path, g->line, key,
+                            "placed only %zu of %zu spheres in the box after %.0f attempts (they "
+                            "fill %.0f%% of it; random placement stops near 30%%): use a larger "
+                            "box or fewer spheres",
+                            placed, n, attempts, 100.0 * vol / box);
+    }
+    return SD_OK;
+}
+
+sd_status sd_scene_generate(const sd_scene *s, sd_scene_spheres *out, sd_error *err)
+{
+    memset(out, 0, sizeof *out);
+    size_t total = 0;
+    for (size_t gi = 0; gi < s->generator_count; ++gi)
+        total += sd_gen_count(&s->generators[gi]);
+    size_t cap = total ? total : 1;
+    out->defs = sd_calloc(cap, sizeof *out->defs);
+    out->gen = sd_malloc(cap * sizeof *out->gen);
+    out->entry = sd_malloc(cap * sizeof *out->entry);
+    out->line = sd_malloc(cap * sizeof *out->line);
+    if (!out->defs || !out->gen || !out->entry || !out->line) {
+        sd_scene_spheres_free(out);
+        return sd_error_set(err, SD_ERR_MEMORY, s->path, 0, "", "out of memory (%zu spheres)",
+                            total);
+    }
+    size_t at = 0;
+    for (size_t gi = 0; gi < s->generator_count; ++gi) {
+        const sd_scene_generator *g = &s->generators[gi];
+        sd_rng rng = sd_gen_rng(s->world.seed, gi);
+        size_t n = sd_gen_count(g);
+        sd_sphere_def *defs = out->defs + at;
+        switch (g->kind) {
+        case SD_GEN_LATTICE: {
+            size_t k = 0;
+            /* x varies fastest, then y, then z: layers from the bottom up. */
+            for (int iz = 0; iz < g->count[2]; ++iz)
+                for (int iy = 0; iy < g->count[1]; ++iy)
+                    for (int ix = 0; ix < g->count[0]; ++ix, ++k) {
+                        sd_sphere_def *d = &defs[k];
+                        d->position = (sd_v3d){g->origin.x + ix * g->spacing.x,
+                                               g->origin.y + iy * g->spacing.y,
+                                               g->origin.z + iz * g->spacing.z};
+                        d->radius = sd_gen_radius(&rng, g);
+                        d->velocity = g->velocity;
+                        d->material = g->material;
+                        sd_gen_jitter(&rng, g, d);
+                    }
+            break;
+        }
+        case SD_GEN_RANDOM: {
+            sd_status st = sd_gen_random(s, gi, &rng, defs, err);
+            if (st != SD_OK) {
+                sd_scene_spheres_free(out);
+                return st;
+            }
+            break;
+        }
+        case SD_GEN_LIST:
+        case SD_GEN_CSV:
+            for (size_t k = 0; k < n; ++k) {
+                defs[k] = g->list[k];
+                sd_gen_jitter(&rng, g, &defs[k]);
+            }
+            break;
+        }
+        for (size_t k = 0; k < n; ++k) {
+            out->gen[at + k] = (int)gi;
+            int listed = g->kind == SD_GEN_LIST || g->kind == SD_GEN_CSV;
+            out->entry[at + k] = listed ? (int)k : -1;
+            out->line[at + k] = listed ? g->list_lines[k] : g->line;
+        }
+        at += n;
+    }
+    out->count = at;
+    return SD_OK;
+}
+
+void sd_scene_spheres_free(sd_scene_spheres *sp)
+{
+    if (!sp)
+        return;
+    sd_free(sp->defs);
+    sd_free(sp->gen);
+    sd_free(sp->entry);
+    sd_free(sp->line);
+    memset(sp, 0, sizeof *sp);
+}

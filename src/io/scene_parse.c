@@ -1,0 +1,1343 @@
+/* scene_parse.c — reads a scene file (YAML) into an sd_scene.
+ *
+ * The whole document is loaded as a node tree first (yaml_parser_load), so
+ * every node knows its line. Each mapping is then checked against the key
+ * table (scene_keys.c): unknown keys, keys of another generator or wall
+ * type, duplicate keys, wrong types, out-of-range values and missing
+ * required keys are all errors that name the file, the 1-based line and the
+ * dotted key path (materials[1].density).
+ *
+ * Invariant: sd_scene_load returns either a scene in which every value has
+ * been checked (types, ranges, material names, cross-key rules such as
+ * "exactly one of steps and duration") or an error and no scene; it never
+ * prints and never leaves anything allocated behind.
+ */
+#define _POSIX_C_SOURCE 200809L
+
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <yaml.h>
+
+#include "core/alloc.h"
+#include "core/error.h"
+#include "io/scene.h"
+#include "io/scene_keys.h"
+
+/* ---- parse context and errors ------------------------------------------ */
+
+typedef struct sd_parse {
+    yaml_document_t *doc;
+    const char *path;
+    sd_scene *s;
+    sd_error *err;
+} sd_parse;
+
+/* A checked value of any key type (the fields used depend on the type). */
+typedef struct sd_value {
+    yaml_node_t *node; /* NULL when the key is absent */
+    int line;          /* 1-based line of the value, 0 when absent */
+    double num;
+    long long integer;
+    double v[3];
+    long long iv[3];
+    const char *str;
+    int choice;         /* SD_KT_ENUM: index of the choice */
+    unsigned mask;      /* SD_KT_ENUM_LIST: bit per choice */
+    double lo, hi;      /* SD_KT_NUM_OR_RANGE */
+    sd_v3d box_lo, box_hi;
+    const char *names[2];
+} sd_value;
+
+static int sd_line(const yaml_node_t *n) { return n ? (int)n->start_mark.line + 1 : 0; }
+
+SD_PRINTF(4, 5)
+static sd_status sd_fail(sd_parse *p, int line, const char *key, const char *fmt, ...)
+{
+    char msg[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    return sd_error_set(p->err, SD_ERR_INPUT, p->path, line, key, "%s", msg);
+}
+
+/* "path.key", or "key" at the top level. */
+static const char *sd_kp(char *buf, size_t size, const char *path, const char *key)
+{
+    if (path[0])
+        snprintf(buf, size, "%s.%s", path, key);
+    else
+        snprintf(buf, size, "%s", key);
+    return buf;
+}
+
+static const char *sd_scalar(const yaml_node_t *n) { return (const char *)n->data.scalar.value; }
+
+static int sd_is_null(const yaml_node_t *n)
+{
+    if (!n)
+        return 1;
+    if (n->type != YAML_SCALAR_NODE || n->data.scalar.style != YAML_PLAIN_SCALAR_STYLE)
+        return 0;
+    const char *t = sd_scalar(n);
+    return !t[0] || !strcmp(t, "~") || !strcmp(t, "null") || !strcmp(t, "Null") ||
+           !strcmp(t, "NULL");
+}
+
+/* What was found, for "expected X, got Y" messages. */
+static const char *sd_desc(const yaml_node_t *n, char *buf, size_t size)
+{
+    if (sd_is_null(n)) {
+        snprintf(buf, size, "nothing");
+    } else if (n->type == YAML_SCALAR_NODE) {
+        const char *t = sd_scalar(n);
+        const char *q = n->data.scalar.style == YAML_PLAIN_SCALAR_STYLE ? "" : "\"";
+        snprintf(buf, size, "%s%.60s%s%s", q, t, strlen(t) > 60 ? "..." : "", q);
+    } else if (n->type == YAML_SEQUENCE_NODE) {
+        long len = (long)(n->data.sequence.items.top - n->data.sequence.items.start);
+        snprintf(buf, size, "a list of %ld item%s", len, len == 1 ? "" : "s");
+    } else {
+        snprintf(buf, size, "a mapping");
+    }
+    return buf;
+}
+
+static size_t sd_seq_len(const yaml_node_t *n)
+{
+    return n && n->type == YAML_SEQUENCE_NODE
+               ? (size_t)(n->data.sequence.items.top - n->data.sequence.items.start)
+               : 0;
+}
+
+static yaml_node_t *sd_seq_item(sd_parse *p, const yaml_node_t *n, size_t i)
+{
+    return yaml_document_get_node(p->doc, n->data.sequence.items.start[i]);
+}
+
+static yaml_node_t *sd_map_get(sd_parse *p, const yaml_node_t *map, const char *key)
+{
+    if (!map || map->type != YAML_MAPPING_NODE)
+        return NULL;
+    for (yaml_node_pair_t *q = map->data.mapping.pairs.start; q < map->data.mapping.pairs.top; ++q) {
+        yaml_node_t *k = yaml_document_get_node(p->doc, q->key);
+        if (k && k->type == YAML_SCALAR_NODE && !strcmp(sd_scalar(k), key))
+            return yaml_document_get_node(p->doc, q->value);
+    }
+    return NULL;
+}
+
+/* ---- scalars ------------------------------------------------------------ */
+
+/* A plain scalar that reads as a finite number. Only digits, signs, '.' and
+ * exponents are allowed, so "inf", "nan", hex and quoted strings are not
+ * numbers (a quoted "2500" is a string in YAML). */
+static int sd_scalar_number(const yaml_node_t *n, double *out)
+{
+    if (!n || n->type != YAML_SCALAR_NODE || n->data.scalar.style != YAML_PLAIN_SCALAR_STYLE)
+        return 0;
+    const char *t = sd_scalar(n);
+    if (!t[0] || strspn(t, "0123456789+-.eE") != strlen(t) || !strpbrk(t, "0123456789"))
+        return 0;
+    char *end;
+    errno = 0;
+    double v = strtod(t, &end);
+    if (*end || !isfinite(v))
+        return 0;
+    *out = v;
+    return 1;
+}
+
+/* An integer: digits read exactly (seeds above 2^53 keep every bit), or a
+ * number with an integral value (2e4). */
+static int sd_scalar_int(const yaml_node_t *n, long long *out)
+{
+    double v;
+    if (!sd_scalar_number(n, &v))
+        return 0;
+    const char *t = sd_scalar(n);
+    size_t skip = (t[0] == '+' || t[0] == '-') ? 1 : 0;
+    if (t[skip] && strspn(t + skip, "0123456789") == strlen(t + skip)) {
+        char *end;
+        errno = 0;
+        long long i = strtoll(t, &end, 10);
+        if (errno == ERANGE)
+            return 0;
+        *out = i;
+        return 1;
+    }
+    if (v != floor(v) || fabs(v) > 9007199254740992.0)
+        return 0;
+    *out = (long long)v;
+    return 1;
+}
+
+/* Index of t in "a|b|c|", or -1. */
+static int sd_choice_index(const char *choices, const char *t)
+{
+    int idx = 0;
+    for (const char *c = choices; *c; ++idx) {
+        size_t len = strcspn(c, "|");
+        if (len > 0 && strlen(t) == len && !strncmp(c, t, len))
+            return idx;
+        c += len;
+        if (*c == '|')
+            ++c;
+    }
+    return -1;
+}
+
+static void sd_choices_list(const char *choices, char *buf, size_t size)
+{
+    size_t used = 0;
+    buf[0] = '\0';
+    for (const char *c = choices; *c && used + 1 < size;) {
+        size_t len = strcspn(c, "|");
+        if (len > 0) {
+            int w = snprintf(buf + used, size - used, "%s%.*s", used ? ", " : "", (int)len, c);
+            used += w > 0 ? (size_t)w : 0;
+        }
+        c += len;
+        if (*c == '|')
+            ++c;
+    }
+}
+
+/* ---- typed values ------------------------------------------------------- */
+
+static sd_status sd_read_number(sd_parse *p, const sd_scene_key *k, yaml_node_t *n,
+                                const char *key, const char *what, double *out)
+{
+    char got[96];
+    const char *r = sd_scene_range_text(k->range);
+    if (!sd_scalar_number(n, out))
+        return sd_fail(p, sd_line(n), key, "expected a number%s%s%s, got %s", r[0] ? " " : "", r,
+                       what, sd_desc(n, got, sizeof got));
+    if (!sd_scene_range_ok(k->range, *out))
+        return sd_fail(p, sd_line(n), key, "expected a number %s%s, got %s", r, what,
+                       sd_desc(n, got, sizeof got));
+    return SD_OK;
+}
+
+static sd_status sd_read_int(sd_parse *p, const sd_scene_key *k, yaml_node_t *n, const char *key,
+                             const char *what, long long *out)
+{
+    char got[96];
+    const char *r = sd_scene_range_text(k->range);
+    if (!sd_scalar_int(n, out) || !sd_scene_range_ok(k->range, (double)*out))
+        return sd_fail(p, sd_line(n), key, "expected an integer%s%s%s, got %s", r[0] ? " " : "",
+                       r, what, sd_desc(n, got, sizeof got));
+    return SD_OK;
+}
+
+/* [x, y, z]: three numbers, each in the key's range. */
+static sd_status sd_read_vec3(sd_parse *p, const sd_scene_key *k, yaml_node_t *n, const char *key,
+                              double v[3], long long iv[3])
+{
+    char got[96];
+    if (!n || n->type != YAML_SEQUENCE_NODE || sd_seq_len(n) != 3)
+        return sd_fail(p, sd_line(n), key, "expected a list of 3 %s ([x, y, z]), got %s",
+                       iv ? "integers" : "numbers", sd_desc(n, got, sizeof got));
+    for (size_t i = 0; i < 3; ++i) {
+        static const char *const axis[3] = {" for x", " for y", " for z"};
+        yaml_node_t *item = sd_seq_item(p, n, i);
+        sd_status st = iv ? sd_read_int(p, k, item, key, axis[i], &iv[i])
+                          : sd_read_number(p, k, item, key, axis[i], &v[i]);
+        if (st != SD_OK)
+            return st;
+        if (iv)
+            v[i] = (double)iv[i];
+    }
+    return SD_OK;
+}
+
+static sd_status sd_read_string(sd_parse *p, const sd_scene_key *k, yaml_node_t *n,
+                                const char *key, const char **out)
+{
+    char got[96];
+    if (!n || n->type != YAML_SCALAR_NODE)
+        return sd_fail(p, sd_line(n), key, "expected a %sstring, got %s",
+                       k->range == SD_KR_NONEMPTY ? "non-empty " : "", sd_desc(n, got, sizeof got));
+    *out = sd_is_null(n) ? "" : sd_scalar(n);
+    if (k->range == SD_KR_NONEMPTY && !(*out)[0])
+        return sd_fail(p, sd_line(n), key, "expected a non-empty string, got nothing");
+    if (strlen(*out) >= SD_SCENE_PATH_MAX)
+        return sd_fail(p, sd_line(n), key, "string too long (%zu characters, at most %d)",
+                       strlen(*out), SD_SCENE_PATH_MAX - 1);
+    return SD_OK;
+}
+
+static sd_status sd_read_choice(sd_parse *p, const sd_scene_key *k, yaml_node_t *n,
+                                const char *key, int *out)
+{
+    char got[96], list[160];
+    *out = (n && n->type == YAML_SCALAR_NODE) ? sd_choice_index(k->choices, sd_scalar(n)) : -1;
+    if (*out < 0) {
+        sd_choices_list(k->choices, list, sizeof list);
+        return sd_fail(p, sd_line(n), key, "expected one of %s, got %s", list,
+                       sd_desc(n, got, sizeof got));
+    }
+    return SD_OK;
+}
+
+/* The subkeys of {min: .., max: ..} forms: only min and max, both given. */
+static sd_status sd_read_min_max(sd_parse *p, yaml_node_t *n, const char *key, yaml_node_t **mn,
+                                 yaml_node_t **mx)
+{
+    char sub[160], got[96];
+    for (yaml_node_pair_t *q = n->data.mapping.pairs.start; q < n->data.mapping.pairs.top; ++q) {
+        yaml_node_t *kn = yaml_document_get_node(p->doc, q->key);
+        const char *name = kn->type == YAML_SCALAR_NODE ? sd_scalar(kn) : "?";
+        if (strcmp(name, "min") && strcmp(name, "max"))
+            return sd_fail(p, sd_line(kn), sd_kp(sub, sizeof sub, key, name),
+                           "unknown key %s (expected min and max)", sd_desc(kn, got, sizeof got));
+    }
+    *mn = sd_map_get(p, n, "min");
+    *mx = sd_map_get(p, n, "max");
+    if (!*mn || !*mx)
+        return sd_fail(p, sd_line(n), sd_kp(sub, sizeof sub, key, *mn ? "max" : "min"),
+                       "missing required key '%s'", *mn ? "max" : "min");
+    return SD_OK;
+}
+
+/* Checks n against row k and fills v. Absent keys are handled by sd_get. */
+static sd_status sd_read_value(sd_parse *p, const sd_scene_key *k, yaml_node_t *n, const char *key,
+                               sd_value *v)
+{
+    char got[96], sub[160];
+    sd_status st = SD_OK;
+    memset(v, 0, sizeof *v);
+    v->node = n;
+    v->line = sd_line(n);
+    switch (k->type) {
+    case SD_KT_MAP:
+        if (!sd_is_null(n) && n->type != YAML_MAPPING_NODE)
+            return sd_fail(p, v->line, key, "expected a mapping (key: value lines), got %s",
+                           sd_desc(n, got, sizeof got));
+        break;
+    case SD_KT_LIST:
+        if (!sd_is_null(n) && n->type != YAML_SEQUENCE_NODE)
+            return sd_fail(p, v->line, key, "expected a list (lines starting with '- '), got %s",
+                           sd_desc(n, got, sizeof got));
+        break;
+    case SD_KT_NUMBER: st = sd_read_number(p, k, n, key, "", &v->num); break;
+    case SD_KT_INT:
+        st = sd_read_int(p, k, n, key, "", &v->integer);
+        v->num = (double)v->integer;
+        break;
+    case SD_KT_STRING: st = sd_read_string(p, k, n, key, &v->str); break;
+    case SD_KT_ENUM:
+        st = sd_read_choice(p, k, n, key, &v->choice);
+        if (st == SD_OK)
+            v->str = sd_scalar(n);
+        break;
+    case SD_KT_ENUM_LIST:
+        if (sd_is_null(n))
+            break;
+        if (n->type != YAML_SEQUENCE_NODE)
+            return sd_fail(p, v->line, key, "expected a list such as [a, b], got %s",
+                           sd_desc(n, got, sizeof got));
+        for (size_t i = 0; i < sd_seq_len(n); ++i) {
+            int c;
+            if ((st = sd_read_choice(p, k, sd_seq_item(p, n, i), key, &c)) != SD_OK)
+                return st;
+            v->mask |= 1u << c;
+        }
+        break;
+    case SD_KT_VEC3: st = sd_read_vec3(p, k, n, key, v->v, NULL); break;
+    case SD_KT_INT3: st = sd_read_vec3(p, k, n, key, v->v, v->iv); break;
+    case SD_KT_NUM_OR_VEC3:
+        if (n && n->type == YAML_SEQUENCE_NODE) {
+            st = sd_read_vec3(p, k, n, key, v->v, NULL);
+        } else {
+            st = sd_read_number(p, k, n, key, " or [x, y, z]", &v->num);
+            v->v[0] = v->v[1] = v->v[2] = v->num;
+        }
+        break;
+    case SD_KT_NUM_OR_RANGE:
+        if (n && n->type == YAML_MAPPING_NODE) {
+            yaml_node_t *mn, *mx;
+            if ((st = sd_read_min_max(p, n, key, &mn, &mx)) != SD_OK)
+                return st;
+            if ((st = sd_read_number(p, k, mn, sd_kp(sub, sizeof sub, key, "min"), "", &v->lo)))
+                return st;
+            if ((st = sd_read_number(p, k, mx, sd_kp(sub, sizeof sub, key, "max"), "", &v->hi)))
+                return st;
+            if (v->hi < v->lo)
+                return sd_fail(p, sd_line(mx), sub, "expected max >= min (%g), got %g", v->lo,
+                               v->hi);
+        } else {
+            st = sd_read_number(p, k, n, key, " or {min: a, max: b}", &v->lo);
+            v->hi = v->lo;
+        }
+        v->num = v->hi;
+        break;
+    case SD_KT_BOX: {
+        yaml_node_t *mn, *mx;
+        double lo[3], hi[3];
+        if (!n || n->type != YAML_MAPPING_NODE)
+            return sd_fail(p, v->line, key, "expected {min: [x, y, z], max: [x, y, z]}, got %s",
+                           sd_desc(n, got, sizeof got));
+        if ((st = sd_read_min_max(p, n, key, &mn, &mx)) != SD_OK)
+            return st;
+        if ((st = sd_read_vec3(p, k, mn, sd_kp(sub, sizeof sub, key, "min"), lo, NULL)))
+            return st;
+        if ((st = sd_read_vec3(p, k, mx, sd_kp(sub, sizeof sub, key, "max"), hi, NULL)))
+            return st;
+        for (int a = 0; a < 3; ++a)
+            if (!(hi[a] > lo[a]))
+                return sd_fail(p, sd_line(mx), sub,
+                               "expected max > min on every axis, got max %c = %g <= min %c = %g",
+                               'x' + a, hi[a], 'x' + a, lo[a]);
+        v->box_lo = (sd_v3d){lo[0], lo[1], lo[2]};
+        v->box_hi = (sd_v3d){hi[0], hi[1], hi[2]};
+        break;
+    }
+    case SD_KT_NAME_PAIR:
+        if (!n || n->type != YAML_SEQUENCE_NODE || sd_seq_len(n) != 2)
+            return sd_fail(p, v->line, key, "expected a list of 2 material names, got %s",
+                           sd_desc(n, got, sizeof got));
+        for (size_t i = 0; i < 2; ++i)
+            if ((st = sd_read_string(p, k, sd_seq_item(p, n, i), key, &v->names[i])) != SD_OK)
+                return st;
+        break;
+    }
+    return st;
+}
+
+/* Edit distance of two short keys, for "did you mean" (capped inputs). */
+static int sd_edit_distance(const char *a, const char *b)
+{
+    int la = (int)strlen(a), lb = (int)strlen(b);
+    if (la > 40 || lb > 40)
+        return 99;
+    int row[41];
+    for (int j = 0; j <= lb; ++j)
+        row[j] = j;
+    for (int i = 1; i <= la; ++i) {
+        int diag = row[0];
+        row[0] = i;
+        for (int j = 1; j <= lb; ++j) {
+            int up = row[j];
+            int best = diag + (a[i - 1] != b[j - 1]);
+            if (row[j] + 1 < best)
+                best = row[j] + 1;
+            if (row[j - 1] + 1 < best)
+                best = row[j - 1] + 1;
+            row[j] = best;
+            diag = up;
+        }
+    }
+    return row[lb];
+}
+
+static sd_status sd_unknown_key(sd_parse *p, sd_scene_section sec, const char *name, int line,
+                                const char *key)
+{
+    const char *best = NULL;
+    int best_d = 3; /* suggest only close matches: a typo, not another key */
+    char known[400];
+    size_t used = 0;
+    known[0] = '\0';
+    for (size_t i = 0; i < sd_scene_key_count; ++i) {
+        const sd_scene_key *k = &sd_scene_keys[i];
+        if (k->section != sec)
+            continue;
+        int d = sd_edit_distance(name, k->key);
+        if (d < best_d) {
+            best_d = d;
+            best = k->key;
+        }
+        if (used + 1 < sizeof known) {
+            int w = snprintf(known + used, sizeof known - used, "%s%s", used ? ", " : "", k->key);
+            used += w > 0 ? (size_t)w : 0;
+        }
+    }
+    if (best)
+        return sd_fail(p, line, key, "unknown key '%s' (did you mean '%s'?)", name, best);
+    return sd_fail(p, line, key, "unknown key '%s' (expected one of: %s)", name, known);
+}
+
+/* Checks every key of map against the table rows of sec for one kind (a
+ * generator or wall type bit, SD_KIND_ALL elsewhere): known, applicable,
+ * not repeated, well-typed; then that the required ones are there. */
+static sd_status sd_check_map(sd_parse *p, yaml_node_t *map, sd_scene_section sec, unsigned kind,
+                              const char *kind_name, const char *path, int line)
+{
+    char key[160], got[96];
+    sd_value v;
+    sd_status st;
+    if (map && map->type == YAML_MAPPING_NODE) {
+        for (yaml_node_pair_t *q = map->data.mapping.pairs.start; q < map->data.mapping.pairs.top;
+             ++q) {
+            yaml_node_t *kn = yaml_document_get_node(p->doc, q->key);
+            yaml_node_t *vn = yaml_document_get_node(p->doc, q->value);
+            if (kn->type != YAML_SCALAR_NODE)
+                return sd_fail(p, sd_line(kn), path, "expected a key name, got %s",
+                               sd_desc(kn, got, sizeof got));
+            const char *name = sd_scalar(kn);
+            sd_kp(key, sizeof key, path, name);
+            const sd_scene_key *k = sd_scene_key_find(sec, name);
+            if (!k)
+                return sd_unknown_key(p, sec, name, sd_line(kn), key);
+            if (!(k->kinds & kind))
+                return sd_fail(p, sd_line(kn), key, "key '%s' does not apply to %s", name,
+                               kind_name);
+            for (yaml_node_pair_t *r = map->data.mapping.pairs.start; r < q; ++r) {
+                yaml_node_t *prev = yaml_document_get_node(p->doc, r->key);
+                if (prev->type == YAML_SCALAR_NODE && !strcmp(sd_scalar(prev), name))
+                    return sd_fail(p, sd_line(kn), key, "duplicate key '%s' (first given at line %d)",
+                                   name, sd_line(prev));
+            }
+            if ((st = sd_read_value(p, k, vn, key, &v)) != SD_OK)
+                return st;
+        }
+    }
+    for (size_t i = 0; i < sd_scene_key_count; ++i) {
+        const sd_scene_key *k = &sd_scene_keys[i];
+        if (k->section == sec && (k->required & kind) && !sd_map_get(p, map, k->key))
+            return sd_fail(p, line, sd_kp(key, sizeof key, path, k->key),
+                           "missing required key '%s' (%s)", k->key, k->doc);
+    }
+    return SD_OK;
+}
+
+/* The value of a key already checked by sd_check_map. Returns 1 if given;
+ * 0 if absent, with v holding the table default when it is a number or a
+ * vector (so defaults live in the table only). */
+static int sd_get(sd_parse *p, yaml_node_t *map, sd_scene_section sec, const char *name,
+                  const char *path, sd_value *v)
+{
+    const sd_scene_key *k = sd_scene_key_find(sec, name);
+    yaml_node_t *n = sd_map_get(p, map, name);
+    memset(v, 0, sizeof *v);
+    if (!k)
+        return 0; /* a bug: every name used here is in the table */
+    if (n) {
+        char key[160];
+        /* Cannot fail: sd_check_map has read the same node with the same row. */
+        sd_read_value(p, k, n, sd_kp(key, sizeof key, path, name), v);
+        return 1;
+    }
+    double a, b, c;
+    if (sscanf(k->def, "[%lf , %lf , %lf ]", &a, &b, &c) == 3) {
+        v->v[0] = a;
+        v->v[1] = b;
+        v->v[2] = c;
+    } else if (sscanf(k->def, "%lf", &a) == 1) {
+        v->num = v->lo = v->hi = a;
+        v->integer = (long long)a;
+    }
+    return 0;
+}
+
+static sd_v3d sd_v3(const double v[3]) { return (sd_v3d){v[0], v[1], v[2]}; }
+
+static int sd_find_material(const sd_scene *s, const char *name)
+{
+    for (size_t i = 0; i < s->material_count; ++i)
+        if (!strcmp(s->materials[i].name, name))
+            return (int)i;
+    return -1;
+}
+
+static sd_status sd_material_ref(sd_parse *p, const char *name, int line, const char *key, int *out)
+{
+    *out = sd_find_material(p->s, name);
+    if (*out >= 0)
+        return SD_OK;
+    char known[300];
+    size_t used = 0;
+    known[0] = '\0';
+    for (size_t i = 0; i < p->s->material_count && used + 1 < sizeof known; ++i) {
+        int w = snprintf(known + used, sizeof known - used, "%s%s", i ? ", " : "",
+                         p->s->materials[i].name);
+        used += w > 0 ? (size_t)w : 0;
+    }
+    return sd_fail(p, line, key, "unknown material '%s' (materials: %s)", name, known);
+}
+
+/* ---- sections ----------------------------------------------------------- */
+
+static sd_status sd_parse_simulation(sd_parse *p, yaml_node_t *root)
+{
+    sd_scene *s = p->s;
+    yaml_node_t *sim = sd_map_get(p, root, "simulation");
+    const char *path = "simulation";
+    sd_value v;
+    sd_status st;
+    if ((st = sd_check_map(p, sim, SD_SEC_SIMULATION, SD_KIND_ALL, "", path, s->simulation_line)))
+        return st;
+    s->world = sd_world_def_default();
+
+    sd_get(p, sim, SD_SEC_SIMULATION, "dimension", path, &v);
+    if (v.integer == 2)
+        return sd_fail(p, v.line, "simulation.dimension",
+                       "planar mode not available yet (dimension 2); use dimension: 3");
+    if (v.integer != 3)
+        return sd_fail(p, v.line, "simulation.dimension", "expected 3, got %lld", v.integer);
+    s->world.dimension = 3;
+
+    sd_get(p, sim, SD_SEC_SIMULATION, "dt", path, &v);
+    s->world.dt = v.num;
+    s->dt_line = v.line;
+
+    sd_value steps, duration;
+    int has_steps = sd_get(p, sim, SD_SEC_SIMULATION, "steps", path, &steps);
+    int has_duration = sd_get(p, sim, SD_SEC_SIMULATION, "duration", path, &duration);
+    if (has_steps && has_duration)
+        return sd_fail(p, duration.line, "simulation.duration",
+                       "give either steps or duration, not both (steps is at line %d)", steps.line);
+    if (!has_steps && !has_duration)
+        return sd_fail(p, s->simulation_line, "simulation.steps",
+                       "missing the run length: give steps (a number of steps) or duration (s)");
+    if (has_steps) {
+        s->steps = (long)steps.integer;
+    } else {
+        double n = ceil(duration.num / s->world.dt - 1e-9);
+        if (n > 1e15)
+            return sd_fail(p, duration.line, "simulation.duration",
+                           "duration / dt = %g steps is too many", n);
+        s->steps = n > 0.0 ? (long)n : 0;
+    }
+
+    sd_get(p, sim, SD_SEC_SIMULATION, "gravity", path, &v);
+    s->world.gravity = sd_v3(v.v);
+    sd_get(p, sim, SD_SEC_SIMULATION, "seed", path, &v);
+    s->world.seed = (uint64_t)v.integer;
+    sd_get(p, sim, SD_SEC_SIMULATION, "threads", path, &v);
+    if (v.integer > 4096)
+        return sd_fail(p, v.line, "simulation.threads", "expected at most 4096 threads, got %lld",
+                       v.integer);
+    s->world.threads = (int)v.integer;
+    if (sd_get(p, sim, SD_SEC_SIMULATION, "contact_law", path, &v)) {
+        s->world.law = sd_contact_law_from_name(v.str);
+    } else {
+        const sd_scene_key *k = sd_scene_key_find(SD_SEC_SIMULATION, "contact_law");
+        s->world.law = sd_contact_law_from_name(k->def);
+    }
+    if (s->world.law == SD_LAW_COUNT)
+        return sd_fail(p, v.line, "simulation.contact_law", "unknown contact law");
+    sd_get(p, sim, SD_SEC_SIMULATION, "skin", path, &v);
+    s->world.skin = v.num;
+    return SD_OK;
+}
+
+static sd_status sd_parse_materials(sd_parse *p, yaml_node_t *list, int line)
+{
+    sd_scene *s = p->s;
+    size_t n = sd_seq_len(list);
+    char path[64], key[96];
+    sd_value v;
+    sd_status st;
+    if (n == 0)
+        return sd_fail(p, line, "materials", "expected at least one material, got %s",
+                       list ? "an empty list" : "nothing");
+    s->materials = sd_calloc(n, sizeof *s->materials);
+    if (!s->materials)
+        return sd_error_set(p->err, SD_ERR_MEMORY, p->path, 0, "", "out of memory");
+    for (size_t i = 0; i < n; ++i) {
+        yaml_node_t *m = sd_seq_item(p, list, i);
+        sd_scene_material *sm = &s->materials[i];
+        char got[96];
+        snprintf(path, sizeof path, "materials[%zu]", i);
+        if (m->type != YAML_MAPPING_NODE)
+            return sd_fail(p, sd_line(m), path, "expected a mapping (name: ..., density: ...), got %s",
+                           sd_desc(m, got, sizeof got));
+        if ((st = sd_check_map(p, m, SD_SEC_MATERIAL, SD_KIND_ALL, "", path, sd_line(m))))
+            return st;
+        sm->line = sd_line(m);
+        sd_get(p, m, SD_SEC_MATERIAL, "name", path, &v);
+        if (strlen(v.str) >= SD_SCENE_NAME_MAX)
+            return sd_fail(p, v.line, sd_kp(key, sizeof key, path, "name"),
+                           "name longer than %d characters", SD_SCENE_NAME_MAX - 1);
+        for (size_t j = 0; j < i; ++j)
+            if (!strcmp(s->materials[j].name, v.str)) {
+                return sd_fail(p, v.line, key, "duplicate material name '%s' (materials[%zu], line %d)",
+                               v.str, j, s->materials[j].line);
+            }
+        snprintf(sm->name, sizeof sm->name, "%s", v.str);
+        s->material_count = i + 1;
+
+        sd_material_def *d = &sm->def;
+        *d = sd_material_def_default();
+        sd_get(p, m, SD_SEC_MATERIAL, "density", path, &v);
+        d->density = v.num;
+        /* Absent means unset (0); the law checks below decide if it is needed. */
+        d->youngs_modulus = sd_get(p, m, SD_SEC_MATERIAL, "youngs_modulus", path, &v) ? v.num : 0.0;
+        sd_get(p, m, SD_SEC_MATERIAL, "poisson_ratio", path, &v);
+        d->poisson_ratio = v.num;
+        sd_get(p, m, SD_SEC_MATERIAL, "restitution", path, &v);
+        d->restitution = v.num;
+        sd_get(p, m, SD_SEC_MATERIAL, "friction", path, &v);
+        d->friction = v.num;
+        sd_get(p, m, SD_SEC_MATERIAL, "rolling_friction", path, &v);
+        d->rolling_friction = v.num;
+        sd_get(p, m, SD_SEC_MATERIAL, "stiffness", path, &v);
+        d->stiffness = v.num;
+        sd_get(p, m, SD_SEC_MATERIAL, "tangential_stiffness_ratio", path, &v);
+        d->tangential_stiffness_ratio = v.num;
+    }
+    /* Names point into the array only now that it will not move. */
+    for (size_t i = 0; i < n; ++i)
+        s->materials[i].def.name = s->materials[i].name;
+    return SD_OK;
+}
+
+static sd_status sd_parse_interactions(sd_parse *p, yaml_node_t *list)
+{
+    sd_scene *s = p->s;
+    size_t n = sd_seq_len(list);
+    char path[64], key[96], got[96];
+    sd_value v;
+    sd_status st;
+    if (n == 0)
+        return SD_OK;
+    s->interactions = sd_calloc(n, sizeof *s->interactions);
+    if (!s->interactions)
+        return sd_error_set(p->err, SD_ERR_MEMORY, p->path, 0, "", "out of memory");
+    for (size_t i = 0; i < n; ++i) {
+        yaml_node_t *m = sd_seq_item(p, list, i);
+        sd_scene_interaction *si = &s->interactions[i];
+        snprintf(path, sizeof path, "interactions[%zu]", i);
+        if (m->type != YAML_MAPPING_NODE)
+            return sd_fail(p, sd_line(m), path, "expected a mapping (between: [a, b], ...), got %s",
+                           sd_desc(m, got, sizeof got));
+        if ((st = sd_check_map(p, m, SD_SEC_INTERACTION, SD_KIND_ALL, "", path, sd_line(m))))
+            return st;
+        si->line = sd_line(m);
+        sd_get(p, m, SD_SEC_INTERACTION, "between", path, &v);
+        snprintf(key, sizeof key, "%s.between", path);
+        if ((st = sd_material_ref(p, v.names[0], v.line, key, &si->mat_a)))
+            return st;
+        if ((st = sd_material_ref(p, v.names[1], v.line, key, &si->mat_b)))
+            return st;
+        for (size_t j = 0; j < i; ++j) {
+            const sd_scene_interaction *o = &s->interactions[j];
+            if ((o->mat_a == si->mat_a && o->mat_b == si->mat_b) ||
+                (o->mat_a == si->mat_b && o->mat_b == si->mat_a))
+                return sd_fail(p, v.line, key,
+                               "a second interaction between '%s' and '%s' (the first is "
+                               "interactions[%zu], line %d)",
+                               v.names[0], v.names[1], j, o->line);
+        }
+        s->interaction_count = i + 1;
+        si->def = sd_interaction_def_default();
+        /* Absent keys keep the mixed value: a negative value in the def. */
+        si->def.restitution = sd_get(p, m, SD_SEC_INTERACTION, "restitution", path, &v) ? v.num : -1.0;
+        si->def.friction = sd_get(p, m, SD_SEC_INTERACTION, "friction", path, &v) ? v.num : -1.0;
+        si->def.rolling_friction =
+            sd_get(p, m, SD_SEC_INTERACTION, "rolling_friction", path, &v) ? v.num : -1.0;
+        si->def.stiffness = sd_get(p, m, SD_SEC_INTERACTION, "stiffness", path, &v) ? v.num : -1.0;
+        si->def.law = sd_get(p, m, SD_SEC_INTERACTION, "contact_law", path, &v)
+                          ? (int)sd_contact_law_from_name(v.str)
+                          : -1;
+        if (si->def.law == SD_LAW_COUNT)
+            return sd_fail(p, v.line, sd_kp(key, sizeof key, path, "contact_law"),
+                           "unknown contact law");
+    }
+    return SD_OK;
+}
+
+/* ---- CSV particles ------------------------------------------------------ */
+
+static char *sd_trim(char *t)
+{
+    while (*t == ' ' || *t == '\t')
+        ++t;
+    size_t n = strlen(t);
+    while (n > 0 && (t[n - 1] == ' ' || t[n - 1] == '\t' || t[n - 1] == '\r' || t[n - 1] == '\n'))
+        t[--n] = '\0';
+    return t;
+}
+
+enum { SD_CSV_X, SD_CSV_Y, SD_CSV_Z, SD_CSV_R, SD_CSV_VX, SD_CSV_VY, SD_CSV_VZ, SD_CSV_NCOL };
+static const char *const sd_csv_names[SD_CSV_NCOL] = {"x", "y", "z", "radius", "vx", "vy", "vz"};
+
+/* Reads g->file: a header naming the columns, then one sphere per row.
+ * Errors name the CSV file and its line; the key names the generator. */
+static sd_status sd_read_csv(sd_parse *p, sd_scene_generator *g, const char *key, int file_line)
+{
+    FILE *f = fopen(g->file, "rb");
+    if (!f)
+        return sd_fail(p, file_line, key, "cannot open the CSV file '%s': %s", g->file,
+                       strerror(errno));
+    char buf[4096];
+    int col_of[16]; /* column -> SD_CSV_* index */
+    int ncols = 0, line = 0, have_header = 0;
+    size_t cap = 0;
+    sd_status st = SD_OK;
+    while (fgets(buf, sizeof buf, f)) {
+        ++line;
+        if (!strchr(buf, '\n') && !feof(f)) {
+            st = sd_error_set(p->err, SD_ERR_INPUT, g->file, line, key, "line longer than %zu characters",
+                              sizeof buf - 2);
+            break;
+        }
+        char *t = sd_trim(buf);
+        if (!t[0] || t[0] == '#')
+            continue;
+        if (!have_header) {
+            int seen[SD_CSV_NCOL] = {0};
+            for (char *c = t; c; ++ncols) {
+                char *next = strchr(c, ',');
+                if (next)
+                    *next++ = '\0';
+                char *name = sd_trim(c);
+                int idx = -1;
+                for (int j = 0; j < SD_CSV_NCOL; ++j)
+                    if (!strcmp(name, sd_csv_names[j]))
+                        idx = j;
+                if (idx < 0 || ncols >= 16 || seen[idx]) {
+                    st = sd_error_set(p->err, SD_ERR_INPUT, g->file, line, key,
+                                      "%s column '%s' in the header (expected the columns x, y, z, "
+                                      "radius and optionally vx, vy, vz)",
+                                      idx < 0 ? "unknown" : "repeated", name);
+                    goto done;
+                }
+                seen[idx] = 1;
+                col_of[ncols] = idx;
+                c = next;
+            }
+            for (int j = 0; j <= SD_CSV_R; ++j)
+                if (!seen[j]) {
+                    st = sd_error_set(p->err, SD_ERR_INPUT, g->file, line, key,
+                                      "the header line has no '%s' column (expected a header such "
+                                      "as x,y,z,radius)",
+                                      sd_csv_names[j]);
+                    goto done;
+                }
+            have_header = 1;
+            continue;
+        }
+        double val[SD_CSV_NCOL] = {0};
+        int col = 0;
+        for (char *c = t; c; ++col) {
+            char *next = strchr(c, ',');
+            if (next)
+                *next++ = '\0';
+            if (col >= ncols) {
+                st = sd_error_set(p->err, SD_ERR_INPUT, g->file, line, key,
+                                  "expected %d values as in the header, got more", ncols);
+                goto done;
+            }
+            char *field = sd_trim(c), *end;
+            double x = strtod(field, &end);
+            const char *name = sd_csv_names[col_of[col]];
+            if (!field[0] || *end || !isfinite(x)) {
+                st = sd_error_set(p->err, SD_ERR_INPUT, g->file, line, key,
+                                  "column %s: expected a number, got '%.40s'", name, field);
+                goto done;
+            }
+            if (col_of[col] == SD_CSV_R && !(x > 0.0)) {
+                st = sd_error_set(p->err, SD_ERR_INPUT, g->file, line, key,
+                                  "column radius: expected a number > 0, got %s", field);
+                goto done;
+            }
+            val[col_of[col]] = x;
+            c = next;
+        }
+        if (col != ncols) {
+            st = sd_error_set(p->err, SD_ERR_INPUT, g->file, line, key,
+                              "expected %d values as in the header, got %d", ncols, col);
+            goto done;
+        }
+        if (g->list_count == cap) {
+            size_t ncap = cap ? 2 * cap : 256;
+            sd_sphere_def *nl = sd_realloc(g->list, ncap * sizeof *nl);
+            if (nl)
+                g->list = nl;
+            int *nli = nl ? sd_realloc(g->list_lines, ncap * sizeof *nli) : NULL;
+            if (!nli) {
+                st = sd_error_set(p->err, SD_ERR_MEMORY, g->file, line, key, "out of memory");
+                goto done;
+            }
+            g->list_lines = nli;
+            cap = ncap;
+        }
+        sd_sphere_def *d = &g->list[g->list_count];
+        memset(d, 0, sizeof *d);
+        d->position = (sd_v3d){val[SD_CSV_X], val[SD_CSV_Y], val[SD_CSV_Z]};
+        d->radius = val[SD_CSV_R];
+        d->velocity = g->velocity;
+        for (int j = 0; j < ncols; ++j) {
+            /* Velocity columns override the generator's velocity. */
+            if (col_of[j] == SD_CSV_VX)
+                d->velocity.x = val[SD_CSV_VX];
+            if (col_of[j] == SD_CSV_VY)
+                d->velocity.y = val[SD_CSV_VY];
+            if (col_of[j] == SD_CSV_VZ)
+                d->velocity.z = val[SD_CSV_VZ];
+        }
+        d->material = g->material;
+        g->list_lines[g->list_count++] = line;
+    }
+    if (st == SD_OK && ferror(f))
+        st = sd_error_set(p->err, SD_ERR_IO, g->file, line, key, "read error: %s", strerror(errno));
+    else if (st == SD_OK && !have_header)
+        st = sd_error_set(p->err, SD_ERR_INPUT, g->file, line > 0 ? line : 0, key,
+                          "the CSV file has no header line (expected a header such as "
+                          "x,y,z,radius)");
+    else if (st == SD_OK && g->list_count == 0)
+        st = sd_error_set(p->err, SD_ERR_INPUT, g->file, line, key, "the CSV file has no spheres");
+done:
+    fclose(f);
+    return st;
+}
+
+/* file relative to the scene file's directory (absolute paths kept). */
+static int sd_resolve(const char *scene, const char *file, char *out, size_t size)
+{
+    const char *slash = strrchr(scene, '/');
+    int n;
+    if (file[0] == '/' || !slash)
+        n = snprintf(out, size, "%s", file);
+    else
+        n = snprintf(out, size, "%.*s/%s", (int)(slash - scene), scene, file);
+    return n >= 0 && (size_t)n < size;
+}
+
+/* ---- particles ---------------------------------------------------------- */
+
+static sd_status sd_parse_list(sd_parse *p, sd_scene_generator *g, yaml_node_t *list,
+                               const char *path, int has_material)
+{
+    size_t n = sd_seq_len(list);
+    char ep[96], key[128], got[96];
+    sd_value v;
+    sd_status st;
+    if (n == 0)
+        return sd_fail(p, sd_line(list), sd_kp(key, sizeof key, path, "spheres"),
+                       "expected at least one sphere");
+    g->list = sd_calloc(n, sizeof *g->list);
+    g->list_lines = sd_calloc(n, sizeof *g->list_lines);
+    if (!g->list || !g->list_lines)
+        return sd_error_set(p->err, SD_ERR_MEMORY, p->path, 0, "", "out of memory");
+    for (size_t i = 0; i < n; ++i) {
+        yaml_node_t *m = sd_seq_item(p, list, i);
+        sd_sphere_def *d = &g->list[i];
+        snprintf(ep, sizeof ep, "%s.spheres[%zu]", path, i);
+        if (m->type != YAML_MAPPING_NODE)
+            return sd_fail(p, sd_line(m), ep, "expected a mapping {position: [x, y, z], radius: r}, got %s",
+                           sd_desc(m, got, sizeof got));
+        if ((st = sd_check_map(p, m, SD_SEC_SPHERE, SD_KIND_ALL, "", ep, sd_line(m))))
+            return st;
+        sd_get(p, m, SD_SEC_SPHERE, "position", ep, &v);
+        d->position = sd_v3(v.v);
+        sd_get(p, m, SD_SEC_SPHERE, "radius", ep, &v);
+        d->radius = v.num;
+        d->velocity = sd_get(p, m, SD_SEC_SPHERE, "velocity", ep, &v) ? sd_v3(v.v) : g->velocity;
+        sd_get(p, m, SD_SEC_SPHERE, "angular_velocity", ep, &v);
+        d->angular_velocity = sd_v3(v.v);
+        if (sd_get(p, m, SD_SEC_SPHERE, "material", ep, &v)) {
+            if ((st = sd_material_ref(p, v.str, v.line, sd_kp(key, sizeof key, ep, "material"),
+                                      &d->material)))
+                return st;
+        } else if (has_material) {
+            d->material = g->material;
+        } else {
+            return sd_fail(p, sd_line(m), sd_kp(key, sizeof key, ep, "material"),
+                           "missing material: give it here or as the generator's material");
+        }
+        g->list_lines[i] = sd_line(m);
+        g->list_count = i + 1;
+    }
+    return SD_OK;
+}
+
+static sd_status sd_parse_particles(sd_parse *p, yaml_node_t *list, int line)
+{
+    sd_scene *s = p->s;
+    size_t n = sd_seq_len(list);
+    char path[64], key[96], got[96], kind_name[64];
+    sd_value v;
+    sd_status st;
+    if (n == 0)
+        return sd_fail(p, line, "particles", "expected at least one generator, got %s",
+                       list ? "an empty list" : "nothing");
+    s->generators = sd_calloc(n, sizeof *s->generators);
+    if (!s->generators)
+        return sd_error_set(p->err, SD_ERR_MEMORY, p->path, 0, "", "out of memory");
+    for (size_t i = 0; i < n; ++i) {
+        yaml_node_t *m = sd_seq_item(p, list, i);
+        sd_scene_generator *g = &s->generators[i];
+        s->generator_count = i + 1; /* so sd_scene_free sees its lists */
+        snprintf(path, sizeof path, "particles[%zu]", i);
+        if (m->type != YAML_MAPPING_NODE)
+            return sd_fail(p, sd_line(m), path, "expected a mapping (generator: ..., ...), got %s",
+                           sd_desc(m, got, sizeof got));
+        g->line = sd_line(m);
+        /* The generator decides which keys apply, so read it first. */
+        yaml_node_t *gn = sd_map_get(p, m, "generator");
+        snprintf(key, sizeof key, "%s.generator", path);
+        if (!gn)
+            return sd_fail(p, g->line, key,
+                           "missing required key 'generator' (lattice, random, list or csv)");
+        if ((st = sd_read_value(p, sd_scene_key_find(SD_SEC_PARTICLES, "generator"), gn, key, &v)))
+            return st;
+        g->kind = (sd_gen_kind)v.choice;
+        snprintf(kind_name, sizeof kind_name, "a %s generator", v.str);
+        if ((st = sd_check_map(p, m, SD_SEC_PARTICLES, 1u << g->kind, kind_name, path, g->line)))
+            return st;
+
+        int has_material = sd_get(p, m, SD_SEC_PARTICLES, "material", path, &v);
+        if (has_material &&
+            (st = sd_material_ref(p, v.str, v.line, sd_kp(key, sizeof key, path, "material"),
+                                  &g->material)))
+            return st;
+        sd_get(p, m, SD_SEC_PARTICLES, "velocity", path, &v);
+        g->velocity = sd_v3(v.v);
+        sd_get(p, m, SD_SEC_PARTICLES, "velocity_jitter", path, &v);
+        g->velocity_jitter = v.num;
+        if (sd_get(p, m, SD_SEC_PARTICLES, "radius", path, &v)) {
+            g->radius_min = v.lo;
+            g->radius_max = v.hi;
+        }
+
+        switch (g->kind) {
+        case SD_GEN_LATTICE: {
+            sd_get(p, m, SD_SEC_PARTICLES, "origin", path, &v);
+            g->origin = sd_v3(v.v);
+            sd_value sp;
+            sd_get(p, m, SD_SEC_PARTICLES, "spacing", path, &sp);
+            g->spacing = sd_v3(sp.v);
+            for (int a = 0; a < 3; ++a)
+                if (sp.v[a] < 2.0 * g->radius_max)
+                    return sd_fail(p, sp.line, sd_kp(key, sizeof key, path, "spacing"),
+                                   "expected a spacing >= 2 x the largest radius (%g m), got %g "
+                                   "along %c: the spheres would overlap",
+                                   2.0 * g->radius_max, sp.v[a], 'x' + a);
+            sd_get(p, m, SD_SEC_PARTICLES, "count", path, &v);
+            double total = v.v[0] * v.v[1] * v.v[2];
+            if (v.iv[0] > 100000000 || v.iv[1] > 100000000 || v.iv[2] > 100000000 || total > 1e9)
+                return sd_fail(p, v.line, sd_kp(key, sizeof key, path, "count"),
+                               "expected at most 1e9 spheres in all, got %g", total);
+            for (int a = 0; a < 3; ++a)
+                g->count[a] = (int)v.iv[a];
+            break;
+        }
+        case SD_GEN_RANDOM: {
+            sd_get(p, m, SD_SEC_PARTICLES, "box", path, &v);
+            g->box_lo = v.box_lo;
+            g->box_hi = v.box_hi;
+            double ext[3] = {v.box_hi.x - v.box_lo.x, v.box_hi.y - v.box_lo.y,
+                             v.box_hi.z - v.box_lo.z};
+            for (int a = 0; a < 3; ++a)
+                if (ext[a] < 2.0 * g->radius_max)
+                    return sd_fail(p, v.line, sd_kp(key, sizeof key, path, "box"),
+                                   "the box is %g m wide along %c, less than the largest "
+                                   "diameter (%g m)",
+                                   ext[a], 'x' + a, 2.0 * g->radius_max);
+            sd_get(p, m, SD_SEC_PARTICLES, "number", path, &v);
+            if (v.integer > 1000000000)
+                return sd_fail(p, v.line, sd_kp(key, sizeof key, path, "number"),
+                               "expected at most 1e9 spheres, got %lld", v.integer);
+            g->number = (long)v.integer;
+            break;
+        }
+        case SD_GEN_LIST:
+            sd_get(p, m, SD_SEC_PARTICLES, "spheres", path, &v);
+            if ((st = sd_parse_list(p, g, v.node, path, has_material)))
+                return st;
+            break;
+        case SD_GEN_CSV:
+            sd_get(p, m, SD_SEC_PARTICLES, "file", path, &v);
+            sd_kp(key, sizeof key, path, "file");
+            if (!sd_resolve(p->path, v.str, g->file, sizeof g->file))
+                return sd_fail(p, v.line, key, "path too long");
+            if ((st = sd_read_csv(p, g, key, v.line)))
+                return st;
+            break;
+        }
+    }
+    return SD_OK;
+}
+
+/* ---- walls and output --------------------------------------------------- */
+
+static sd_status sd_parse_walls(sd_parse *p, yaml_node_t *list)
+{
+    sd_scene *s = p->s;
+    size_t n = sd_seq_len(list);
+    char path[64], key[96], got[96], kind_name[64];
+    sd_value v;
+    sd_status st;
+    if (n == 0)
+        return SD_OK;
+    s->walls = sd_calloc(n, sizeof *s->walls);
+    if (!s->walls)
+        return sd_error_set(p->err, SD_ERR_MEMORY, p->path, 0, "", "out of memory");
+    for (size_t i = 0; i < n; ++i) {
+        yaml_node_t *m = sd_seq_item(p, list, i);
+        sd_scene_wall *w = &s->walls[i];
+        snprintf(path, sizeof path, "walls[%zu]", i);
+        if (m->type != YAML_MAPPING_NODE)
+            return sd_fail(p, sd_line(m), path, "expected a mapping (type: plane|box, ...), got %s",
+                           sd_desc(m, got, sizeof got));
+        w->line = sd_line(m);
+        yaml_node_t *tn = sd_map_get(p, m, "type");
+        snprintf(key, sizeof key, "%s.type", path);
+        if (!tn)
+            return sd_fail(p, w->line, key, "missing required key 'type' (plane or box)");
+        if ((st = sd_read_value(p, sd_scene_key_find(SD_SEC_WALL, "type"), tn, key, &v)))
+            return st;
+        w->kind = v.choice;
+        snprintf(kind_name, sizeof kind_name, "a %s wall", v.str);
+        if ((st = sd_check_map(p, m, SD_SEC_WALL, 1u << w->kind, kind_name, path, w->line)))
+            return st;
+        s->wall_count = i + 1;
+        if (sd_get(p, m, SD_SEC_WALL, "name", path, &v)) {
+            if (strlen(v.str) >= SD_SCENE_NAME_MAX)
+                return sd_fail(p, v.line, sd_kp(key, sizeof key, path, "name"),
+                               "name longer than %d characters", SD_SCENE_NAME_MAX - 1);
+            snprintf(w->name, sizeof w->name, "%s", v.str);
+        } else {
+            snprintf(w->name, sizeof w->name, "wall%zu", i);
+        }
+        sd_get(p, m, SD_SEC_WALL, "material", path, &v);
+        if ((st = sd_material_ref(p, v.str, v.line, sd_kp(key, sizeof key, path, "material"),
+                                  &w->material)))
+            return st;
+        if (w->kind == 0) {
+            sd_get(p, m, SD_SEC_WALL, "point", path, &v);
+            w->point = sd_v3(v.v);
+            sd_get(p, m, SD_SEC_WALL, "normal", path, &v);
+            double len = sqrt(v.v[0] * v.v[0] + v.v[1] * v.v[1] + v.v[2] * v.v[2]);
+            if (!(len > 0.0) || !isfinite(len))
+                return sd_fail(p, v.line, sd_kp(key, sizeof key, path, "normal"),
+                               "expected a non-zero normal, got [%g, %g, %g]", v.v[0], v.v[1],
+                               v.v[2]);
+            w->normal = (sd_v3d){v.v[0] / len, v.v[1] / len, v.v[2] / len};
+        } else {
+            sd_value lo, hi;
+            sd_get(p, m, SD_SEC_WALL, "min", path, &lo);
+            sd_get(p, m, SD_SEC_WALL, "max", path, &hi);
+            for (int a = 0; a < 3; ++a)
+                if (!(hi.v[a] > lo.v[a]))
+                    return sd_fail(p, hi.line, sd_kp(key, sizeof key, path, "max"),
+                                   "expected max > min on every axis, got max %c = %g <= min %c = %g",
+                                   'x' + a, hi.v[a], 'x' + a, lo.v[a]);
+            w->lo = sd_v3(lo.v);
+            w->hi = sd_v3(hi.v);
+            /* The choice order xmin xmax ymin ... matches the SD_BOX_* bits. */
+            sd_get(p, m, SD_SEC_WALL, "open", path, &v);
+            w->open_faces = v.mask;
+        }
+    }
+    return SD_OK;
+}
+
+static sd_status sd_parse_output(sd_parse *p, yaml_node_t *root, int line)
+{
+    sd_scene *s = p->s;
+    yaml_node_t *out = sd_map_get(p, root, "output");
+    const char *path = "output";
+    sd_value v;
+    sd_status st;
+    if ((st = sd_check_map(p, out, SD_SEC_OUTPUT, SD_KIND_ALL, "", path, line)))
+        return st;
+    if (sd_get(p, out, SD_SEC_OUTPUT, "directory", path, &v))
+        snprintf(s->output.directory, sizeof s->output.directory, "%s", v.str);
+    s->output.every = sd_get(p, out, SD_SEC_OUTPUT, "every", path, &v) ? (long)v.integer
+                                                                       : s->steps / 100;
+    if (s->output.every < 1)
+        s->output.every = 1;
+    s->output.stats_every = sd_get(p, out, SD_SEC_OUTPUT, "stats_every", path, &v)
+                                ? (long)v.integer
+                                : s->output.every / 10;
+    if (s->output.stats_every < 1)
+        s->output.stats_every = 1;
+    /* The choice order vtk|csv matches SD_OUT_VTK, SD_OUT_CSV. */
+    s->output.formats =
+        sd_get(p, out, SD_SEC_OUTPUT, "formats", path, &v) ? v.mask : (SD_OUT_VTK | SD_OUT_CSV);
+    return SD_OK;
+}
+
+/* ---- cross checks ------------------------------------------------------- */
+
+/* A material needs youngs_modulus when a hertz_mindlin contact involves it,
+ * and a stiffness when a linear contact involves it and the pair's
+ * interaction sets none. Contacts are particle-particle and particle-wall,
+ * so only materials that particles or walls use count. Checked here, where
+ * the line of the material is known; sd_world_prepare checks again. */
+static sd_status sd_check_laws(sd_parse *p)
+{
+    sd_scene *s = p->s;
+    size_t nm = s->material_count;
+    unsigned char *use = sd_calloc(nm ? nm : 1, 1); /* bit 0: particles, bit 1: walls */
+    if (!use)
+        return sd_error_set(p->err, SD_ERR_MEMORY, p->path, 0, "", "out of memory");
+    for (size_t g = 0; g < s->generator_count; ++g) {
+        const sd_scene_generator *gen = &s->generators[g];
+        if (gen->kind == SD_GEN_LIST)
+            for (size_t i = 0; i < gen->list_count; ++i)
+                use[gen->list[i].material] |= 1;
+        else
+            use[gen->material] |= 1;
+    }
+    for (size_t w = 0; w < s->wall_count; ++w)
+        use[s->walls[w].material] |= 2;
+    sd_status st = SD_OK;
+    for (size_t a = 0; a < nm && st == SD_OK; ++a) {
+        for (size_t b = 0; b < nm && st == SD_OK; ++b) {
+            if (!((use[a] & 1) && use[b]) && !((use[b] & 1) && use[a]))
+                continue; /* no contact between these two materials */
+            const sd_scene_interaction *in = NULL;
+            for (size_t i = 0; i < s->interaction_count; ++i) {
+                const sd_scene_interaction *c = &s->interactions[i];
+                if ((c->mat_a == (int)a && c->mat_b == (int)b) ||
+                    (c->mat_a == (int)b && c->mat_b == (int)a))
+                    in = c;
+            }
+            int law = (in && in->def.law >= 0) ? in->def.law : (int)s->world.law;
+            const sd_scene_material *m = &s->materials[a];
+            char key[96];
+            if (law == SD_LAW_HERTZ_MINDLIN && !(m->def.youngs_modulus > 0.0)) {
+                snprintf(key, sizeof key, "materials[%zu].youngs_modulus", a);
+                st = sd_fail(p, m->line, key,
+                             "missing youngs_modulus (Pa): the hertz_mindlin contact between "
+                             "'%s' and '%s' needs it",
+                             m->name, s->materials[b].name);
+            } else if (law == SD_LAW_LINEAR && !(m->def.stiffness > 0.0) &&
+                       !(in && in->def.stiffness > 0.0)) {
+                snprintf(key, sizeof key, "materials[%zu].stiffness", a);
+                st = sd_fail(p, m->line, key,
+                             "missing stiffness (N/m): the linear contact between '%s' and '%s' "
+                             "needs it (or set stiffness in their interaction)",
+                             m->name, s->materials[b].name);
+            }
+        }
+    }
+    sd_free(use);
+    return st;
+}
+
+/* ---- entry points ------------------------------------------------------- */
+
+static int sd_key_line(sd_parse *p, yaml_node_t *map, const char *key)
+{
+    for (yaml_node_pair_t *q = map->data.mapping.pairs.start; q < map->data.mapping.pairs.top; ++q) {
+        yaml_node_t *k = yaml_document_get_node(p->doc, q->key);
+        if (k->type == YAML_SCALAR_NODE && !strcmp(sd_scalar(k), key))
+            return sd_line(k);
+    }
+    return 1;
+}
+
+static sd_status sd_parse_root(sd_parse *p, yaml_node_t *root)
+{
+    char got[96];
+    sd_value v;
+    sd_status st;
+    if (!root)
+        return sd_fail(p, 1, "", "the scene file is empty (expected simulation, materials and "
+                                 "particles sections)");
+    if (root->type != YAML_MAPPING_NODE)
+        return sd_fail(p, sd_line(root), "",
+                       "expected a mapping of sections (simulation:, materials:, ...), got %s",
+                       sd_desc(root, got, sizeof got));
+    if ((st = sd_check_map(p, root, SD_SEC_ROOT, SD_KIND_ALL, "", "", 1)))
+        return st;
+    p->s->simulation_line = sd_key_line(p, root, "simulation");
+    if ((st = sd_parse_simulation(p, root)))
+        return st;
+    /* Materials first: the other sections refer to them by name. */
+    sd_get(p, root, SD_SEC_ROOT, "materials", "", &v);
+    if ((st = sd_parse_materials(p, v.node, sd_key_line(p, root, "materials"))))
+        return st;
+    sd_get(p, root, SD_SEC_ROOT, "interactions", "", &v);
+    if ((st = sd_parse_interactions(p, v.node)))
+        return st;
+    sd_get(p, root, SD_SEC_ROOT, "particles", "", &v);
+    if ((st = sd_parse_particles(p, v.node, sd_key_line(p, root, "particles"))))
+        return st;
+    sd_get(p, root, SD_SEC_ROOT, "walls", "", &v);
+    if ((st = sd_parse_walls(p, v.node)))
+        return st;
+    if ((st = sd_parse_output(p, root, sd_map_get(p, root, "output") ? sd_key_line(p, root, "output") : 1)))
+        return st;
+    return sd_check_laws(p);
+}
+
+sd_status sd_scene_load(const char *path, sd_scene **out, sd_error *err)
+{
+    sd_error_clear(err);
+    *out = NULL;
+    struct stat sb;
+    if (stat(path, &sb) != 0)
+        return sd_error_set(err, SD_ERR_INPUT, path, 0, "", "cannot open the scene file: %s",
+                            strerror(errno));
+    if (S_ISDIR(sb.st_mode))
+        return sd_error_set(err, SD_ERR_INPUT, path, 0, "", "is a directory, not a scene file");
+    if (strlen(path) >= SD_SCENE_PATH_MAX)
+        return sd_error_set(err, SD_ERR_INPUT, path, 0, "", "path too long");
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return sd_error_set(err, SD_ERR_INPUT, path, 0, "", "cannot open the scene file: %s",
+                            strerror(errno));
+
+    yaml_parser_t parser;
+    yaml_document_t doc;
+    if (!yaml_parser_initialize(&parser)) {
+        fclose(f);
+        return sd_error_set(err, SD_ERR_MEMORY, path, 0, "", "out of memory");
+    }
+    yaml_parser_set_input_file(&parser, f);
+    if (!yaml_parser_load(&parser, &doc)) {
+        sd_status st;
+        if (parser.error == YAML_MEMORY_ERROR) {
+            st = sd_error_set(err, SD_ERR_MEMORY, path, 0, "", "out of memory");
+        } else if (parser.error == YAML_READER_ERROR) {
+            st = sd_error_set(err, SD_ERR_INPUT, path, 0, "", "cannot read the scene file: %s",
+                              parser.problem ? parser.problem : "read error");
+        } else if (parser.context) {
+            st = sd_error_set(err, SD_ERR_INPUT, path, (int)parser.problem_mark.line + 1, "",
+                              "invalid YAML: %s (%s at line %d)", parser.problem, parser.context,
+                              (int)parser.context_mark.line + 1);
+        } else {
+            st = sd_error_set(err, SD_ERR_INPUT, path, (int)parser.problem_mark.line + 1, "",
+                              "invalid YAML: %s", parser.problem ? parser.problem : "syntax error");
+        }
+        yaml_parser_delete(&parser);
+        fclose(f);
+        return st;
+    }
+
+    sd_scene *s = sd_calloc(1, sizeof *s);
+    sd_status st;
+    if (!s) {
+        st = sd_error_set(err, SD_ERR_MEMORY, path, 0, "", "out of memory");
+    } else {
+        snprintf(s->path, sizeof s->path, "%s", path);
+        sd_parse p = {&doc, path, s, err};
+        st = sd_parse_root(&p, yaml_document_get_root_node(&doc));
+    }
+    yaml_document_delete(&doc);
+    yaml_parser_delete(&parser);
+    fclose(f);
+    if (st != SD_OK) {
+        sd_scene_free(s);
+        return st;
+    }
+    *out = s;
+    return SD_OK;
+}
+
+void sd_scene_free(sd_scene *s)
+{
+    if (!s)
+        return;
+    for (size_t i = 0; i < s->generator_count; ++i) {
+        sd_free(s->generators[i].list);
+        sd_free(s->generators[i].list_lines);
+    }
+    sd_free(s->generators);
+    sd_free(s->materials);
+    sd_free(s->interactions);
+    sd_free(s->walls);
+    sd_free(s);
+}
