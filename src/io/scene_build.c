@@ -92,7 +92,7 @@ static double sd_wall_excess(const sd_scene_wall *w, const sd_sphere_def *d, con
     static const char *const faces[6] = {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
     const double c[3] = {d->position.x, d->position.y, d->position.z};
     const double lo[3] = {w->lo.x, w->lo.y, w->lo.z}, hi[3] = {w->hi.x, w->hi.y, w->hi.z};
-    double worst = -INFINITY;
+    double worst = -HUGE_VAL;
     *side = "";
     for (int a = 0; a < 3; ++a) {
         /* Open faces do not hold anything in: spheres may start beyond them

@@ -128,7 +128,7 @@ const sd_scene_key sd_scene_keys[] = {
     {SD_SEC_SPHERE, "material", SD_KT_STRING, SD_KR_NONEMPTY, NULL, ALL, 0, "",
      "generator's material", "material name"},
 
-    {SD_SEC_WALL, "name", SD_KT_STRING, SD_KR_NONEMPTY, NULL, ALL, 0, "", "wall<index>",
+    {SD_SEC_WALL, "name", SD_KT_STRING, SD_KR_NONEMPTY, NULL, ALL, 0, "", "wall0, wall1, ...",
      "name in output and messages"},
     {SD_SEC_WALL, "type", SD_KT_ENUM, SD_KR_ANY, "plane|box", ALL, ALL, "", "required",
      "an infinite plane or a box container"},
@@ -146,7 +146,7 @@ const sd_scene_key sd_scene_keys[] = {
      "[]", "faces left out of the box"},
 
     {SD_SEC_OUTPUT, "directory", SD_KT_STRING, SD_KR_ANY, NULL, ALL, 0, "", "\"\"",
-     "output directory, relative to the current directory; \"\" = out/<scene file stem>"},
+     "output directory, relative to the current directory; \"\" = out/NAME for a scene NAME.yaml"},
     {SD_SEC_OUTPUT, "every", SD_KT_INT, SD_KR_ONE, NULL, ALL, 0, "", "steps/100",
      "steps between frames (the default is at least 1)"},
     {SD_SEC_OUTPUT, "stats_every", SD_KT_INT, SD_KR_ONE, NULL, ALL, 0, "", "every/10",
@@ -328,7 +328,7 @@ static void sd_kinds_text(sd_scene_section sec, unsigned mask, char *buf, size_t
 /* Section column: "particles[] (lattice)" when the key applies to some kinds. */
 static void sd_section_text(const sd_scene_key *k, char *buf, size_t size)
 {
-    char kinds[96];
+    char kinds[64];
     sd_kinds_text(k->section, k->kinds, kinds, sizeof kinds);
     if (kinds[0])
         snprintf(buf, size, "%s (%s)", sd_scene_section_name(k->section), kinds);
@@ -339,7 +339,7 @@ static void sd_section_text(const sd_scene_key *k, char *buf, size_t size)
 /* Default column: "required", "required (lattice, random)", or the default. */
 static void sd_default_text(const sd_scene_key *k, char *buf, size_t size)
 {
-    char kinds[96];
+    char kinds[64];
     if (k->required == 0) {
         snprintf(buf, size, "%s", k->def);
         return;
@@ -378,7 +378,7 @@ static const char *const sd_scene_rules[] = {
 
 void sd_scene_print_keys(FILE *f, int markdown)
 {
-    char sec[96], type[192], def[96];
+    char sec[128], type[192], def[128];
     size_t nrules = sizeof sd_scene_rules / sizeof sd_scene_rules[0];
     if (markdown) {
         fprintf(f, "# Scene file format\n\n");

@@ -209,14 +209,16 @@ static void sd_choices_list(const char *choices, char *buf, size_t size)
 
 /* ---- typed values ------------------------------------------------------- */
 
+/* what: " for x" on vector components; alt: the other forms the key takes
+ * (" or [x, y, z]"), named only when the value is not a number at all. */
 static sd_status sd_read_number(sd_parse *p, const sd_scene_key *k, yaml_node_t *n,
-                                const char *key, const char *what, double *out)
+                                const char *key, const char *what, const char *alt, double *out)
 {
     char got[96];
     const char *r = sd_scene_range_text(k->range);
     if (!sd_scalar_number(n, out))
-        return sd_fail(p, sd_line(n), key, "expected a number%s%s%s, got %s", r[0] ? " " : "", r,
-                       what, sd_desc(n, got, sizeof got));
+        return sd_fail(p, sd_line(n), key, "expected a number%s%s%s%s, got %s", r[0] ? " " : "", r,
+                       what, alt, sd_desc(n, got, sizeof got));
     if (!sd_scene_range_ok(k->range, *out))
         return sd_fail(p, sd_line(n), key, "expected a number %s%s, got %s", r, what,
                        sd_desc(n, got, sizeof got));
@@ -246,7 +248,7 @@ static sd_status sd_read_vec3(sd_parse *p, const sd_scene_key *k, yaml_node_t *n
         static const char *const axis[3] = {" for x", " for y", " for z"};
         yaml_node_t *item = sd_seq_item(p, n, i);
         sd_status st = iv ? sd_read_int(p, k, item, key, axis[i], &iv[i])
-                          : sd_read_number(p, k, item, key, axis[i], &v[i]);
+                          : sd_read_number(p, k, item, key, axis[i], "", &v[i]);
         if (st != SD_OK)
             return st;
         if (iv)
@@ -324,7 +326,7 @@ static sd_status sd_read_value(sd_parse *p, const sd_scene_key *k, yaml_node_t *
             return sd_fail(p, v->line, key, "expected a list (lines starting with '- '), got %s",
                            sd_desc(n, got, sizeof got));
         break;
-    case SD_KT_NUMBER: st = sd_read_number(p, k, n, key, "", &v->num); break;
+    case SD_KT_NUMBER: st = sd_read_number(p, k, n, key, "", "", &v->num); break;
     case SD_KT_INT:
         st = sd_read_int(p, k, n, key, "", &v->integer);
         v->num = (double)v->integer;
@@ -354,7 +356,7 @@ static sd_status sd_read_value(sd_parse *p, const sd_scene_key *k, yaml_node_t *
         if (n && n->type == YAML_SEQUENCE_NODE) {
             st = sd_read_vec3(p, k, n, key, v->v, NULL);
         } else {
-            st = sd_read_number(p, k, n, key, " or [x, y, z]", &v->num);
+            st = sd_read_number(p, k, n, key, "", " or [x, y, z]", &v->num);
             v->v[0] = v->v[1] = v->v[2] = v->num;
         }
         break;
@@ -363,15 +365,15 @@ static sd_status sd_read_value(sd_parse *p, const sd_scene_key *k, yaml_node_t *
             yaml_node_t *mn, *mx;
             if ((st = sd_read_min_max(p, n, key, &mn, &mx)) != SD_OK)
                 return st;
-            if ((st = sd_read_number(p, k, mn, sd_kp(sub, sizeof sub, key, "min"), "", &v->lo)))
+            if ((st = sd_read_number(p, k, mn, sd_kp(sub, sizeof sub, key, "min"), "", "", &v->lo)))
                 return st;
-            if ((st = sd_read_number(p, k, mx, sd_kp(sub, sizeof sub, key, "max"), "", &v->hi)))
+            if ((st = sd_read_number(p, k, mx, sd_kp(sub, sizeof sub, key, "max"), "", "", &v->hi)))
                 return st;
             if (v->hi < v->lo)
                 return sd_fail(p, sd_line(mx), sub, "expected max >= min (%g), got %g", v->lo,
                                v->hi);
         } else {
-            st = sd_read_number(p, k, n, key, " or {min: a, max: b}", &v->lo);
+            st = sd_read_number(p, k, n, key, "", " or {min: a, max: b}", &v->lo);
             v->hi = v->lo;
         }
         v->num = v->hi;
@@ -594,7 +596,7 @@ static sd_status sd_parse_simulation(sd_parse *p, yaml_node_t *root)
                        "give either steps or duration, not both (steps is at line %d)", steps.line);
     if (!has_steps && !has_duration)
         return sd_fail(p, s->simulation_line, "simulation.steps",
-                       "missing the run length: give steps (a number of steps) or duration (s)");
+                       "missing the run length: give steps or duration (s), exactly one");
     if (has_steps) {
         s->steps = (long)steps.integer;
     } else {
@@ -657,7 +659,8 @@ static sd_status sd_parse_materials(sd_parse *p, yaml_node_t *list, int line)
                            "name longer than %d characters", SD_SCENE_NAME_MAX - 1);
         for (size_t j = 0; j < i; ++j)
             if (!strcmp(s->materials[j].name, v.str)) {
-                return sd_fail(p, v.line, key, "duplicate material name '%s' (materials[%zu], line %d)",
+                return sd_fail(p, v.line, sd_kp(key, sizeof key, path, "name"),
+                               "duplicate material name '%s' (materials[%zu], line %d)",
                                v.str, j, s->materials[j].line);
             }
         snprintf(sm->name, sizeof sm->name, "%s", v.str);

@@ -91,7 +91,7 @@ int main(void)
 {
     sd_error err;
     for (uint64_t seed = 1; seed <= 3; ++seed) {
-        sd_world *w = make(seed, 1500, 0.001, 0.005, 0.08);
+        sd_world *w = make(seed, 1000, 0.001, 0.005, 0.08);
         sd_test_require(sd_world_prepare(w, &err) == SD_OK, "prepare", &err);
         compare(w, 1, "fresh list");
         long r0 = w->rebuilds;

@@ -15,6 +15,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "core/alloc.h"
 #include "io/scene.h"
 #include "io/scene_keys.h"
 #include "test.h"
@@ -552,6 +553,39 @@ static void test_bad_scenes(void)
     CHECK(!strcmp(err.file, "/nonexistent/scene.yaml") && strstr(err.msg, "cannot open"));
 }
 
+/* Every allocation of load and build may fail: the result is then
+ * SD_ERR_MEMORY (never a crash, never a half-made scene or world); the
+ * sanitizer build also proves nothing leaks on these paths. */
+static void test_out_of_memory(void)
+{
+    printf("out of memory at each allocation\n");
+    write_file(scene_path, good_scene);
+    int ok = 1, failures_seen = 0;
+    for (long n = 1; n <= 400; ++n) {
+        sd_scene *s = NULL;
+        sd_world *w = NULL;
+        sd_error err;
+        write_file(csv_path, good_csv);
+        sd_alloc_fail_after(n);
+        sd_status st = sd_scene_load(scene_path, &s, &err);
+        if (st == SD_OK) {
+            st = sd_scene_build(s, &w, &err);
+            ok &= (st == SD_OK) == (w != NULL);
+        } else {
+            ok &= s == NULL;
+        }
+        sd_alloc_fail_after(0);
+        ok &= st == SD_OK || st == SD_ERR_MEMORY;
+        failures_seen += st == SD_ERR_MEMORY;
+        sd_world_destroy(w);
+        sd_scene_free(s);
+        if (st == SD_OK)
+            break; /* n is past the last allocation */
+    }
+    CHECK(ok);
+    CHECK(failures_seen > 5);
+}
+
 int main(void)
 {
     snprintf(dir, sizeof dir, "/tmp/sd_test_scene_XXXXXX");
@@ -560,6 +594,7 @@ int main(void)
     snprintf(csv_path, sizeof csv_path, "%s/spheres.csv", dir);
 
     test_good_scene();
+    test_out_of_memory();
     test_random();
     test_example_and_docs();
     test_bad_scenes();
