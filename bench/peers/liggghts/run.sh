@@ -59,8 +59,8 @@ if ((procs > 1)); then
 fi
 
 load1=$(cut -d' ' -f1 /proc/loadavg 2>/dev/null || echo null)
-# LIGGGHTS reads the input script from the current directory's view; run in $work
-# so that nothing lands elsewhere (-log none: no log.liggghts either).
+# Run inside $work so that any file LIGGGHTS might write lands there; -log none
+# keeps it from writing log.liggghts, and the script writes no dumps.
 (cd "$work" && "${launcher[@]}" bash "$here/meter.sh" "$rss_dir" "$lmp" -in "$here/in.spheres-settle" \
   -var data "$data" -var steps "$steps" -log none -echo none) >"$log" 2>&1
 rc=$?
