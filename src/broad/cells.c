@@ -397,6 +397,7 @@ static sd_status sd_wall_pairs_build(sd_world *w)
 sd_status sd_broad_rebuild(sd_world *w, sd_error *err)
 {
     sd_particles *p = &w->p;
+    w->parallel = w->threads > 1 && p->n >= SD_PARALLEL_MIN_PARTICLES;
     if (p->n == 0) {
         w->pairs.n = 0;
         w->wpairs.n = 0;

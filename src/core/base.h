@@ -47,15 +47,15 @@ typedef double sd_real;
 #define sd_floor floor
 #endif
 
-/* CPU parallel loops over `n` items of world `w` (static schedule: each
+/* CPU parallel loops over the items of world `w` (static schedule: each
  * thread always gets the same block, and every item writes only its own
- * slot, so results do not depend on the thread count). Small loops stay
- * serial: forking threads costs more than they save. */
-#define SD_PARALLEL_MIN 2048
+ * slot, so results do not depend on the thread count). w->parallel is
+ * decided once per pair-list rebuild: small worlds stay serial, since forking
+ * threads costs more than it saves and waiting threads spin on the cores. */
 #define SD_PRAGMA(x) _Pragma(#x)
-#define SD_PARALLEL_FOR SD_PRAGMA(omp parallel for schedule(static) num_threads(w->threads) if (n > SD_PARALLEL_MIN))
+#define SD_PARALLEL_FOR SD_PRAGMA(omp parallel for schedule(static) num_threads(w->threads) if (w->parallel))
 #define SD_PARALLEL_FOR_REDUCE_OR(v) \
-    SD_PRAGMA(omp parallel for schedule(static) num_threads(w->threads) if (n > SD_PARALLEL_MIN) reduction(| : v))
+    SD_PRAGMA(omp parallel for schedule(static) num_threads(w->threads) if (w->parallel) reduction(| : v))
 
 #define SD_PI SD_R(3.14159265358979323846)
 #define SD_PI_D 3.14159265358979323846 /* always double: parameter set-up */

@@ -61,9 +61,13 @@ typedef struct sd_wall {
     sd_vec3 force, torque;  /* on the wall, last step */
 } sd_wall;
 
+/* Below this many particles the CPU loops run serially. */
+#define SD_PARALLEL_MIN_PARTICLES 1024
+
 struct sd_world {
     sd_world_def def;
     int threads;
+    int parallel;          /* run the CPU loops on threads (decided at rebuilds) */
     sd_real dt;
     sd_vec3 gravity;
     sd_real skin;          /* m, in use */

@@ -31,6 +31,14 @@ int main(void)
     CHECK_NEAR("eq. 25 matrix vs quaternion rotation (max)", worst, 0.0, 1e-14);
     CHECK_NEAR("rotate then inverse-rotate (max)", worst_inv, 0.0, 1e-14);
     CHECK_NEAR("rotation angle recovered (max)", worst_angle, 0.0, 1e-12);
+    /* the small-angle series branch agrees with sin/cos */
+    double worst_small = 0;
+    for (int k = 1; k <= 200; ++k) {
+        double a = 0.02 * k / 200.0; /* both sides of the branch at a = 0.02 */
+        sd_quat qs = sd_quat_from_rotvec(sd_v3(0, a, 0));
+        worst_small = fmax(worst_small, fabs((double)qs.w - cos(a / 2)) + fabs((double)qs.y - sin(a / 2)));
+    }
+    CHECK_NEAR("small-angle quaternion vs sin/cos (max)", worst_small, 0.0, 4e-16);
     /* cross product orientation */
     sd_vec3 z = sd_v3_cross(sd_v3(1, 0, 0), sd_v3(0, 1, 0));
     CHECK(z.x == 0 && z.y == 0 && z.z == 1);

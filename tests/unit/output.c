@@ -1,4 +1,4 @@
-/* test_output.c — the run output module: directory safety, VTK frames that
+/* output.c — the run output module: directory safety, VTK frames that
  * decode back to the world's state, frames.pvd, stats.csv and summary.txt.
  *
  * The .vtu/.vtp files are checked by a small reader here (header attributes,

@@ -1,4 +1,4 @@
-/* test_scene.c — the scene module: parsing with values and defaults, the
+/* scene.c — the scene module: parsing with values and defaults, the
  * four generators, building a world, the key table and its docs, and a
  * table of bad scenes that must each fail with SD_ERR_INPUT at the right
  * line and key.
