@@ -85,6 +85,8 @@ typedef struct sd_material_def {
     double rolling_friction;  /* -, rolling resistance coefficient, >= 0 */
     double stiffness;         /* N/m, normal stiffness k_n of the linear law (0: unset) */
     double tangential_stiffness_ratio; /* -, k_t / k_n for the linear law */
+    double damping;           /* N s/m, linear law: viscous coefficient eta used instead of the
+                                 restitution (seed 001 eqs. 6, 8); 0 = from restitution */
     int cookie;               /* set by sd_material_def_default */
 } sd_material_def;
 
@@ -97,6 +99,7 @@ typedef struct sd_interaction_def {
     double friction;
     double rolling_friction;
     double stiffness;             /* linear law k_n, N/m */
+    double damping;               /* linear law eta, N s/m */
     int law;                      /* sd_contact_law, or -1 to keep the world's */
     int cookie;
 } sd_interaction_def;

@@ -10,7 +10,9 @@
  * by Coulomb; DESIGN.md engineering notes):
  *  - SD_LAW_LINEAR: seed 004 eq. 10, F_n = k_n delta - 2 gamma_n m* u_n with
  *    gamma_n from e_n by seed 004 eq. 16 (omega_0^2 = k_n / m*), the same
- *    gamma in the tangential dashpot, k_t = ratio * k_n.
+ *    gamma in the tangential dashpot, k_t = ratio * k_n. With a viscous
+ *    coefficient eta set, the dashpots are -eta u_n and -eta v_t instead
+ *    (seed 001 eqs. 6 and 8).
  *  - SD_LAW_HERTZ_MINDLIN: the LIGGGHTS `hertz tangential history` form,
  *    k_n = 4/3 Y* sqrt(R* delta), S_n = 2 Y* sqrt(R* delta),
  *    k_t = S_t = 8 G* sqrt(R* delta), gamma = -2 sqrt(5/6) beta sqrt(S m*).
@@ -62,9 +64,13 @@ SD_HD static SD_INLINE sd_contact_out sd_law_eval(const sd_pair_params *p, sd_ve
         kn = p->kn;
         kt = p->kt_ratio * p->kn;
         /* seed 004 eq. 16 with omega_0 = sqrt(k_n / m*); eq. 10 damps with 2 gamma m* */
-        sd_real omega0 = sd_sqrt(kn / m_star);
-        sd_real gamma = -omega0 * p->log_e_factor;
-        gn = SD_R(2.0) * gamma * m_star;
+        if (p->eta > SD_R(0.0)) {
+            gn = p->eta; /* seed 001 eqs. 6, 8: eta given directly */
+        } else {
+            sd_real omega0 = sd_sqrt(kn / m_star);
+            sd_real gamma = -omega0 * p->log_e_factor;
+            gn = SD_R(2.0) * gamma * m_star;
+        }
         gt = gn;
         out.energy = SD_R(0.5) * kn * delta * delta;
     } else {

@@ -14,6 +14,7 @@ typedef struct sd_pair_params {
     sd_real g_star;      /* Pa, effective shear modulus */
     sd_real kn;          /* N/m, linear law normal stiffness */
     sd_real kt_ratio;    /* -, linear law k_t / k_n */
+    sd_real eta;         /* N s/m, linear law viscous coefficient; 0 = from restitution */
     sd_real restitution; /* -, e_n */
     sd_real log_e_factor;/* -, beta = ln e / sqrt(ln^2 e + pi^2) (<= 0) */
     sd_real friction;    /* -, mu */

@@ -79,6 +79,9 @@ const sd_scene_key sd_scene_keys[] = {
      "involves the material and its interaction sets no stiffness"},
     {SD_SEC_MATERIAL, "tangential_stiffness_ratio", SD_KT_NUMBER, SD_KR_POS, NULL, ALL, 0, "",
      "0.2857142857142857", "k_t / k_n of the linear law (2/7)"},
+    {SD_SEC_MATERIAL, "damping", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "N s/m", "0",
+     "linear law: viscous coefficient eta of the normal and tangential dashpots (seed 001 "
+     "eqs. 6, 8), used instead of the restitution; 0 = damping from the restitution"},
 
     {SD_SEC_INTERACTION, "between", SD_KT_NAME_PAIR, SD_KR_NONEMPTY, NULL, ALL, ALL, "",
      "required", "the two material names (may be the same)"},
@@ -90,6 +93,8 @@ const sd_scene_key sd_scene_keys[] = {
      "mixed", "rolling resistance coefficient of the pair"},
     {SD_SEC_INTERACTION, "stiffness", SD_KT_NUMBER, SD_KR_POS, NULL, ALL, 0, "N/m", "mixed",
      "linear-law normal stiffness of the pair"},
+    {SD_SEC_INTERACTION, "damping", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "N s/m", "mixed",
+     "linear-law viscous coefficient eta of the pair (0 = from the restitution)"},
     {SD_SEC_INTERACTION, "contact_law", SD_KT_ENUM, SD_KR_ANY, SD_LAW_CHOICES, ALL, 0, "",
      "simulation.contact_law", "contact law of the pair"},
 

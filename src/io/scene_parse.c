@@ -684,6 +684,8 @@ static sd_status sd_parse_materials(sd_parse *p, yaml_node_t *list, int line)
         d->stiffness = v.num;
         sd_get(p, m, SD_SEC_MATERIAL, "tangential_stiffness_ratio", path, &v);
         d->tangential_stiffness_ratio = v.num;
+        sd_get(p, m, SD_SEC_MATERIAL, "damping", path, &v);
+        d->damping = v.num;
     }
     /* Names point into the array only now that it will not move. */
     for (size_t i = 0; i < n; ++i)
@@ -736,6 +738,7 @@ static sd_status sd_parse_interactions(sd_parse *p, yaml_node_t *list)
         si->def.rolling_friction =
             sd_get(p, m, SD_SEC_INTERACTION, "rolling_friction", path, &v) ? v.num : -1.0;
         si->def.stiffness = sd_get(p, m, SD_SEC_INTERACTION, "stiffness", path, &v) ? v.num : -1.0;
+        si->def.damping = sd_get(p, m, SD_SEC_INTERACTION, "damping", path, &v) ? v.num : -1.0;
         si->def.law = sd_get(p, m, SD_SEC_INTERACTION, "contact_law", path, &v)
                           ? (int)sd_contact_law_from_name(v.str)
                           : -1;

@@ -32,6 +32,8 @@ sd_status sd_world_mix_materials(sd_world *w, sd_error *err)
             double kn = (ma->stiffness > 0 && mb->stiffness > 0)
                             ? 2.0 * ma->stiffness * mb->stiffness / (ma->stiffness + mb->stiffness)
                             : 0.0;
+            /* viscous coefficients add like parallel dashpots halved, as k does */
+            double eta = (ma->damping > 0 && mb->damping > 0) ? 2.0 * ma->damping * mb->damping / (ma->damping + mb->damping) : 0.0;
             int law = (int)w->def.law;
             /* the last matching interaction wins */
             for (size_t k = 0; k < w->interaction_count; ++k) {
@@ -46,6 +48,8 @@ sd_status sd_world_mix_materials(sd_world *w, sd_error *err)
                     mur = it->def.rolling_friction;
                 if (it->def.stiffness > 0)
                     kn = it->def.stiffness;
+                if (it->def.damping >= 0)
+                    eta = it->def.damping;
                 if (it->def.law >= 0)
                     law = it->def.law;
             }
@@ -58,6 +62,7 @@ sd_status sd_world_mix_materials(sd_world *w, sd_error *err)
             p->friction = (sd_real)mu;
             p->rolling = (sd_real)mur;
             p->kn = (sd_real)kn;
+            p->eta = (sd_real)eta;
             p->kt_ratio = (sd_real)sd_mean(ma->tangential_stiffness_ratio, mb->tangential_stiffness_ratio);
             if (ma->youngs_modulus > 0 && mb->youngs_modulus > 0) {
                 double va = ma->poisson_ratio, vb = mb->poisson_ratio;
@@ -104,9 +109,11 @@ sd_status sd_world_check_params(const sd_world *w, sd_error *err)
 static double sd_contact_duration(const sd_pair_params *p, double m_star, double r_star, double v)
 {
     if (p->law == SD_LAW_LINEAR) {
-        /* seed 004 eq. 12 with gamma_n from eq. 16 */
+        /* seed 004 eq. 12 with gamma_n from eq. 16, or from eta directly */
         double w0 = sqrt((double)p->kn / m_star);
-        double g = -w0 * (double)p->log_e_factor;
+        double g = p->eta > 0 ? (double)p->eta / (2.0 * m_star) : -w0 * (double)p->log_e_factor;
+        if (g >= w0)
+            return SD_PI_D / w0; /* overdamped: the elastic time still bounds dt */
         return SD_PI_D / sqrt(w0 * w0 - g * g);
     }
     /* Hertz (elastic) duration: 2.87 (m*^2 / (R* Y*^2 v))^(1/5) */

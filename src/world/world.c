@@ -61,6 +61,7 @@ sd_interaction_def sd_interaction_def_default(void)
     d.friction = -1;
     d.rolling_friction = -1;
     d.stiffness = -1;
+    d.damping = -1;
     d.law = -1;
     d.cookie = SD_COOKIE;
     return d;
@@ -201,7 +202,7 @@ int sd_world_add_material(sd_world *w, const sd_material_def *d, sd_error *err)
                      d->poisson_ratio);
         return -1;
     }
-    if (d->youngs_modulus < 0 || d->friction < 0 || d->rolling_friction < 0 || d->stiffness < 0 ||
+    if (d->youngs_modulus < 0 || d->friction < 0 || d->rolling_friction < 0 || d->stiffness < 0 || d->damping < 0 ||
         !(d->tangential_stiffness_ratio > 0)) {
         sd_error_set(err, SD_ERR_INPUT, "", 0, "", "material '%s': moduli, stiffness and friction must be >= 0",
                      name);
