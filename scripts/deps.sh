@@ -3,8 +3,9 @@
 # As root it runs apt-get; otherwise it prints the exact command to run.
 set -euo pipefail
 
-# build: compiler, CMake, YAML parser; tests: none beyond these yet.
-need_pkgs=(build-essential cmake pkg-config libyaml-dev)
+# build: compiler, CMake, YAML parser; tests: independent libraries used
+# as oracles (libccd for GJK/EPA, qhull for overlap volumes).
+need_pkgs=(build-essential cmake pkg-config libyaml-dev libccd-dev libqhull-dev)
 if [[ "${SHAPEDEM_WITH_BENCH:-0}" == 1 ]]; then
   need_pkgs+=(liggghts)
 fi

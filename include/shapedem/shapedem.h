@@ -110,6 +110,13 @@ sd_interaction_def sd_interaction_def_default(void);
 
 typedef struct sd_world sd_world;
 
+/* Solvers: the general engine, or the dense grid-stencil solver for
+ * monodisperse spheres (seed 001). */
+typedef enum sd_solver {
+    SD_SOLVER_CELLS = 0, /* cell binning + pair lists: every shape, every feature */
+    SD_SOLVER_GRID       /* one particle per grid cell, fixed stencil (seed 001) */
+} sd_solver;
+
 typedef struct sd_world_def {
     int dimension;          /* 3 (2 is reserved for the planar mode) */
     double dt;              /* s, time step */
@@ -118,6 +125,7 @@ typedef struct sd_world_def {
     int threads;            /* OpenMP threads; 0 = OMP_NUM_THREADS or all cores */
     sd_contact_law law;     /* default contact law */
     double skin;            /* m, Verlet skin; 0 = 0.2 x smallest radius */
+    sd_solver solver;       /* SD_SOLVER_CELLS by default */
     int cookie;
 } sd_world_def;
 

@@ -40,13 +40,13 @@ log="$work/$case_name-np$procs.log"
 
 # The data file depends only on N (fixed seed), so write it once.
 if [[ ! -s "$data" ]]; then
-  awk -v n="$n" -v seed=42 -v zmax=0.5 -f "$here/gen-data.awk" >"$data.tmp" &&
-    mv "$data.tmp" "$data" || fail "cannot write the data file"
+  { awk -v n="$n" -v seed=42 -v zmax=0.5 -f "$here/gen-data.awk" >"$data.tmp" &&
+    mv "$data.tmp" "$data"; } || fail "cannot write the data file"
 fi
 
 # Peak RSS: meter.sh writes one file per process into $rss_dir.
 rss_dir="$work/rss-np$procs"
-rm -rf "$rss_dir" && mkdir -p "$rss_dir" || fail "cannot create $rss_dir"
+{ rm -rf "$rss_dir" && mkdir -p "$rss_dir"; } || fail "cannot create $rss_dir"
 
 launcher=()
 if ((procs > 1)); then

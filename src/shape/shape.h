@@ -1,0 +1,62 @@
+/* shape.h — shape kinds and templates, and the posed convex body that the
+ * narrow phase (GJK, EPA) asks for support points.
+ *
+ * Every shape is a convex core swept by a sphere of radius `radius` (a
+ * Minkowski sum): a sphere is a point core with its radius; a rounded box is
+ * a box core with its rounding radius; a sharp shape has radius 0, or a
+ * user-set margin (its core is shrunk by the margin and swept by it, seed 004
+ * §2.5 shrink / GJK / swell). Templates live in their principal frame: the
+ * centre of mass at the origin and the principal axes of inertia along x, y,
+ * z, so a particle's orientation quaternion maps this frame to the world.
+ *
+ * Single source (DESIGN.md rule 1): the support function is SD_HD, takes
+ * plain structs and reads polyhedron vertices from a shared vertex pool.
+ */
+#ifndef SD_SHAPE_SHAPE_H
+#define SD_SHAPE_SHAPE_H
+
+#include "core/quat.h"
+
+/* X(enum, scene name, what the dimensions a mean) */
+#define SD_SHAPE_KINDS(X)                                                                    \
+    X(SD_SHAPE_SPHERE, "sphere", "point core; radius is the sphere's")                       \
+    X(SD_SHAPE_BOX, "box", "a = half extents of the core")                                  \
+    X(SD_SHAPE_CYLINDER, "cylinder", "a = (core radius, core radius, core half length), axis z") \
+    X(SD_SHAPE_CONE, "cone", "a = (core base radius, core base radius, core height), axis z, apex up") \
+    X(SD_SHAPE_ELLIPSOID, "ellipsoid", "a = core semi-axes")                                 \
+    X(SD_SHAPE_POLYHEDRON, "polyhedron", "core = convex hull of vertices [vstart, vstart + vcount)")
+
+typedef enum sd_shape_kind {
+#define SD_X_ENUM(e, name, doc) e,
+    SD_SHAPE_KINDS(SD_X_ENUM)
+#undef SD_X_ENUM
+    SD_SHAPE_KIND_COUNT
+} sd_shape_kind;
+
+/* Most vertices a polyhedron template may have (fixed GPU workspaces). */
+#define SD_SHAPE_MAX_VERTICES 1024
+
+typedef struct sd_shape {
+    int kind;            /* sd_shape_kind */
+    sd_real radius;      /* m, radius of the sphere swept over the core (>= 0) */
+    sd_vec3 a;           /* m, core dimensions, see SD_SHAPE_KINDS */
+    sd_vec3 offset;      /* m, where the core's own reference point sits in the
+                            principal frame (cone: its base centre is at -h/4
+                            on z so the centre of mass is the origin) */
+    uint32_t vstart, vcount; /* polyhedron: vertices (principal frame) in the pool */
+    sd_real bound;       /* m, bounding radius about the centre of mass, radius included */
+    sd_real volume;      /* m^3, of the swept shape */
+    sd_vec3 inertia;     /* m^5, principal second moments of the swept shape per
+                            unit density (moment of inertia = density * inertia) */
+    sd_real min_size;    /* m, smallest outer dimension (for overlap ratios) */
+} sd_shape;
+
+/* A convex body in the world: a shape with its pose. */
+typedef struct sd_convex {
+    const sd_shape *shape;
+    const sd_vec3 *verts; /* the vertex pool (may be NULL without polyhedra) */
+    sd_vec3 x;            /* m, centre of mass, world frame */
+    sd_quat q;            /* principal frame to world frame */
+} sd_convex;
+
+#endif
