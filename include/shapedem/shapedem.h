@@ -152,6 +152,65 @@ typedef struct sd_sphere_def {
 /* Appends n spheres; stable ids continue from the last one given. */
 sd_status sd_world_add_spheres(sd_world *w, size_t n, const sd_sphere_def *defs, sd_error *err);
 
+/* ---- shapes and bodies ---------------------------------------------------- */
+
+/* A shape template. Every shape is a convex core swept by a sphere:
+ *   kind "sphere"     size.x = radius
+ *   kind "box"        size = full edge lengths
+ *   kind "cylinder"   size.x = diameter, size.z = length (axis z)
+ *   kind "cone"       size.x = base diameter, size.z = height (axis z, apex up)
+ *   kind "ellipsoid"  size = semi-axes
+ *   kind "polyhedron" the convex hull of vertices (any frame; size unused)
+ * rounding > 0: the core has the given size and is swept by a sphere of that
+ * radius (the outer size grows); margin > 0: the outer size is the given
+ * size, the core is shrunk by the margin and swept by it (seed 004's
+ * shrink / GJK / swell; edges are rounded by the margin). scale multiplies
+ * every length. Templates are moved to their principal frame (centre of mass
+ * at the origin, principal axes along x, y, z). */
+typedef struct sd_shape_desc {
+    const char *kind;
+    sd_v3d size;               /* m */
+    double rounding;           /* m */
+    double margin;             /* m */
+    double scale;              /* - */
+    const sd_v3d *vertices;    /* polyhedron, m */
+    size_t vertex_count;
+    int cookie;
+} sd_shape_desc;
+
+sd_shape_desc sd_shape_desc_default(void);
+
+/* Returns the shape's index (>= 0) or -1 with err filled. */
+int sd_world_add_shape(sd_world *w, const char *name, const sd_shape_desc *desc, sd_error *err);
+int sd_world_find_shape(const sd_world *w, const char *name);
+size_t sd_world_shape_count(const sd_world *w);
+
+typedef struct sd_shape_info {
+    const char *name;
+    const char *kind;
+    double volume;             /* m^3 */
+    double bounding_radius;    /* m, about the centre of mass */
+    double equivalent_radius;  /* m, of the sphere of the same volume */
+    sd_v3d inertia;            /* m^5, principal moments per unit density */
+    sd_v3d center_of_mass;     /* m, in the frame the shape was given in */
+    double rounding;           /* m, radius swept over the core */
+    size_t vertex_count;       /* polyhedron hull vertices */
+} sd_shape_info;
+
+sd_status sd_world_get_shape(const sd_world *w, size_t index, sd_shape_info *out);
+
+/* A rigid body of a shape template. */
+typedef struct sd_body_def {
+    sd_v3d position;           /* m, centre of mass */
+    sd_v3d velocity;           /* m/s */
+    sd_v3d angular_velocity;   /* rad/s, world frame */
+    double orientation[4];     /* (w, x, y, z) principal frame to world; zero = identity */
+    int shape;                 /* index from sd_world_add_shape */
+    int material;
+} sd_body_def;
+
+sd_status sd_world_add_bodies(sd_world *w, size_t n, const sd_body_def *defs, sd_error *err);
+
 /* Walls. Returns the wall index (>= 0) or -1 with err filled. */
 int sd_world_add_plane(sd_world *w, const char *name, sd_v3d point, sd_v3d normal, int material,
                        sd_error *err);
@@ -187,8 +246,9 @@ typedef struct sd_particle_state {
     uint64_t id;              /* stable id, fixed for the particle's life */
     sd_v3d position, velocity, angular_velocity, force, torque;
     double quat[4];           /* orientation (w, x, y, z) */
-    double radius, mass;
+    double radius, mass;      /* radius: the sphere's, or the bounding radius */
     int material;
+    int shape;                /* template index, or -1 for a plain sphere */
 } sd_particle_state;
 
 /* Particles in storage order (which may change at pair-list rebuilds). */

@@ -5,6 +5,7 @@
  */
 #include <string.h>
 
+#include "grid/grid.h"
 #include "world/world.h"
 
 void sd_world_stats(const sd_world *w, sd_stats *out)
@@ -50,6 +51,8 @@ void sd_world_stats(const sd_world *w, sd_stats *out)
         if ((double)wl->delta[e] / r > ovl)
             ovl = (double)wl->delta[e] / r;
     }
+    if (w->def.solver == SD_SOLVER_GRID) /* no pair lists: a stencil pass (src/grid) */
+        sd_grid_contact_stats(w, &contacts, &wcontacts, &epe, &ovl);
     out->kinetic_translational = ekt;
     out->kinetic_rotational = ekr;
     out->potential_gravity = epg;

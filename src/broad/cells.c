@@ -36,7 +36,9 @@ static sd_status sd_pairs_reserve(sd_pair_list *l, size_t cap)
         sd_grow((void **)&l->key, cap, sizeof *l->key) || sd_grow((void **)&l->ds, cap, sizeof *l->ds) ||
         sd_grow((void **)&l->f, cap, sizeof *l->f) || sd_grow((void **)&l->ti, cap, sizeof *l->ti) ||
         sd_grow((void **)&l->tj, cap, sizeof *l->tj) || sd_grow((void **)&l->delta, cap, sizeof *l->delta) ||
-        sd_grow((void **)&l->energy, cap, sizeof *l->energy) || sd_grow((void **)&l->gidx, 2 * cap, sizeof *l->gidx))
+        sd_grow((void **)&l->energy, cap, sizeof *l->energy) || sd_grow((void **)&l->gidx, 2 * cap, sizeof *l->gidx) ||
+        sd_grow((void **)&l->warm, cap, sizeof *l->warm) || sd_grow((void **)&l->iters, cap, sizeof *l->iters) ||
+        sd_grow((void **)&l->supports, cap, sizeof *l->supports))
         return SD_ERR_MEMORY;
     l->cap = cap;
     l->gidx_cap = 2 * cap;
@@ -61,6 +63,7 @@ static sd_status sd_wpairs_reserve(sd_wall_pair_list *l, size_t cap)
 void sd_broad_free(sd_pair_list *l, sd_wall_pair_list *wl, sd_grid *g)
 {
     void *ptrs[] = {l->i, l->j, l->key, l->ds, l->f, l->ti, l->tj, l->delta, l->energy, l->gstart, l->gidx,
+                    l->warm, l->iters, l->supports,
                     wl->i, wl->wall, wl->sub, wl->key, wl->ds, wl->f, wl->t, wl->delta, wl->energy, wl->start, wl->c,
                     g->cell_start, g->cell, g->perm, g->count, g->scratch};
     for (size_t k = 0; k < sizeof ptrs / sizeof ptrs[0]; ++k)
@@ -237,6 +240,49 @@ static uint32_t sd_pairs_of(const sd_world *w, size_t i, uint32_t *out_j)
     return m;
 }
 
+/* Moves the pairs that involve a shape template after the sphere-sphere
+ * pairs, keeping the order within each kind (a stable partition, so the
+ * list still depends only on the particle order). */
+static sd_status sd_pairs_partition(sd_world *w)
+{
+    sd_pair_list *l = &w->pairs;
+    const int32_t *shape = w->p.shape;
+    size_t n = l->n, nconv = 0;
+    if (w->has_shapes)
+        for (size_t e = 0; e < n; ++e)
+            nconv += shape[l->i[e]] >= 0 || shape[l->j[e]] >= 0;
+    l->n_sphere = n - nconv;
+    if (nconv == 0)
+        return SD_OK;
+    uint32_t *ti = sd_malloc(n * sizeof *ti), *tj = sd_malloc(n * sizeof *tj);
+    uint64_t *tk = sd_malloc(n * sizeof *tk);
+    sd_vec3 *td = sd_malloc(n * sizeof *td);
+    if (!ti || !tj || !tk || !td) {
+        sd_free(ti);
+        sd_free(tj);
+        sd_free(tk);
+        sd_free(td);
+        return SD_ERR_MEMORY;
+    }
+    size_t a = 0, b = l->n_sphere;
+    for (size_t e = 0; e < n; ++e) {
+        size_t to = (shape[l->i[e]] >= 0 || shape[l->j[e]] >= 0) ? b++ : a++;
+        ti[to] = l->i[e];
+        tj[to] = l->j[e];
+        tk[to] = l->key[e];
+        td[to] = l->ds[e];
+    }
+    memcpy(l->i, ti, n * sizeof *ti);
+    memcpy(l->j, tj, n * sizeof *tj);
+    memcpy(l->key, tk, n * sizeof *tk);
+    memcpy(l->ds, td, n * sizeof *td);
+    sd_free(ti);
+    sd_free(tj);
+    sd_free(tk);
+    sd_free(td);
+    return SD_OK;
+}
+
 static sd_status sd_pairs_build(sd_world *w)
 {
     sd_particles *p = &w->p;
@@ -278,9 +324,14 @@ static sd_status sd_pairs_build(sd_world *w)
             l->tj[e] = sd_v3_zero();
             l->delta[e] = 0;
             l->energy[e] = 0;
+            l->warm[e] = sd_v3_zero();
+            l->iters[e] = 0;
+            l->supports[e] = 0;
         }
     }
     sd_free(hist);
+    if (sd_pairs_partition(w) != SD_OK)
+        return SD_ERR_MEMORY;
 
     /* gather lists, filled in pair order so every particle sums its pairs in
      * the same order whatever the thread count */
@@ -400,6 +451,7 @@ sd_status sd_broad_rebuild(sd_world *w, sd_error *err)
     w->parallel = w->threads > 1 && p->n >= SD_PARALLEL_MIN_PARTICLES;
     if (p->n == 0) {
         w->pairs.n = 0;
+        w->pairs.n_sphere = 0;
         w->wpairs.n = 0;
         w->rebuilds++;
         return SD_OK;
@@ -417,8 +469,10 @@ sd_status sd_broad_rebuild(sd_world *w, sd_error *err)
         return sd_error_set(err, st, "", 0, "", "out of memory while building the pair list (%zu particles)", p->n);
     size_t n = p->n;
     SD_PARALLEL_FOR
-    for (size_t k = 0; k < n; ++k)
+    for (size_t k = 0; k < n; ++k) {
         p->x_ref[k] = p->x[k];
+        p->q_ref[k] = p->q[k];
+    }
     w->rebuilds++;
     w->dirty = 0;
     return SD_OK;
@@ -432,9 +486,22 @@ int sd_broad_needs_rebuild(const sd_world *w)
     size_t n = p->n;
     sd_real lim2 = sd_sq(SD_R(0.5) * w->skin);
     int need = 0;
-    /* spheres only so far: the bounding sphere does not change with rotation */
+    if (!w->has_shapes) {
+        /* a sphere's bounding sphere does not change with rotation */
 SD_PARALLEL_FOR_REDUCE_OR(need)
-    for (size_t k = 0; k < n; ++k)
-        need |= sd_v3_norm2(sd_v3_sub(p->x[k], p->x_ref[k])) > lim2;
+        for (size_t k = 0; k < n; ++k)
+            need |= sd_v3_norm2(sd_v3_sub(p->x[k], p->x_ref[k])) > lim2;
+        return need;
+    }
+    /* no surface point of a body moved more than |dx| + R |dtheta| (a
+     * bound on vertex displacement, algorithms.md section B) */
+    sd_real lim = SD_R(0.5) * w->skin;
+SD_PARALLEL_FOR_REDUCE_OR(need)
+    for (size_t k = 0; k < n; ++k) {
+        sd_real d = sd_v3_norm(sd_v3_sub(p->x[k], p->x_ref[k]));
+        if (p->shape[k] >= 0)
+            d += p->radius[k] * sd_quat_angle_between(p->q[k], p->q_ref[k]);
+        need |= d > lim;
+    }
     return need;
 }

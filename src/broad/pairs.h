@@ -15,6 +15,9 @@
 
 typedef struct sd_pair_list {
     size_t n, cap;
+    size_t n_sphere;       /* pairs [0, n_sphere) are sphere-sphere, the rest
+                              involve a shape template (convex narrow phase):
+                              each loop then runs one homogeneous kind */
     uint32_t *i, *j;       /* storage indices, i < j */
     uint64_t *key;         /* (min id << 32) | max id */
     sd_vec3 *ds;           /* m, tangential spring (history), global frame */
@@ -22,6 +25,9 @@ typedef struct sd_pair_list {
     sd_vec3 *ti, *tj;      /* N m, torque on i and on j */
     sd_real *delta;        /* m, overlap at the last evaluation (<= 0 apart) */
     sd_real *energy;       /* J, elastic energy at the last evaluation */
+    sd_vec3 *warm;         /* convex pairs: GJK warm-start direction */
+    int32_t *iters;        /* convex pairs: GJK + EPA iterations at the last evaluation */
+    int32_t *supports;     /* convex pairs: support calls at the last evaluation */
     /* gather lists: particle k owns entries gstart[k] .. gstart[k+1]-1 of
      * gidx; an entry is 2 * pair + (0 if k is the pair's i, 1 if j) */
     uint32_t *gstart, *gidx;

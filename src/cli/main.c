@@ -18,6 +18,7 @@
 
 #include <shapedem/shapedem.h>
 
+#include "cli/commands.h"
 #include "io/output.h"
 #include "io/scene.h"
 
@@ -49,6 +50,8 @@ static void sd_usage(FILE *f)
     fprintf(f,
             "usage: shapedem run SCENE.yaml [-o DIR] [--threads N] [--steps N] [--quiet] [--bench NAME]\n"
             "       shapedem check SCENE.yaml [--threads N]\n"
+            "       shapedem shape info KIND --size X[,Y,Z] [--rounding R] [--margin M] [--density RHO]\n"
+            "       shapedem shape info SCENE.yaml\n"
             "       shapedem help [scene [--markdown]]\n"
             "       shapedem --version\n"
             "\n"
@@ -64,7 +67,7 @@ static void sd_usage(FILE *f)
             "  --bench NAME write no files; print one JSON line of timings for case NAME\n");
 }
 
-static int sd_fail_input(const sd_error *err)
+int sd_cli_fail_input(const sd_error *err)
 {
     char buf[1024];
     sd_error_format(err, buf, sizeof buf);
@@ -152,7 +155,7 @@ static int sd_load_world(const sd_cli *c, sd_scene **scene, sd_world **world)
     if (!c->scene)
         return sd_usage_error("%s needs a scene file", c->command);
     if (sd_scene_load(c->scene, scene, &err) != SD_OK)
-        return sd_fail_input(&err);
+        return sd_cli_fail_input(&err);
     if (c->threads > 0)
         (*scene)->world.threads = (int)c->threads;
     if (c->steps >= 0)
@@ -160,7 +163,7 @@ static int sd_load_world(const sd_cli *c, sd_scene **scene, sd_world **world)
     if (sd_scene_build(*scene, world, &err) != SD_OK) {
         sd_scene_free(*scene);
         *scene = NULL;
-        return sd_fail_input(&err);
+        return sd_cli_fail_input(&err);
     }
     return 0;
 }
@@ -214,7 +217,7 @@ static int sd_cmd_run(const sd_cli *c)
         if (sd_output_open(&od, w, &out, &err) != SD_OK) {
             sd_world_destroy(w);
             sd_scene_free(scene);
-            return sd_fail_input(&err);
+            return sd_cli_fail_input(&err);
         }
     }
     signal(SIGINT, sd_on_signal);
@@ -364,6 +367,8 @@ int main(int argc, char **argv)
         sd_usage(stdout);
         return 0;
     }
+    if (argc >= 2 && !strcmp(argv[1], "shape"))
+        return sd_cmd_shape(argc, argv);
     sd_cli c;
     int rc = sd_parse_args(argc, argv, &c);
     if (rc)

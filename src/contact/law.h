@@ -76,13 +76,12 @@ SD_HD static SD_INLINE sd_contact_out sd_law_eval(const sd_pair_params *p, sd_ve
     } else {
         sd_real a = sd_sqrt(r_star * delta);
         sd_real sn = SD_R(2.0) * p->y_star * a;
-        sd_real st = SD_R(8.0) * p->g_star * a;
         kn = SD_R(4.0) / SD_R(3.0) * p->y_star * a;
-        kt = st;
-        /* -2 sqrt(5/6) beta sqrt(S m*), beta <= 0 */
-        sd_real c = SD_R(-1.8257418583505538) * p->log_e_factor;
-        gn = c * sd_sqrt(sn * m_star);
-        gt = c * sd_sqrt(st * m_star);
+        kt = SD_R(8.0) * p->g_star * a; /* S_t */
+        /* -2 sqrt(5/6) beta sqrt(S m*), beta <= 0; sqrt(S_t m*) is
+         * sqrt(S_n m*) times the pair constant sqrt(4 G* / Y*) */
+        gn = SD_R(-1.8257418583505538) * p->log_e_factor * sd_sqrt(sn * m_star);
+        gt = gn * p->gt_over_gn;
         /* integral of 4/3 Y* sqrt(R*) d^{3/2} */
         out.energy = SD_R(0.4) * kn * delta * delta;
     }

@@ -6,13 +6,31 @@
 #define SD_CONTACT_PAIR_H
 
 #include "contact/law.h"
+#include "core/quat.h"
 #include "geom/sphere.h"
 
 /* The state of one body as the pair evaluation needs it. */
 typedef struct sd_body {
     sd_vec3 x, v, w;
     sd_real radius, inv_mass;
+    /* rotational inertia as seen by the dashpot: zero for spheres (a central
+     * contact), the principal inverse moments and orientation for shapes */
+    sd_vec3 inv_inertia;
+    sd_quat q;
 } sd_body;
+
+/* Inverse of a body's effective mass along n at lever arm r from its
+ * centre: 1/m + (r x n) . I^-1 (r x n). The dashpot of an off-centre
+ * contact sees this mass (a cylinder hitting a wall on its rim), so the
+ * restitution of the contact point is e_n for any impact geometry. */
+SD_HD static SD_INLINE sd_real sd_body_inv_mass_at(const sd_body *b, sd_vec3 r, sd_vec3 n)
+{
+    sd_real inv = b->inv_mass;
+    if (b->inv_inertia.x == SD_R(0.0) && b->inv_inertia.y == SD_R(0.0) && b->inv_inertia.z == SD_R(0.0))
+        return inv;
+    sd_vec3 u = sd_quat_rotate_inv(b->q, sd_v3_cross(r, n));
+    return inv + u.x * u.x * b->inv_inertia.x + u.y * u.y * b->inv_inertia.y + u.z * u.z * b->inv_inertia.z;
+}
 
 typedef struct sd_pair_result {
     sd_vec3 f;       /* N, on i */
@@ -30,7 +48,7 @@ SD_HD static SD_INLINE sd_pair_result sd_pair_apply(const sd_pair_params *prm, c
     sd_vec3 arm_j = sd_v3_sub(g->point, b->x);
     sd_vec3 vi = sd_v3_add(a->v, sd_v3_cross(a->w, arm_i));
     sd_vec3 vj = sd_v3_add(b->v, sd_v3_cross(b->w, arm_j));
-    sd_real inv = a->inv_mass + b->inv_mass;
+    sd_real inv = sd_body_inv_mass_at(a, arm_i, g->n) + sd_body_inv_mass_at(b, arm_j, g->n);
     sd_real m_star = inv > SD_R(0.0) ? SD_R(1.0) / inv : SD_R(0.0);
     sd_contact_out o = sd_law_eval(prm, g->n, g->delta, r_star, m_star, sd_v3_sub(vi, vj), sd_v3_sub(a->w, b->w), ds, dt);
     r.f = o.force;
@@ -57,16 +75,17 @@ SD_HD static SD_INLINE sd_pair_result sd_pair_spheres(const sd_pair_params *prm,
 {
     sd_contact_geom g;
     if (!sd_sphere_sphere(a->x, a->radius, b->x, b->radius, &g))
-        return sd_pair_none(sd_v3_norm(sd_v3_sub(a->x, b->x)) - a->radius - b->radius, ds);
+        return sd_pair_none(SD_R(0.0), ds);
     sd_real r_star = a->radius * b->radius / (a->radius + b->radius);
     return sd_pair_apply(prm, a, b, &g, r_star, ds, dt);
 }
 
-/* Sphere against a wall feature: the wall is a body of infinite mass at
- * rest (moving walls will set v and w). */
-SD_HD static SD_INLINE sd_pair_result sd_pair_sphere_wall(const sd_pair_params *prm, const sd_body *a,
-                                                          const sd_contact_geom *g, int touching, sd_vec3 *ds,
-                                                          sd_real dt)
+/* A body against a wall feature: the wall is a body of infinite mass at
+ * rest (moving walls will set v and w). r_star is the body's radius (its
+ * equivalent radius for shapes). */
+SD_HD static SD_INLINE sd_pair_result sd_pair_wall(const sd_pair_params *prm, const sd_body *a,
+                                                   const sd_contact_geom *g, int touching, sd_real r_star,
+                                                   sd_vec3 *ds, sd_real dt)
 {
     if (!touching)
         return sd_pair_none(SD_R(0.0), ds);
@@ -76,7 +95,9 @@ SD_HD static SD_INLINE sd_pair_result sd_pair_sphere_wall(const sd_pair_params *
     wall.w = sd_v3_zero();
     wall.radius = SD_R(0.0);
     wall.inv_mass = SD_R(0.0);
-    return sd_pair_apply(prm, a, &wall, g, a->radius, ds, dt);
+    wall.inv_inertia = sd_v3_zero();
+    wall.q = sd_quat_identity();
+    return sd_pair_apply(prm, a, &wall, g, r_star, ds, dt);
 }
 
 #endif

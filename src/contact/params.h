@@ -12,6 +12,7 @@ typedef struct sd_pair_params {
     int law;             /* sd_contact_law */
     sd_real y_star;      /* Pa, effective Young's modulus 1/((1-v1^2)/E1 + (1-v2^2)/E2) */
     sd_real g_star;      /* Pa, effective shear modulus */
+    sd_real gt_over_gn;  /* -, Hertz: tangential over normal damping, sqrt(4 G* / Y*) */
     sd_real kn;          /* N/m, linear law normal stiffness */
     sd_real kt_ratio;    /* -, linear law k_t / k_n */
     sd_real eta;         /* N s/m, linear law viscous coefficient; 0 = from restitution */

@@ -54,6 +54,10 @@ typedef double sd_real;
  * threads costs more than it saves and waiting threads spin on the cores. */
 #define SD_PRAGMA(x) _Pragma(#x)
 #define SD_PARALLEL_FOR SD_PRAGMA(omp parallel for schedule(static) num_threads(w->threads) if (w->parallel))
+/* Items of very uneven cost (convex narrow phase): dynamic chunks. Still the
+ * same bits for any thread count, since each item writes only its slot. */
+#define SD_PARALLEL_FOR_DYNAMIC \
+    SD_PRAGMA(omp parallel for schedule(dynamic, 64) num_threads(w->threads) if (w->parallel))
 #define SD_PARALLEL_FOR_REDUCE_OR(v) \
     SD_PRAGMA(omp parallel for schedule(static) num_threads(w->threads) if (w->parallel) reduction(| : v))
 

@@ -21,27 +21,57 @@ typedef enum sd_gen_kind {
     SD_GEN_CSV      /* spheres read from a CSV file */
 } sd_gen_kind;
 
+/* Orientation of shaped bodies. */
+typedef enum sd_scene_orient {
+    SD_ORIENT_IDENTITY, /* the template's principal frame along the world axes */
+    SD_ORIENT_RANDOM,   /* uniform over rotations, from the generator's stream */
+    SD_ORIENT_FIXED     /* a given unit quaternion */
+} sd_scene_orient;
+
 typedef struct sd_scene_generator {
     sd_gen_kind kind;
     int line;                     /* line of the generator's entry */
     int material;                 /* index into sd_scene.materials */
-    double radius_min, radius_max;/* m; radius uniform in [min, max] */
+    double radius_min, radius_max;/* m; radius uniform in [min, max] (spheres) */
+    int shape;                    /* index into sd_scene.shapes, or -1: spheres */
+    sd_scene_orient orient;       /* shaped bodies */
+    double quat[4];               /* SD_ORIENT_FIXED: (w, x, y, z), unit */
     sd_v3d velocity;              /* m/s, mean initial velocity */
     double velocity_jitter;       /* m/s, uniform +- per component */
+    sd_v3d angular_velocity;      /* rad/s, initial */
     /* lattice */
     sd_v3d origin;                /* m, centre of the first sphere */
     sd_v3d spacing;               /* m, per axis */
+    int spacing_line;
     int count[3];
     /* random */
     sd_v3d box_lo, box_hi;        /* m, the spheres lie fully inside */
+    int box_line;
     long number;
-    /* list: spheres given in the scene (material set per entry) */
+    /* list: spheres given in the scene (material set per entry); for a
+     * shaped entry list[k].radius is 0 until generation */
     size_t list_count;
     sd_sphere_def *list;
     int *list_lines;
+    int *list_shape;              /* list only: shape index per entry, or -1 */
+    sd_scene_orient *list_orient; /* list only */
+    double (*list_quat)[4];       /* list only: SD_ORIENT_FIXED quaternions */
     /* csv: path resolved relative to the scene file */
     char file[SD_SCENE_PATH_MAX];
 } sd_scene_generator;
+
+/* A shape template (shapes: - ...), as sd_shape_desc will get it. */
+typedef struct sd_scene_shape {
+    char name[SD_SCENE_NAME_MAX];
+    int kind;                     /* sd_shape_kind (shape/shape.h), the type choice */
+    sd_v3d size;                  /* m, as sd_shape_desc.size */
+    double rounding, margin;      /* m */
+    double scale;                 /* - */
+    size_t vertex_count;          /* polyhedron */
+    sd_v3d *vertices;             /* polyhedron, from the scene or the file */
+    char file[SD_SCENE_PATH_MAX]; /* polyhedron file, resolved, or "" */
+    int line;
+} sd_scene_shape;
 
 typedef struct sd_scene_material {
     char name[SD_SCENE_NAME_MAX];
@@ -80,8 +110,9 @@ typedef struct sd_scene {
     int simulation_line;          /* line of the simulation: key, for errors */
     long steps;                   /* >= 0; from steps or duration/dt */
     int dt_line;                  /* line of simulation.dt, for errors */
-    size_t material_count, interaction_count, generator_count, wall_count;
+    size_t material_count, interaction_count, generator_count, wall_count, shape_count;
     sd_scene_material *materials;
+    sd_scene_shape *shapes;
     sd_scene_interaction *interactions;
     sd_scene_generator *generators;
     sd_scene_wall *walls;
@@ -93,7 +124,8 @@ typedef struct sd_scene {
 sd_status sd_scene_load(const char *path, sd_scene **out, sd_error *err);
 void sd_scene_free(sd_scene *s);
 
-/* Builds the world: materials, interactions, walls, generated particles.
+/* Builds the world: materials, interactions, walls, shapes (scene shape i
+ * is world shape i), generated particles (spheres and bodies).
  * Rejects overlaps at start beyond tolerance, particles outside walls and a
  * time step above the stability limit, with file, line and key. */
 sd_status sd_scene_build(const sd_scene *s, sd_world **out, sd_error *err);
@@ -106,19 +138,27 @@ void sd_scene_print_keys(FILE *f, int markdown);
 
 /* ---- shared by the scene modules and their tests ------------------------ */
 
-/* Every sphere of a scene in id order, with where it came from. */
+/* Every particle of a scene in id order, with where it came from. A shaped
+ * body is its bounding sphere in defs (radius = the shape's bounding
+ * radius, what the overlap and wall checks use) plus its shape and
+ * orientation. */
 typedef struct sd_scene_spheres {
     size_t count;
     sd_sphere_def *defs;
+    int *shape;                   /* shape index of each particle, or -1: a sphere */
+    double (*quat)[4];            /* orientation (w, x, y, z); identity for spheres */
     int *gen;                     /* generator index of each sphere */
     int *entry;                   /* list/csv entry index, or -1 */
     int *line;                    /* scene line (csv: csv-file line) */
 } sd_scene_spheres;
 
 /* Runs the generators in order (what sd_scene_build adds to the world).
- * Deterministic from s->world.seed. Fails when the random generator cannot
- * place all its spheres. */
-sd_status sd_scene_generate(const sd_scene *s, sd_scene_spheres *out, sd_error *err);
+ * Deterministic from s->world.seed. shape_bound[i] is the bounding radius
+ * (m) of scene shape i (sd_world_get_shape); it may be NULL when no
+ * generator makes shaped bodies. Fails when the random generator cannot
+ * place all its particles, or a lattice is too tight for a shape. */
+sd_status sd_scene_generate(const sd_scene *s, const double *shape_bound, sd_scene_spheres *out,
+                            sd_error *err);
 void sd_scene_spheres_free(sd_scene_spheres *sp);
 
 /* Finds the first sphere j (in id order) that overlaps an earlier sphere i

@@ -6,14 +6,25 @@
  * Invariant: sd_scene_build returns either a complete world that passed
  * every check, or an error naming the scene file (or the CSV file a sphere
  * came from), the line and the key, and no world. Scene material i is world
- * material i, and particle ids follow generation order.
+ * material i, scene shape i is world shape i, and particle ids follow
+ * generation order. Bodies of a shape are checked by their bounding sphere.
  */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
+#include "core/alloc.h"
 #include "core/error.h"
 #include "io/scene.h"
+#include "io/scene_keys.h"
+#include "shape/shape.h"
+
+/* Scene type names in sd_shape_kind order: what sd_shape_desc.kind takes. */
+static const char *const sd_shape_type_names[] = {
+#define SD_X_NAME(e, name, doc) name,
+    SD_SHAPE_KINDS(SD_X_NAME)
+#undef SD_X_NAME
+};
 
 /* Overlap at the start allowed, as a fraction of the smaller radius: what
  * rounding leaves of spheres meant to touch. */
@@ -56,6 +67,22 @@ static sd_origin sd_sphere_origin(const sd_scene *s, const sd_scene_spheres *sp,
     return o;
 }
 
+/* "sphere 3 at (x, y, z) r 0.001" or "body 3 of shape 'cube' at (x, y, z),
+ * bounding radius 0.001", for messages. */
+static const char *sd_describe(const sd_scene *s, const sd_scene_spheres *sp, size_t k, char *buf,
+                               size_t size)
+{
+    const sd_sphere_def *d = &sp->defs[k];
+    if (sp->shape[k] >= 0)
+        snprintf(buf, size, "body %zu of shape '%s' at (%g, %g, %g), bounding radius %g", k,
+                 s->shapes[sp->shape[k]].name, d->position.x, d->position.y, d->position.z,
+                 d->radius);
+    else
+        snprintf(buf, size, "sphere %zu at (%g, %g, %g) r %g", k, d->position.x, d->position.y,
+                 d->position.z, d->radius);
+    return buf;
+}
+
 static sd_status sd_check_overlaps(const sd_scene *s, const sd_scene_spheres *sp, sd_error *err)
 {
     size_t i, j;
@@ -70,13 +97,12 @@ static sd_status sd_check_overlaps(const sd_scene *s, const sd_scene_spheres *sp
     double overlap = a->radius + b->radius - sqrt(dx * dx + dy * dy + dz * dz);
     double smaller = a->radius < b->radius ? a->radius : b->radius;
     sd_origin oa = sd_sphere_origin(s, sp, i), ob = sd_sphere_origin(s, sp, j);
+    char da[160], db[160];
     return sd_error_set(err, SD_ERR_INPUT, ob.file, ob.line, ob.key,
                         "particles overlap at the start by %.3g m (%.3g%% of the smaller radius): "
-                        "sphere %zu at (%g, %g, %g) r %g and sphere %zu at (%g, %g, %g) r %g "
-                        "from %s (line %d)",
-                        overlap, 100.0 * overlap / smaller, j, b->position.x, b->position.y,
-                        b->position.z, b->radius, i, a->position.x, a->position.y, a->position.z,
-                        a->radius, oa.key, oa.line);
+                        "%s and %s from %s (line %d)",
+                        overlap, 100.0 * overlap / smaller, sd_describe(s, sp, j, db, sizeof db),
+                        sd_describe(s, sp, i, da, sizeof da), oa.key, oa.line);
 }
 
 /* How far sphere d crosses wall w (m, > 0 means outside), and which side. */
@@ -120,21 +146,83 @@ static sd_status sd_check_walls(const sd_scene *s, const sd_scene_spheres *sp, s
             if (!(excess > SD_SCENE_WALL_TOL * d->radius))
                 continue;
             sd_origin o = sd_sphere_origin(s, sp, k);
+            char dk[160];
+            sd_describe(s, sp, k, dk, sizeof dk);
             if (w->kind == 0)
                 return sd_error_set(err, SD_ERR_INPUT, o.file, o.line, o.key,
-                                    "particle outside the walls: sphere %zu at (%g, %g, %g) has its "
-                                    "centre %.3g m behind plane '%s' (walls[%zu], line %d)",
-                                    k, d->position.x, d->position.y, d->position.z, excess, w->name,
-                                    wi, w->line);
+                                    "particle outside the walls: %s has its centre %.3g m behind "
+                                    "plane '%s' (walls[%zu], line %d)",
+                                    dk, excess, w->name, wi, w->line);
             return sd_error_set(err, SD_ERR_INPUT, o.file, o.line, o.key,
-                                "particle outside the walls: sphere %zu at (%g, %g, %g) r %g "
-                                "crosses the closed %s face of box '%s' (walls[%zu], line %d) by "
-                                "%.3g m",
-                                k, d->position.x, d->position.y, d->position.z, d->radius, side,
-                                w->name, wi, w->line, excess);
+                                "particle outside the walls: %s crosses the closed %s face of "
+                                "box '%s' (walls[%zu], line %d) by %.3g m",
+                                dk, side, w->name, wi, w->line, excess);
         }
     }
     return SD_OK;
+}
+
+/* Adds the scene's shapes (scene shape i is world shape i) and fills
+ * bound[i] with each one's bounding radius. An error from the world keeps
+ * its message and gets the entry's line and key. */
+static sd_status sd_build_shapes(const sd_scene *s, sd_world *w, double *bound, sd_error *err)
+{
+    char key[160];
+    for (size_t i = 0; i < s->shape_count; ++i) {
+        const sd_scene_shape *sh = &s->shapes[i];
+        sd_shape_desc d = sd_shape_desc_default();
+        d.kind = sd_shape_type_names[sh->kind];
+        d.size = sh->size;
+        d.rounding = sh->rounding;
+        d.margin = sh->margin;
+        d.scale = sh->scale;
+        d.vertices = sh->vertices;
+        d.vertex_count = sh->vertex_count;
+        sd_error_clear(err);
+        int idx = sd_world_add_shape(w, sh->name, &d, err);
+        if (idx < 0) {
+            /* The world names its own field ("size", "vertices"): a key of the entry. */
+            if (err->key[0] && sd_scene_key_find(SD_SEC_SHAPE, err->key))
+                snprintf(key, sizeof key, "shapes[%zu].%.100s", i, err->key);
+            else
+                snprintf(key, sizeof key, "shapes[%zu]", i);
+            err->key[0] = '\0';
+            return sd_where(err, err->code != SD_OK ? err->code : SD_ERR_INPUT, s, sh->line, key);
+        }
+        snprintf(key, sizeof key, "shapes[%zu]", i);
+        sd_shape_info info;
+        if (idx != (int)i || sd_world_get_shape(w, i, &info) != SD_OK)
+            return sd_error_set(err, SD_ERR_INTERNAL, s->path, sh->line, key,
+                                "the world gave shape index %d, expected %zu", idx, i);
+        bound[i] = info.bounding_radius;
+    }
+    return SD_OK;
+}
+
+/* Adds particles [at, end) of one generator, all spheres or all bodies. */
+static sd_status sd_add_run(const sd_scene *s, sd_world *w, const sd_scene_spheres *sp, size_t at,
+                            size_t end, sd_body_def *bodies, sd_error *err)
+{
+    char key[64];
+    sd_status st;
+    snprintf(key, sizeof key, "particles[%d]", sp->gen[at]);
+    if (sp->shape[at] < 0) {
+        st = sd_world_add_spheres(w, end - at, sp->defs + at, err);
+    } else {
+        for (size_t k = at; k < end; ++k) {
+            const sd_sphere_def *d = &sp->defs[k];
+            sd_body_def *b = &bodies[k - at];
+            memset(b, 0, sizeof *b);
+            b->position = d->position;
+            b->velocity = d->velocity;
+            b->angular_velocity = d->angular_velocity;
+            memcpy(b->orientation, sp->quat[k], sizeof b->orientation);
+            b->shape = sp->shape[k];
+            b->material = d->material;
+        }
+        st = sd_world_add_bodies(w, end - at, bodies, err);
+    }
+    return st == SD_OK ? SD_OK : sd_where(err, st, s, s->generators[sp->gen[at]].line, key);
 }
 
 static sd_status sd_build(const sd_scene *s, sd_world *w, sd_scene_spheres *sp, sd_error *err)
@@ -170,7 +258,14 @@ static sd_status sd_build(const sd_scene *s, sd_world *w, sd_scene_spheres *sp, 
             return sd_where(err, err->code != SD_OK ? err->code : SD_ERR_INPUT, s, wl->line, key);
     }
 
-    if ((st = sd_scene_generate(s, sp, err)) != SD_OK)
+    double *bound = sd_calloc(s->shape_count ? s->shape_count : 1, sizeof *bound);
+    if (!bound)
+        return sd_error_set(err, SD_ERR_MEMORY, s->path, 0, "", "out of memory");
+    st = sd_build_shapes(s, w, bound, err);
+    if (st == SD_OK)
+        st = sd_scene_generate(s, bound, sp, err);
+    sd_free(bound);
+    if (st != SD_OK)
         return st;
     /* Check the spheres before the world sees them: cheaper, and the
      * messages can name the scene line each sphere came from. */
@@ -178,16 +273,27 @@ static sd_status sd_build(const sd_scene *s, sd_world *w, sd_scene_spheres *sp, 
         return st;
     if ((st = sd_check_walls(s, sp, err)) != SD_OK)
         return st;
-    /* One call per generator keeps ids in generation order. */
-    for (size_t at = 0; at < sp->count;) {
+    /* One call per run of spheres or bodies of a generator keeps ids in
+     * generation order (a list may mix them). */
+    size_t nbodies = 0;
+    for (size_t k = 0; k < sp->count; ++k)
+        nbodies += sp->shape[k] >= 0;
+    sd_body_def *bodies = nbodies ? sd_malloc(nbodies * sizeof *bodies) : NULL;
+    if (nbodies && !bodies)
+        return sd_error_set(err, SD_ERR_MEMORY, s->path, 0, "", "out of memory (%zu bodies)",
+                            nbodies);
+    st = SD_OK;
+    for (size_t at = 0; at < sp->count && st == SD_OK;) {
         size_t end = at;
-        while (end < sp->count && sp->gen[end] == sp->gen[at])
+        while (end < sp->count && sp->gen[end] == sp->gen[at] &&
+               (sp->shape[end] >= 0) == (sp->shape[at] >= 0))
             ++end;
-        snprintf(key, sizeof key, "particles[%d]", sp->gen[at]);
-        if ((st = sd_world_add_spheres(w, end - at, sp->defs + at, err)) != SD_OK)
-            return sd_where(err, st, s, s->generators[sp->gen[at]].line, key);
+        st = sd_add_run(s, w, sp, at, end, bodies, err);
         at = end;
     }
+    sd_free(bodies);
+    if (st != SD_OK)
+        return st;
 
     if ((st = sd_world_prepare(w, err)) != SD_OK)
         return sd_where(err, st, s, s->simulation_line, "simulation");

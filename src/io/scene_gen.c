@@ -1,5 +1,9 @@
 /* scene_gen.c — the particle generators of a scene (lattice, random, list,
- * csv) and the cell grid that finds overlapping spheres.
+ * csv) and the cell grid that finds overlapping spheres. A body of a shape
+ * takes part as its bounding sphere (the shape's bounding radius about its
+ * centre of mass), so bodies start out of contact whatever their
+ * orientation; random orientations are uniform over all rotations
+ * (Shoemake, "Uniform random rotations", Graphics Gems III, 1992).
  *
  * Invariant: the spheres depend only on the scene: each generator draws
  * from its own xoshiro stream seeded from (simulation.seed, generator
@@ -159,6 +163,29 @@ static void sd_gen_jitter(sd_rng *rng, const sd_scene_generator *g, sd_sphere_de
     }
 }
 
+/* Orientation of a shaped body. Random: Shoemake's method, a unit
+ * quaternion uniform on the 3-sphere (so a rotation uniform in SO(3)) from
+ * three uniforms u1, u2, u3:
+ *   q = (sqrt(u1) cos 2 pi u3, sqrt(1-u1) sin 2 pi u2, sqrt(1-u1) cos 2 pi u2, sqrt(u1) sin 2 pi u3).
+ * Only shaped bodies draw, so scenes of spheres keep their streams. */
+static void sd_gen_orient(sd_rng *rng, sd_scene_orient mode, const double fixed[4], double q[4])
+{
+    const double two_pi = 6.28318530717958647692;
+    if (mode == SD_ORIENT_RANDOM) {
+        double u1 = sd_rng_uniform(rng), u2 = sd_rng_uniform(rng), u3 = sd_rng_uniform(rng);
+        double a = sqrt(1.0 - u1), b = sqrt(u1);
+        q[0] = b * cos(two_pi * u3);
+        q[1] = a * sin(two_pi * u2);
+        q[2] = a * cos(two_pi * u2);
+        q[3] = b * sin(two_pi * u3);
+    } else if (mode == SD_ORIENT_FIXED) {
+        memcpy(q, fixed, 4 * sizeof *q);
+    } else {
+        q[0] = 1.0;
+        q[1] = q[2] = q[3] = 0.0;
+    }
+}
+
 static size_t sd_gen_count(const sd_scene_generator *g)
 {
     switch (g->kind) {
@@ -173,14 +200,15 @@ static size_t sd_gen_count(const sd_scene_generator *g)
 /* Random sequential addition: each sphere draws its radius once, then
  * positions until one overlaps none of the spheres placed before it. The
  * attempt budget bounds the time when the box is too full to finish. */
-static sd_status sd_gen_random(const sd_scene *s, size_t gi, sd_rng *rng, sd_sphere_def *defs,
-                               sd_error *err)
+static sd_status sd_gen_random(const sd_scene *s, size_t gi, double bound, sd_rng *rng,
+                               sd_sphere_def *defs, double (*quat)[4], sd_error *err)
 {
     const sd_scene_generator *g = &s->generators[gi];
     size_t n = (size_t)g->number;
+    double rmax = g->shape >= 0 ? bound : g->radius_max;
     sd_grid grid;
     /* Hashed cells one largest diameter wide: memory follows n, not the box. */
-    if (!sd_grid_init(&grid, n, 2.0 * g->radius_max))
+    if (!sd_grid_init(&grid, n, 2.0 * rmax))
         return sd_error_set(err, SD_ERR_MEMORY, s->path, g->line, "", "out of memory");
     const double budget = 100.0 * (double)n + 100000.0;
     double attempts = 0.0;
@@ -188,6 +216,8 @@ static sd_status sd_gen_random(const sd_scene *s, size_t gi, sd_rng *rng, sd_sph
     while (placed < n && attempts < budget) {
         sd_sphere_def *d = &defs[placed];
         double r = sd_gen_radius(rng, g);
+        if (g->shape >= 0)
+            r = bound; /* the draw above is kept: one per particle, as for spheres */
         int ok = 0;
         while (!ok && attempts < budget) {
             attempts += 1.0;
@@ -205,7 +235,10 @@ static sd_status sd_gen_random(const sd_scene *s, size_t gi, sd_rng *rng, sd_sph
         if (!ok)
             break;
         d->velocity = g->velocity;
+        d->angular_velocity = g->angular_velocity;
         d->material = g->material;
+        if (g->shape >= 0)
+            sd_gen_orient(rng, g->orient, g->quat, quat[placed]);
         sd_gen_jitter(rng, g, d);
         sd_grid_insert(&grid, placed, d->position);
         ++placed;
@@ -221,26 +254,77 @@ static sd_status sd_gen_random(const sd_scene *s, size_t gi, sd_rng *rng, sd_sph
         char key[64];
         snprintf(key, sizeof key, "particles[%zu].number", gi);
         return sd_error_set(err, SD_ERR_INPUT, s->path, g->line, key,
-                            "placed only %zu of %zu spheres in the box after %.0f attempts (they "
+                            "placed only %zu of %zu %s in the box after %.0f attempts (they "
                             "fill %.0f%% of it; random placement stops near 30%%): use a larger "
-                            "box or fewer spheres",
-                            placed, n, attempts, 100.0 * vol / box);
+                            "box or fewer particles",
+                            placed, n, g->shape >= 0 ? "bounding spheres" : "spheres", attempts,
+                            100.0 * vol / box);
     }
     return SD_OK;
 }
 
-sd_status sd_scene_generate(const sd_scene *s, sd_scene_spheres *out, sd_error *err)
+/* The generator's shape bound is checked here, where it is known: a lattice
+ * must space bounding spheres apart, a random box must hold one. */
+static sd_status sd_gen_check_bound(const sd_scene *s, size_t gi, double bound, sd_error *err)
+{
+    const sd_scene_generator *g = &s->generators[gi];
+    const char *name = s->shapes[g->shape].name;
+    char key[64];
+    if (g->kind == SD_GEN_LATTICE) {
+        const double sp[3] = {g->spacing.x, g->spacing.y, g->spacing.z};
+        for (int a = 0; a < 3; ++a)
+            if (sp[a] < 2.0 * bound) {
+                snprintf(key, sizeof key, "particles[%zu].spacing", gi);
+                return sd_error_set(err, SD_ERR_INPUT, s->path, g->spacing_line, key,
+                                    "expected a spacing >= 2 x the bounding radius of shape '%s' "
+                                    "(%g m), got %g along %c: the bodies could overlap",
+                                    name, 2.0 * bound, sp[a], 'x' + a);
+            }
+    } else if (g->kind == SD_GEN_RANDOM) {
+        const double ext[3] = {g->box_hi.x - g->box_lo.x, g->box_hi.y - g->box_lo.y,
+                               g->box_hi.z - g->box_lo.z};
+        for (int a = 0; a < 3; ++a)
+            if (ext[a] < 2.0 * bound) {
+                snprintf(key, sizeof key, "particles[%zu].box", gi);
+                return sd_error_set(err, SD_ERR_INPUT, s->path, g->box_line, key,
+                                    "the box is %g m wide along %c, less than the bounding "
+                                    "diameter of shape '%s' (%g m)",
+                                    ext[a], 'x' + a, name, 2.0 * bound);
+            }
+    }
+    return SD_OK;
+}
+
+static int sd_gen_shaped(const sd_scene_generator *g)
+{
+    if (g->shape >= 0)
+        return 1;
+    if (g->kind == SD_GEN_LIST)
+        for (size_t k = 0; k < g->list_count; ++k)
+            if (g->list_shape[k] >= 0)
+                return 1;
+    return 0;
+}
+
+sd_status sd_scene_generate(const sd_scene *s, const double *shape_bound, sd_scene_spheres *out,
+                            sd_error *err)
 {
     memset(out, 0, sizeof *out);
     size_t total = 0;
-    for (size_t gi = 0; gi < s->generator_count; ++gi)
+    for (size_t gi = 0; gi < s->generator_count; ++gi) {
         total += sd_gen_count(&s->generators[gi]);
+        if (!shape_bound && sd_gen_shaped(&s->generators[gi]))
+            return sd_error_set(err, SD_ERR_INTERNAL, s->path, s->generators[gi].line, "",
+                                "sd_scene_generate: bounding radii of the shapes not given");
+    }
     size_t cap = total ? total : 1;
     out->defs = sd_calloc(cap, sizeof *out->defs);
     out->gen = sd_malloc(cap * sizeof *out->gen);
     out->entry = sd_malloc(cap * sizeof *out->entry);
     out->line = sd_malloc(cap * sizeof *out->line);
-    if (!out->defs || !out->gen || !out->entry || !out->line) {
+    out->shape = sd_malloc(cap * sizeof *out->shape);
+    out->quat = sd_malloc(cap * sizeof *out->quat);
+    if (!out->defs || !out->gen || !out->entry || !out->line || !out->shape || !out->quat) {
         sd_scene_spheres_free(out);
         return sd_error_set(err, SD_ERR_MEMORY, s->path, 0, "", "out of memory (%zu spheres)",
                             total);
@@ -251,6 +335,19 @@ sd_status sd_scene_generate(const sd_scene *s, sd_scene_spheres *out, sd_error *
         sd_rng rng = sd_gen_rng(s->world.seed, gi);
         size_t n = sd_gen_count(g);
         sd_sphere_def *defs = out->defs + at;
+        double(*quat)[4] = out->quat + at;
+        double bound = g->shape >= 0 ? shape_bound[g->shape] : 0.0;
+        for (size_t k = 0; k < n; ++k) {
+            out->shape[at + k] = g->kind == SD_GEN_LIST ? g->list_shape[k] : g->shape;
+            sd_gen_orient(&rng, SD_ORIENT_IDENTITY, NULL, quat[k]); /* no draw */
+        }
+        if (g->shape >= 0 && g->kind != SD_GEN_LIST) {
+            sd_status st = sd_gen_check_bound(s, gi, bound, err);
+            if (st != SD_OK) {
+                sd_scene_spheres_free(out);
+                return st;
+            }
+        }
         switch (g->kind) {
         case SD_GEN_LATTICE: {
             size_t k = 0;
@@ -264,13 +361,18 @@ sd_status sd_scene_generate(const sd_scene *s, sd_scene_spheres *out, sd_error *
                                                g->origin.z + iz * g->spacing.z};
                         d->radius = sd_gen_radius(&rng, g);
                         d->velocity = g->velocity;
+                        d->angular_velocity = g->angular_velocity;
                         d->material = g->material;
+                        if (g->shape >= 0) {
+                            d->radius = bound;
+                            sd_gen_orient(&rng, g->orient, g->quat, quat[k]);
+                        }
                         sd_gen_jitter(&rng, g, d);
                     }
             break;
         }
         case SD_GEN_RANDOM: {
-            sd_status st = sd_gen_random(s, gi, &rng, defs, err);
+            sd_status st = sd_gen_random(s, gi, bound, &rng, defs, quat, err);
             if (st != SD_OK) {
                 sd_scene_spheres_free(out);
                 return st;
@@ -281,6 +383,10 @@ sd_status sd_scene_generate(const sd_scene *s, sd_scene_spheres *out, sd_error *
         case SD_GEN_CSV:
             for (size_t k = 0; k < n; ++k) {
                 defs[k] = g->list[k];
+                if (g->kind == SD_GEN_LIST && g->list_shape[k] >= 0) {
+                    defs[k].radius = shape_bound[g->list_shape[k]];
+                    sd_gen_orient(&rng, g->list_orient[k], g->list_quat[k], quat[k]);
+                }
                 sd_gen_jitter(&rng, g, &defs[k]);
             }
             break;
@@ -305,5 +411,7 @@ void sd_scene_spheres_free(sd_scene_spheres *sp)
     sd_free(sp->gen);
     sd_free(sp->entry);
     sd_free(sp->line);
+    sd_free(sp->shape);
+    sd_free(sp->quat);
     memset(sp, 0, sizeof *sp);
 }

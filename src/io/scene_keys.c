@@ -13,11 +13,15 @@
 #include <string.h>
 
 #include "io/scene.h"
+#include "shape/shape.h"
 
 /* Contact-law names come from the public X-macro list (STYLE.md
  * convention 4); the trailing '|' is skipped by the choice readers. */
 #define SD_X_CHOICE(e, name, doc) name "|"
 #define SD_LAW_CHOICES SD_CONTACT_LAWS(SD_X_CHOICE)
+/* Shape type names, in sd_shape_kind order, from the kinds list in
+ * shape/shape.h (the same list the world reads desc.kind against). */
+#define SD_SHAPE_CHOICES SD_SHAPE_KINDS(SD_X_CHOICE)
 
 #define ALL SD_KIND_ALL
 #define LAT (1u << SD_GEN_LATTICE)
@@ -26,6 +30,12 @@
 #define CSV (1u << SD_GEN_CSV)
 #define PLANE 1u
 #define BOX 2u
+#define SSPH (1u << SD_SHAPE_SPHERE)
+#define SBOX (1u << SD_SHAPE_BOX)
+#define SCYL (1u << SD_SHAPE_CYLINDER)
+#define SCONE (1u << SD_SHAPE_CONE)
+#define SELL (1u << SD_SHAPE_ELLIPSOID)
+#define SPOLY (1u << SD_SHAPE_POLYHEDRON)
 
 /* section, key, type, range, choices, applies to, required for, unit, default, meaning */
 const sd_scene_key sd_scene_keys[] = {
@@ -35,6 +45,9 @@ const sd_scene_key sd_scene_keys[] = {
      "materials, at least one; their order gives the material index"},
     {SD_SEC_ROOT, "interactions", SD_KT_LIST, SD_KR_ANY, NULL, ALL, 0, "", "[]",
      "overrides for pairs of materials"},
+    {SD_SEC_ROOT, "shapes", SD_KT_LIST, SD_KR_ANY, NULL, ALL, 0, "", "[]",
+     "shape templates for non-spherical particles, named by particles[].shape; their order "
+     "gives the shape index"},
     {SD_SEC_ROOT, "particles", SD_KT_LIST, SD_KR_ANY, NULL, ALL, ALL, "", "required",
      "particle generators, at least one; particle ids follow their order"},
     {SD_SEC_ROOT, "walls", SD_KT_LIST, SD_KR_ANY, NULL, ALL, 0, "", "[]", "planes and boxes"},
@@ -59,6 +72,9 @@ const sd_scene_key sd_scene_keys[] = {
      "hertz_mindlin", "default contact law for every pair of materials"},
     {SD_SEC_SIMULATION, "skin", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "m", "0",
      "Verlet skin of the pair list; 0 = 0.2 x the smallest radius"},
+    {SD_SEC_SIMULATION, "solver", SD_KT_ENUM, SD_KR_ANY, "cells|grid", ALL, 0, "", "cells",
+     "cells: the general engine; grid: the dense grid-stencil solver of seed 001 for equal "
+     "(R_max/R_min <= 2) spheres inside a box wall, same physics (docs/grid-solver.md)"},
 
     {SD_SEC_MATERIAL, "name", SD_KT_STRING, SD_KR_NONEMPTY, NULL, ALL, ALL, "", "required",
      "unique name, used by particles, walls and interactions"},
@@ -98,38 +114,93 @@ const sd_scene_key sd_scene_keys[] = {
     {SD_SEC_INTERACTION, "contact_law", SD_KT_ENUM, SD_KR_ANY, SD_LAW_CHOICES, ALL, 0, "",
      "simulation.contact_law", "contact law of the pair"},
 
+    {SD_SEC_SHAPE, "name", SD_KT_STRING, SD_KR_NONEMPTY, NULL, ALL, ALL, "", "required",
+     "unique name, used by particles[].shape"},
+    {SD_SEC_SHAPE, "type", SD_KT_ENUM, SD_KR_ANY, SD_SHAPE_CHOICES, ALL, ALL, "", "required",
+     "the convex shape; every shape may be rounded (rounding) or given a margin"},
+    {SD_SEC_SHAPE, "radius", SD_KT_NUMBER, SD_KR_POS, NULL, SSPH, SSPH, "m", "required",
+     "sphere radius"},
+    {SD_SEC_SHAPE, "size", SD_KT_NUM_OR_VEC3, SD_KR_POS, NULL, SBOX | SCYL | SCONE, SBOX, "m",
+     "required (box)",
+     "box: full edge lengths [x, y, z]; cylinder: [diameter, -, length] and cone: [base "
+     "diameter, -, height], axis z, y ignored (or give diameter and length / height); a number "
+     "sets all three"},
+    {SD_SEC_SHAPE, "diameter", SD_KT_NUMBER, SD_KR_POS, NULL, SCYL | SCONE, 0, "m", "size x",
+     "cylinder diameter or cone base diameter, with length (cylinder) or height (cone) instead "
+     "of size"},
+    {SD_SEC_SHAPE, "length", SD_KT_NUMBER, SD_KR_POS, NULL, SCYL, 0, "m", "size z",
+     "cylinder length along its axis z, with diameter instead of size"},
+    {SD_SEC_SHAPE, "height", SD_KT_NUMBER, SD_KR_POS, NULL, SCONE, 0, "m", "size z",
+     "cone height along its axis z (apex up), with diameter instead of size"},
+    {SD_SEC_SHAPE, "semi_axes", SD_KT_VEC3, SD_KR_POS, NULL, SELL, SELL, "m", "required",
+     "semi-axes a, b, c along x, y, z"},
+    {SD_SEC_SHAPE, "vertices", SD_KT_VEC3_LIST, SD_KR_ANY, NULL, SPOLY, 0, "m", "-",
+     "points whose convex hull is the shape, at least 4 and not coplanar (any frame: the "
+     "template is moved to its centre of mass); give vertices or file"},
+    {SD_SEC_SHAPE, "file", SD_KT_STRING, SD_KR_NONEMPTY, NULL, SPOLY, 0, "", "-",
+     "OBJ file (its v lines) or STL file (ASCII or binary), relative to the scene file, whose "
+     "vertices span the hull, in m before scale; give vertices or file"},
+    {SD_SEC_SHAPE, "rounding", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "m", "0",
+     "radius of a sphere swept over the shape: edges are rounded and every outer size grows by "
+     "2 x rounding"},
+    {SD_SEC_SHAPE, "margin", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "m", "0",
+     "the outer size stays as given: the core is shrunk by margin and swept by it, so edges "
+     "are rounded by margin; give at most one of rounding and margin"},
+    {SD_SEC_SHAPE, "scale", SD_KT_NUMBER, SD_KR_POS, NULL, ALL, 0, "", "1",
+     "multiplies every length of the shape (sizes, vertices, rounding, margin)"},
+
     {SD_SEC_PARTICLES, "generator", SD_KT_ENUM, SD_KR_ANY, "lattice|random|list|csv", ALL, ALL,
      "", "required", "how the particles are made"},
     {SD_SEC_PARTICLES, "material", SD_KT_STRING, SD_KR_NONEMPTY, NULL, ALL, LAT | RND | CSV, "",
      "required", "material name (list: the default of entries that name none)"},
-    {SD_SEC_PARTICLES, "radius", SD_KT_NUM_OR_RANGE, SD_KR_POS, NULL, LAT | RND, LAT | RND, "m",
-     "required", "sphere radius, or {min, max} for radii uniform in [min, max]"},
+    {SD_SEC_PARTICLES, "radius", SD_KT_NUM_OR_RANGE, SD_KR_POS, NULL, LAT | RND, 0, "m",
+     "required unless shape",
+     "sphere radius, or {min, max} for radii uniform in [min, max]; give radius or shape, "
+     "exactly one"},
+    {SD_SEC_PARTICLES, "shape", SD_KT_STRING, SD_KR_NONEMPTY, NULL, LAT | RND | LST, 0, "", "-",
+     "name of a shape in shapes: the generator makes rigid bodies of that shape instead of "
+     "spheres (list: the shape of entries that give neither radius nor shape)"},
+    {SD_SEC_PARTICLES, "orientation", SD_KT_ORIENTATION, SD_KR_ANY, NULL, LAT | RND | LST, 0, "",
+     "random",
+     "orientation of shaped bodies: identity, random (uniform over all rotations, from "
+     "simulation.seed) or a quaternion [w, x, y, z] (normalised)"},
     {SD_SEC_PARTICLES, "origin", SD_KT_VEC3, SD_KR_ANY, NULL, LAT, LAT, "m", "required",
      "centre of the first sphere"},
     {SD_SEC_PARTICLES, "spacing", SD_KT_NUM_OR_VEC3, SD_KR_POS, NULL, LAT, LAT, "m", "required",
-     "distance between neighbouring centres, per axis; >= 2 x the largest radius"},
+     "distance between neighbouring centres, per axis; >= 2 x the largest radius (shapes: "
+     "the bounding radius)"},
     {SD_SEC_PARTICLES, "count", SD_KT_INT3, SD_KR_ONE, NULL, LAT, LAT, "", "required",
      "spheres along x, y and z (x varies fastest in id order)"},
     {SD_SEC_PARTICLES, "box", SD_KT_BOX, SD_KR_ANY, NULL, RND, RND, "m", "required",
-     "region the spheres lie fully inside"},
+     "region the spheres (shapes: their bounding spheres) lie fully inside"},
     {SD_SEC_PARTICLES, "number", SD_KT_INT, SD_KR_ONE, NULL, RND, RND, "", "required",
-     "number of spheres, placed without overlap by random sequential addition"},
+     "number of particles, placed without overlap by random sequential addition (shapes: "
+     "their bounding spheres do not overlap)"},
     {SD_SEC_PARTICLES, "spheres", SD_KT_LIST, SD_KR_ANY, NULL, LST, LST, "", "required",
-     "the spheres, one mapping each (keys under particles[].spheres[])"},
+     "the particles, one mapping each (keys under particles[].spheres[]): spheres, or bodies "
+     "of a shape"},
     {SD_SEC_PARTICLES, "file", SD_KT_STRING, SD_KR_NONEMPTY, NULL, CSV, CSV, "", "required",
-     "CSV file, relative to the scene file; header x,y,z,radius[,vx,vy,vz]"},
+     "CSV file, relative to the scene file; header x,y,z,radius[,vx,vy,vz]; spheres only (no "
+     "shape)"},
     {SD_SEC_PARTICLES, "velocity", SD_KT_VEC3, SD_KR_ANY, NULL, ALL, 0, "m/s", "[0, 0, 0]",
      "initial velocity (list entries and CSV columns override it)"},
     {SD_SEC_PARTICLES, "velocity_jitter", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "m/s", "0",
      "uniform random velocity in [-j, j] added to each component"},
+    {SD_SEC_PARTICLES, "angular_velocity", SD_KT_VEC3, SD_KR_ANY, NULL, ALL, 0, "rad/s",
+     "[0, 0, 0]", "initial angular velocity, world frame (list entries override it)"},
 
     {SD_SEC_SPHERE, "position", SD_KT_VEC3, SD_KR_ANY, NULL, ALL, ALL, "m", "required",
      "centre"},
-    {SD_SEC_SPHERE, "radius", SD_KT_NUMBER, SD_KR_POS, NULL, ALL, ALL, "m", "required", "radius"},
+    {SD_SEC_SPHERE, "radius", SD_KT_NUMBER, SD_KR_POS, NULL, ALL, 0, "m",
+     "required unless shape", "sphere radius; give radius or shape (here or the generator's)"},
+    {SD_SEC_SPHERE, "shape", SD_KT_STRING, SD_KR_NONEMPTY, NULL, ALL, 0, "",
+     "generator's shape", "name of a shape in shapes: a rigid body of that shape"},
+    {SD_SEC_SPHERE, "orientation", SD_KT_ORIENTATION, SD_KR_ANY, NULL, ALL, 0, "",
+     "generator's orientation", "orientation of a shaped body: identity, random or [w, x, y, z]"},
     {SD_SEC_SPHERE, "velocity", SD_KT_VEC3, SD_KR_ANY, NULL, ALL, 0, "m/s",
      "generator's velocity", "initial velocity"},
     {SD_SEC_SPHERE, "angular_velocity", SD_KT_VEC3, SD_KR_ANY, NULL, ALL, 0, "rad/s",
-     "[0, 0, 0]", "initial angular velocity"},
+     "generator's angular_velocity", "initial angular velocity, world frame"},
     {SD_SEC_SPHERE, "material", SD_KT_STRING, SD_KR_NONEMPTY, NULL, ALL, 0, "",
      "generator's material", "material name"},
 
@@ -208,7 +279,7 @@ const char sd_scene_example[] =
     "  formats: [vtk, csv]\n";
 
 static const char *const sd_section_names[SD_SEC_COUNT] = {
-    "(top level)", "simulation", "materials[]", "interactions[]", "particles[]",
+    "(top level)", "simulation", "materials[]", "interactions[]", "shapes[]", "particles[]",
     "particles[].spheres[]", "walls[]", "output",
 };
 
@@ -224,6 +295,8 @@ const char *sd_scene_section_kinds(sd_scene_section sec)
         return "lattice|random|list|csv";
     if (sec == SD_SEC_WALL)
         return "plane|box";
+    if (sec == SD_SEC_SHAPE)
+        return SD_SHAPE_CHOICES;
     return NULL;
 }
 
@@ -305,6 +378,8 @@ const char *sd_scene_type_text(const sd_scene_key *k, char *buf, size_t size)
     case SD_KT_NUM_OR_RANGE: snprintf(buf, size, "number or {min, max}%s%s", sp, r); break;
     case SD_KT_BOX: snprintf(buf, size, "{min: [x, y, z], max: [x, y, z]}"); break;
     case SD_KT_NAME_PAIR: snprintf(buf, size, "[name, name]"); break;
+    case SD_KT_ORIENTATION: snprintf(buf, size, "identity, random or [w, x, y, z]"); break;
+    case SD_KT_VEC3_LIST: snprintf(buf, size, "list of [x, y, z]"); break;
     }
     return buf;
 }
@@ -377,8 +452,19 @@ static const char *const sd_scene_rules[] = {
     "Particles may not overlap at the start by more than 1e-6 of the smaller radius, and must "
     "start inside every wall: on the side a plane's normal points to, and inside each closed "
     "face of a box.",
-    "Random choices (radii in {min, max}, velocity_jitter, the random generator) come from "
-    "simulation.seed: the same scene gives the same particles.",
+    "Random choices (radii in {min, max}, velocity_jitter, the random generator, random "
+    "orientations) come from simulation.seed: the same scene gives the same particles.",
+    "shapes: each entry is a template (a convex core swept by a sphere), moved to its principal "
+    "frame (centre of mass at the origin, principal axes along x, y, z); a body's mass is the "
+    "material's density x the shape's volume. sphere needs radius; box needs size; cylinder "
+    "needs size, or diameter and length; cone needs size, or diameter and height; ellipsoid "
+    "needs semi_axes; polyhedron needs vertices or file (at least 4 points, not coplanar).",
+    "A generator makes spheres (radius) or bodies of one shape (shape: NAME), never both; list "
+    "entries each give radius or shape (or take the generator's shape). Shaped bodies are "
+    "placed, spaced and checked for overlaps and walls by their bounding sphere (the smallest "
+    "sphere about the centre of mass holding the shape), so they never start in contact; "
+    "orientation random (the default) draws uniform rotations (Shoemake) from the generator's "
+    "stream. Spheres and shaped bodies may be mixed in one scene.",
 };
 
 void sd_scene_print_keys(FILE *f, int markdown)

@@ -16,6 +16,7 @@ typedef enum sd_scene_section {
     SD_SEC_SIMULATION,  /* simulation: */
     SD_SEC_MATERIAL,    /* materials: - ... */
     SD_SEC_INTERACTION, /* interactions: - ... */
+    SD_SEC_SHAPE,       /* shapes: - ... (one shape template) */
     SD_SEC_PARTICLES,   /* particles: - ... (one generator) */
     SD_SEC_SPHERE,      /* particles: - spheres: - ... (list generator) */
     SD_SEC_WALL,        /* walls: - ... */
@@ -37,7 +38,9 @@ typedef enum sd_scene_type {
     SD_KT_NUM_OR_VEC3,  /* a number for all three axes, or [x, y, z] */
     SD_KT_NUM_OR_RANGE, /* a number, or {min: a, max: b} with a <= b */
     SD_KT_BOX,          /* {min: [x, y, z], max: [x, y, z]} with max > min */
-    SD_KT_NAME_PAIR     /* [name, name] */
+    SD_KT_NAME_PAIR,    /* [name, name] */
+    SD_KT_ORIENTATION,  /* identity, random, or a quaternion [w, x, y, z] (normalised) */
+    SD_KT_VEC3_LIST     /* a list of [x, y, z] */
 } sd_scene_type;
 
 /* The allowed values of a number (each component, for vectors). */
@@ -53,7 +56,8 @@ typedef enum sd_scene_range {
 
 /* Kinds a key applies to, within its section: generator kinds for
  * SD_SEC_PARTICLES (bit = 1 << sd_gen_kind), wall types for SD_SEC_WALL
- * (bit = 1 << kind, 0 plane, 1 box); everything else uses SD_KIND_ALL. */
+ * (bit = 1 << kind, 0 plane, 1 box), shape types for SD_SEC_SHAPE (bit =
+ * 1 << sd_shape_kind); everything else uses SD_KIND_ALL. */
 #define SD_KIND_ALL 0xffu
 
 typedef struct sd_scene_key {
@@ -76,7 +80,8 @@ extern const size_t sd_scene_key_count;
 
 /* "simulation", "materials[]", ... for messages and help. */
 const char *sd_scene_section_name(sd_scene_section sec);
-/* Kind names of a section ("lattice|random|list|csv", "plane|box"), or NULL. */
+/* Kind names of a section ("lattice|random|list|csv", "plane|box",
+ * "sphere|box|...|"), or NULL. */
 const char *sd_scene_section_kinds(sd_scene_section sec);
 /* The row for key in sec, or NULL. */
 const sd_scene_key *sd_scene_key_find(sd_scene_section sec, const char *key);

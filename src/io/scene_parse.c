@@ -27,6 +27,12 @@
 #include "core/error.h"
 #include "io/scene.h"
 #include "io/scene_keys.h"
+/* Only the shape kinds and SD_SHAPE_MAX_VERTICES are wanted from shape.h;
+ * its vector header's sd_v3 would clash with this file's sd_v3 (sd_v3d
+ * from three doubles), so it is renamed while the header is read. */
+#define sd_v3 sd_v3_core
+#include "shape/shape.h"
+#undef sd_v3
 
 /* ---- parse context and errors ------------------------------------------ */
 
@@ -51,6 +57,7 @@ typedef struct sd_value {
     double lo, hi;      /* SD_KT_NUM_OR_RANGE */
     sd_v3d box_lo, box_hi;
     const char *names[2];
+    double q[4];        /* SD_KT_ORIENTATION with choice SD_ORIENT_FIXED: unit (w, x, y, z) */
 } sd_value;
 
 static int sd_line(const yaml_node_t *n) { return n ? (int)n->start_mark.line + 1 : 0; }
@@ -407,6 +414,46 @@ static sd_status sd_read_value(sd_parse *p, const sd_scene_key *k, yaml_node_t *
             if ((st = sd_read_string(p, k, sd_seq_item(p, n, i), key, &v->names[i])) != SD_OK)
                 return st;
         break;
+    case SD_KT_ORIENTATION:
+        if (n && n->type == YAML_SEQUENCE_NODE) {
+            static const char *const comp[4] = {" for w", " for x", " for y", " for z"};
+            double norm = 0.0;
+            if (sd_seq_len(n) != 4)
+                return sd_fail(p, v->line, key,
+                               "expected identity, random or a quaternion [w, x, y, z], got %s",
+                               sd_desc(n, got, sizeof got));
+            for (size_t i = 0; i < 4; ++i) {
+                if ((st = sd_read_number(p, k, sd_seq_item(p, n, i), key, comp[i], "", &v->q[i])))
+                    return st;
+                norm += v->q[i] * v->q[i];
+            }
+            norm = sqrt(norm);
+            if (!(norm > 1e-12) || !isfinite(norm))
+                return sd_fail(p, v->line, key, "expected a non-zero quaternion [w, x, y, z], got %s",
+                               sd_desc(n, got, sizeof got));
+            for (size_t i = 0; i < 4; ++i)
+                v->q[i] /= norm;
+            v->choice = SD_ORIENT_FIXED;
+        } else if (n && n->type == YAML_SCALAR_NODE && !strcmp(sd_scalar(n), "identity")) {
+            v->choice = SD_ORIENT_IDENTITY;
+        } else if (n && n->type == YAML_SCALAR_NODE && !strcmp(sd_scalar(n), "random")) {
+            v->choice = SD_ORIENT_RANDOM;
+        } else {
+            return sd_fail(p, v->line, key,
+                           "expected identity, random or a quaternion [w, x, y, z], got %s",
+                           sd_desc(n, got, sizeof got));
+        }
+        break;
+    case SD_KT_VEC3_LIST:
+        if (!n || n->type != YAML_SEQUENCE_NODE)
+            return sd_fail(p, v->line, key, "expected a list of [x, y, z], got %s",
+                           sd_desc(n, got, sizeof got));
+        for (size_t i = 0; i < sd_seq_len(n); ++i) {
+            snprintf(sub, sizeof sub, "%s[%zu]", key, i);
+            if ((st = sd_read_vec3(p, k, sd_seq_item(p, n, i), sub, v->v, NULL)) != SD_OK)
+                return st;
+        }
+        break;
     }
     return st;
 }
@@ -626,6 +673,9 @@ static sd_status sd_parse_simulation(sd_parse *p, yaml_node_t *root)
         return sd_fail(p, v.line, "simulation.contact_law", "unknown contact law");
     sd_get(p, sim, SD_SEC_SIMULATION, "skin", path, &v);
     s->world.skin = v.num;
+    /* choices in sd_solver order: cells, grid */
+    if (sd_get(p, sim, SD_SEC_SIMULATION, "solver", path, &v))
+        s->world.solver = v.choice == 1 ? SD_SOLVER_GRID : SD_SOLVER_CELLS;
     return SD_OK;
 }
 
@@ -870,6 +920,7 @@ static sd_status sd_read_csv(sd_parse *p, sd_scene_generator *g, const char *key
         d->position = (sd_v3d){val[SD_CSV_X], val[SD_CSV_Y], val[SD_CSV_Z]};
         d->radius = val[SD_CSV_R];
         d->velocity = g->velocity;
+        d->angular_velocity = g->angular_velocity;
         for (int j = 0; j < ncols; ++j) {
             /* Velocity columns override the generator's velocity. */
             if (col_of[j] == SD_CSV_VX)
@@ -907,6 +958,325 @@ static int sd_resolve(const char *scene, const char *file, char *out, size_t siz
     return n >= 0 && (size_t)n < size;
 }
 
+/* ---- shapes ------------------------------------------------------------- */
+
+typedef struct sd_vbuf {
+    sd_v3d *v;
+    size_t n, cap;
+} sd_vbuf;
+
+static int sd_vbuf_push(sd_vbuf *b, double x, double y, double z)
+{
+    if (b->n == b->cap) {
+        size_t nc = b->cap ? 2 * b->cap : 64;
+        sd_v3d *nv = sd_realloc(b->v, nc * sizeof *nv);
+        if (!nv)
+            return 0;
+        b->v = nv;
+        b->cap = nc;
+    }
+    b->v[b->n++] = (sd_v3d){x, y, z};
+    return 1;
+}
+
+static int sd_v3d_cmp(const void *pa, const void *pb)
+{
+    const sd_v3d *a = pa, *b = pb;
+    if (a->x != b->x)
+        return a->x < b->x ? -1 : 1;
+    if (a->y != b->y)
+        return a->y < b->y ? -1 : 1;
+    if (a->z != b->z)
+        return a->z < b->z ? -1 : 1;
+    return 0;
+}
+
+/* Little-endian binary STL fields, read byte by byte (any host order). */
+static uint32_t sd_le32(const unsigned char *b)
+{
+    return (uint32_t)b[0] | (uint32_t)b[1] << 8 | (uint32_t)b[2] << 16 | (uint32_t)b[3] << 24;
+}
+
+static double sd_lef32(const unsigned char *b)
+{
+    uint32_t u = sd_le32(b);
+    float f;
+    memcpy(&f, &u, sizeof f);
+    return (double)f;
+}
+
+/* Only the vertices of a mesh file matter: the shape is their convex hull.
+ * OBJ: every "v x y z" line (texture, normal and face lines are skipped).
+ * STL: the vertices of every triangle, binary (80-byte header, triangle
+ * count, 50 bytes per triangle) when the size matches, ASCII ("vertex x y
+ * z") otherwise. Repeated vertices (STL repeats each in every triangle) are
+ * dropped. Errors name the scene line of shapes[i].file and the mesh file. */
+static sd_status sd_read_mesh(sd_parse *p, sd_scene_shape *sh, const char *key, int line)
+{
+    const char *dot = strrchr(sh->file, '.');
+    int obj = dot && (!strcmp(dot, ".obj") || !strcmp(dot, ".OBJ"));
+    int stl = dot && (!strcmp(dot, ".stl") || !strcmp(dot, ".STL"));
+    if (!obj && !stl)
+        return sd_fail(p, line, key, "expected an .obj or .stl file, got '%s'", sh->file);
+    FILE *f = fopen(sh->file, "rb");
+    if (!f)
+        return sd_fail(p, line, key, "cannot open the mesh file '%s': %s", sh->file,
+                       strerror(errno));
+    long size = -1;
+    if (fseek(f, 0, SEEK_END) == 0)
+        size = ftell(f);
+    if (size < 0 || size > (1L << 28) || fseek(f, 0, SEEK_SET) != 0) {
+        fclose(f);
+        return sd_fail(p, line, key, "cannot read the mesh file '%s' (at most 256 MiB)", sh->file);
+    }
+    unsigned char *buf = sd_malloc((size_t)size + 1);
+    if (!buf) {
+        fclose(f);
+        return sd_error_set(p->err, SD_ERR_MEMORY, p->path, line, key, "out of memory");
+    }
+    size_t got = fread(buf, 1, (size_t)size, f);
+    fclose(f);
+    if (got != (size_t)size) {
+        sd_free(buf);
+        return sd_fail(p, line, key, "cannot read the mesh file '%s'", sh->file);
+    }
+    buf[size] = '\0';
+    sd_vbuf vb = {NULL, 0, 0};
+    sd_status st = SD_OK;
+    int oom = 0;
+    if (stl && size >= 84 && 84 + 50 * (long)sd_le32(buf + 80) == size) {
+        size_t nt = sd_le32(buf + 80);
+        for (size_t t = 0; t < nt && !oom; ++t)
+            for (int c = 0; c < 3 && !oom; ++c) {
+                const unsigned char *q = buf + 84 + 50 * t + 12 + 12 * (size_t)c;
+                oom = !sd_vbuf_push(&vb, sd_lef32(q), sd_lef32(q + 4), sd_lef32(q + 8));
+            }
+    } else {
+        char *text = (char *)buf;
+        if (memchr(buf, '\0', (size_t)size))
+            st = sd_fail(p, line, key, "'%s' is neither a binary STL file (its size does not match "
+                                       "its triangle count) nor a text file", sh->file);
+        int ln = 1;
+        for (char *c = text; st == SD_OK && !oom && *c;) {
+            char *eol = strchr(c, '\n');
+            if (eol)
+                *eol = '\0';
+            char *t = c + strspn(c, " \t\r");
+            const char *tag = obj ? "v" : "vertex";
+            size_t tl = strlen(tag);
+            if (!strncmp(t, tag, tl) && (t[tl] == ' ' || t[tl] == '\t')) {
+                double x[3];
+                char *at = t + tl, *end;
+                int ok = 1;
+                for (int a = 0; a < 3 && ok; ++a) {
+                    x[a] = strtod(at, &end);
+                    ok = end != at && isfinite(x[a]);
+                    at = end;
+                }
+                if (!ok)
+                    st = sd_fail(p, line, key, "%s line %d: expected '%s x y z' with 3 numbers",
+                                 sh->file, ln, tag);
+                else
+                    oom = !sd_vbuf_push(&vb, x[0], x[1], x[2]);
+            }
+            ++ln;
+            c = eol ? eol + 1 : c + strlen(c);
+        }
+    }
+    sd_free(buf);
+    if (oom)
+        st = sd_error_set(p->err, SD_ERR_MEMORY, p->path, line, key, "out of memory");
+    if (st != SD_OK) {
+        sd_free(vb.v);
+        return st;
+    }
+    if (vb.n > 1)
+        qsort(vb.v, vb.n, sizeof *vb.v, sd_v3d_cmp);
+    size_t u = 0;
+    for (size_t k = 0; k < vb.n; ++k)
+        if (u == 0 || sd_v3d_cmp(&vb.v[u - 1], &vb.v[k]) != 0)
+            vb.v[u++] = vb.v[k];
+    sh->vertices = vb.v;
+    sh->vertex_count = u;
+    if (u < 4)
+        return sd_fail(p, line, key, "expected at least 4 distinct vertices in '%s', got %zu",
+                       sh->file, u);
+    if (u > SD_SHAPE_MAX_VERTICES)
+        return sd_fail(p, line, key, "expected at most %d distinct vertices in '%s', got %zu",
+                       SD_SHAPE_MAX_VERTICES, sh->file, u);
+    return SD_OK;
+}
+
+static sd_status sd_shape_ref(sd_parse *p, const char *name, int line, const char *key, int *out)
+{
+    for (size_t i = 0; i < p->s->shape_count; ++i)
+        if (!strcmp(p->s->shapes[i].name, name)) {
+            *out = (int)i;
+            return SD_OK;
+        }
+    char known[300];
+    size_t used = 0;
+    known[0] = '\0';
+    for (size_t i = 0; i < p->s->shape_count && used + 1 < sizeof known; ++i) {
+        int w = snprintf(known + used, sizeof known - used, "%s%s", i ? ", " : "",
+                         p->s->shapes[i].name);
+        used += w > 0 ? (size_t)w : 0;
+    }
+    if (!p->s->shape_count)
+        return sd_fail(p, line, key, "unknown shape '%s' (the scene has no shapes: section)", name);
+    return sd_fail(p, line, key, "unknown shape '%s' (shapes: %s)", name, known);
+}
+
+/* Cylinder and cone: size, or diameter and length (height). */
+static sd_status sd_parse_axial(sd_parse *p, yaml_node_t *m, sd_scene_shape *sh, const char *path)
+{
+    const char *lk = sh->kind == SD_SHAPE_CYLINDER ? "length" : "height";
+    char key[96];
+    sd_value sz, d, l;
+    int hs = sd_get(p, m, SD_SEC_SHAPE, "size", path, &sz);
+    int hd = sd_get(p, m, SD_SEC_SHAPE, "diameter", path, &d);
+    int hl = sd_get(p, m, SD_SEC_SHAPE, lk, path, &l);
+    if (hs && (hd || hl))
+        return sd_fail(p, hd ? d.line : l.line, sd_kp(key, sizeof key, path, hd ? "diameter" : lk),
+                       "give either size or diameter and %s, not both (size is at line %d)", lk,
+                       sz.line);
+    if (hs) {
+        sh->size = sd_v3(sz.v);
+        return SD_OK;
+    }
+    if (!hd || !hl) {
+        const char *miss = !hd && !hl ? "size" : !hd ? "diameter" : lk;
+        return sd_fail(p, sh->line, sd_kp(key, sizeof key, path, miss),
+                       "missing required key '%s' (give size, or diameter and %s)", miss, lk);
+    }
+    sh->size = (sd_v3d){d.num, d.num, l.num};
+    return SD_OK;
+}
+
+static sd_status sd_parse_shapes(sd_parse *p, yaml_node_t *list)
+{
+    sd_scene *s = p->s;
+    size_t n = sd_seq_len(list);
+    char path[64], key[96], got[96], kind_name[64], choices[160];
+    sd_value v;
+    sd_status st;
+    if (n == 0)
+        return SD_OK;
+    s->shapes = sd_calloc(n, sizeof *s->shapes);
+    if (!s->shapes)
+        return sd_error_set(p->err, SD_ERR_MEMORY, p->path, 0, "", "out of memory");
+    const sd_scene_key *type_row = sd_scene_key_find(SD_SEC_SHAPE, "type");
+    for (size_t i = 0; i < n; ++i) {
+        yaml_node_t *m = sd_seq_item(p, list, i);
+        sd_scene_shape *sh = &s->shapes[i];
+        snprintf(path, sizeof path, "shapes[%zu]", i);
+        if (m->type != YAML_MAPPING_NODE)
+            return sd_fail(p, sd_line(m), path, "expected a mapping (name: ..., type: ..., ...), got %s",
+                           sd_desc(m, got, sizeof got));
+        sh->line = sd_line(m);
+        /* The type decides which keys apply, so read it first. */
+        yaml_node_t *tn = sd_map_get(p, m, "type");
+        snprintf(key, sizeof key, "%s.type", path);
+        if (!tn) {
+            sd_choices_list(type_row->choices, choices, sizeof choices);
+            return sd_fail(p, sh->line, key, "missing required key 'type' (%s)", choices);
+        }
+        if ((st = sd_read_value(p, type_row, tn, key, &v)))
+            return st;
+        sh->kind = v.choice;
+        snprintf(kind_name, sizeof kind_name, "a %s shape", v.str);
+        if ((st = sd_check_map(p, m, SD_SEC_SHAPE, 1u << sh->kind, kind_name, path, sh->line)))
+            return st;
+        s->shape_count = i + 1; /* so sd_scene_free sees its vertices */
+
+        sd_get(p, m, SD_SEC_SHAPE, "name", path, &v);
+        sd_kp(key, sizeof key, path, "name");
+        if (strlen(v.str) >= SD_SCENE_NAME_MAX)
+            return sd_fail(p, v.line, key, "name longer than %d characters", SD_SCENE_NAME_MAX - 1);
+        for (size_t j = 0; j < i; ++j)
+            if (!strcmp(s->shapes[j].name, v.str))
+                return sd_fail(p, v.line, key, "duplicate shape name '%s' (shapes[%zu], line %d)",
+                               v.str, j, s->shapes[j].line);
+        snprintf(sh->name, sizeof sh->name, "%s", v.str);
+
+        sd_value rv, mv;
+        int hr = sd_get(p, m, SD_SEC_SHAPE, "rounding", path, &rv);
+        int hm = sd_get(p, m, SD_SEC_SHAPE, "margin", path, &mv);
+        if (hr && hm)
+            return sd_fail(p, mv.line, sd_kp(key, sizeof key, path, "margin"),
+                           "give at most one of rounding and margin (rounding is at line %d)",
+                           rv.line);
+        sh->rounding = rv.num;
+        sh->margin = mv.num;
+        sd_get(p, m, SD_SEC_SHAPE, "scale", path, &v);
+        sh->scale = v.num;
+
+        switch (sh->kind) {
+        case SD_SHAPE_SPHERE:
+            sd_get(p, m, SD_SEC_SHAPE, "radius", path, &v);
+            sh->size = (sd_v3d){v.num, v.num, v.num};
+            break;
+        case SD_SHAPE_BOX:
+            sd_get(p, m, SD_SEC_SHAPE, "size", path, &v);
+            sh->size = sd_v3(v.v);
+            break;
+        case SD_SHAPE_CYLINDER:
+        case SD_SHAPE_CONE:
+            if ((st = sd_parse_axial(p, m, sh, path)))
+                return st;
+            break;
+        case SD_SHAPE_ELLIPSOID:
+            sd_get(p, m, SD_SEC_SHAPE, "semi_axes", path, &v);
+            sh->size = sd_v3(v.v);
+            break;
+        case SD_SHAPE_POLYHEDRON: {
+            sd_value vv, fv;
+            int hv = sd_get(p, m, SD_SEC_SHAPE, "vertices", path, &vv);
+            int hf = sd_get(p, m, SD_SEC_SHAPE, "file", path, &fv);
+            if (hv && hf)
+                return sd_fail(p, fv.line, sd_kp(key, sizeof key, path, "file"),
+                               "give either vertices or file, not both (vertices is at line %d)",
+                               vv.line);
+            if (!hv && !hf)
+                return sd_fail(p, sh->line, sd_kp(key, sizeof key, path, "vertices"),
+                               "missing required key 'vertices' (or file: an OBJ or STL file)");
+            if (hf) {
+                sd_kp(key, sizeof key, path, "file");
+                if (!sd_resolve(p->path, fv.str, sh->file, sizeof sh->file))
+                    return sd_fail(p, fv.line, key, "path too long");
+                if ((st = sd_read_mesh(p, sh, key, fv.line)))
+                    return st;
+                break;
+            }
+            size_t nv = sd_seq_len(vv.node);
+            sd_kp(key, sizeof key, path, "vertices");
+            if (nv < 4)
+                return sd_fail(p, vv.line, key,
+                               "expected at least 4 vertices (a hull with volume), got %zu", nv);
+            if (nv > SD_SHAPE_MAX_VERTICES)
+                return sd_fail(p, vv.line, key, "expected at most %d vertices, got %zu",
+                               SD_SHAPE_MAX_VERTICES, nv);
+            sh->vertices = sd_calloc(nv, sizeof *sh->vertices);
+            if (!sh->vertices)
+                return sd_error_set(p->err, SD_ERR_MEMORY, p->path, 0, "", "out of memory");
+            const sd_scene_key *row = sd_scene_key_find(SD_SEC_SHAPE, "vertices");
+            for (size_t k = 0; k < nv; ++k) {
+                double x[3];
+                /* Cannot fail: sd_check_map has read every item. */
+                if ((st = sd_read_vec3(p, row, sd_seq_item(p, vv.node, k), key, x, NULL)))
+                    return st;
+                sh->vertices[k] = sd_v3(x);
+            }
+            sh->vertex_count = nv;
+            break;
+        }
+        default:
+            return sd_fail(p, sh->line, path, "unknown shape type");
+        }
+    }
+    return SD_OK;
+}
+
 /* ---- particles ---------------------------------------------------------- */
 
 static sd_status sd_parse_list(sd_parse *p, sd_scene_generator *g, yaml_node_t *list,
@@ -921,7 +1291,10 @@ static sd_status sd_parse_list(sd_parse *p, sd_scene_generator *g, yaml_node_t *
                        "expected at least one sphere");
     g->list = sd_calloc(n, sizeof *g->list);
     g->list_lines = sd_calloc(n, sizeof *g->list_lines);
-    if (!g->list || !g->list_lines)
+    g->list_shape = sd_calloc(n, sizeof *g->list_shape);
+    g->list_orient = sd_calloc(n, sizeof *g->list_orient);
+    g->list_quat = sd_calloc(n, sizeof *g->list_quat);
+    if (!g->list || !g->list_lines || !g->list_shape || !g->list_orient || !g->list_quat)
         return sd_error_set(p->err, SD_ERR_MEMORY, p->path, 0, "", "out of memory");
     for (size_t i = 0; i < n; ++i) {
         yaml_node_t *m = sd_seq_item(p, list, i);
@@ -934,11 +1307,41 @@ static sd_status sd_parse_list(sd_parse *p, sd_scene_generator *g, yaml_node_t *
             return st;
         sd_get(p, m, SD_SEC_SPHERE, "position", ep, &v);
         d->position = sd_v3(v.v);
-        sd_get(p, m, SD_SEC_SPHERE, "radius", ep, &v);
-        d->radius = v.num;
+        /* A sphere (radius) or a body of a shape (its own, or the generator's). */
+        sd_value rv;
+        int has_radius = sd_get(p, m, SD_SEC_SPHERE, "radius", ep, &rv);
+        g->list_shape[i] = -1;
+        if (sd_get(p, m, SD_SEC_SPHERE, "shape", ep, &v)) {
+            if (has_radius)
+                return sd_fail(p, v.line, sd_kp(key, sizeof key, ep, "shape"),
+                               "give either radius (a sphere) or shape, not both (radius is at "
+                               "line %d)",
+                               rv.line);
+            if ((st = sd_shape_ref(p, v.str, v.line, sd_kp(key, sizeof key, ep, "shape"),
+                                   &g->list_shape[i])))
+                return st;
+        } else if (has_radius) {
+            d->radius = rv.num;
+        } else if (g->shape >= 0) {
+            g->list_shape[i] = g->shape;
+        } else {
+            return sd_fail(p, sd_line(m), sd_kp(key, sizeof key, ep, "radius"),
+                           "missing required key 'radius' (or shape: NAME, here or as the "
+                           "generator's shape)");
+        }
+        g->list_orient[i] = g->orient;
+        memcpy(g->list_quat[i], g->quat, sizeof g->list_quat[i]);
+        if (sd_get(p, m, SD_SEC_SPHERE, "orientation", ep, &v)) {
+            if (g->list_shape[i] < 0)
+                return sd_fail(p, v.line, sd_kp(key, sizeof key, ep, "orientation"),
+                               "orientation applies to bodies of a shape only (a sphere has none)");
+            g->list_orient[i] = (sd_scene_orient)v.choice;
+            memcpy(g->list_quat[i], v.q, sizeof g->list_quat[i]);
+        }
         d->velocity = sd_get(p, m, SD_SEC_SPHERE, "velocity", ep, &v) ? sd_v3(v.v) : g->velocity;
-        sd_get(p, m, SD_SEC_SPHERE, "angular_velocity", ep, &v);
-        d->angular_velocity = sd_v3(v.v);
+        d->angular_velocity = sd_get(p, m, SD_SEC_SPHERE, "angular_velocity", ep, &v)
+                                  ? sd_v3(v.v)
+                                  : g->angular_velocity;
         if (sd_get(p, m, SD_SEC_SPHERE, "material", ep, &v)) {
             if ((st = sd_material_ref(p, v.str, v.line, sd_kp(key, sizeof key, ep, "material"),
                                       &d->material)))
@@ -999,10 +1402,36 @@ static sd_status sd_parse_particles(sd_parse *p, yaml_node_t *list, int line)
         g->velocity = sd_v3(v.v);
         sd_get(p, m, SD_SEC_PARTICLES, "velocity_jitter", path, &v);
         g->velocity_jitter = v.num;
-        if (sd_get(p, m, SD_SEC_PARTICLES, "radius", path, &v)) {
-            g->radius_min = v.lo;
-            g->radius_max = v.hi;
+        sd_get(p, m, SD_SEC_PARTICLES, "angular_velocity", path, &v);
+        g->angular_velocity = sd_v3(v.v);
+        /* Spheres (radius) or bodies of a shape (shape), exactly one. */
+        sd_value rv;
+        int has_radius = sd_get(p, m, SD_SEC_PARTICLES, "radius", path, &rv);
+        if (has_radius) {
+            g->radius_min = rv.lo;
+            g->radius_max = rv.hi;
         }
+        g->shape = -1;
+        if (sd_get(p, m, SD_SEC_PARTICLES, "shape", path, &v)) {
+            sd_kp(key, sizeof key, path, "shape");
+            if (has_radius)
+                return sd_fail(p, v.line, key,
+                               "give either radius (spheres) or shape (bodies of a shape), not "
+                               "both (radius is at line %d)",
+                               rv.line);
+            if ((st = sd_shape_ref(p, v.str, v.line, key, &g->shape)))
+                return st;
+        } else if (!has_radius && g->kind != SD_GEN_LIST && g->kind != SD_GEN_CSV) {
+            return sd_fail(p, g->line, sd_kp(key, sizeof key, path, "radius"),
+                           "missing required key 'radius' (or shape: NAME for bodies of a shape)");
+        }
+        sd_value ov;
+        int has_orient = sd_get(p, m, SD_SEC_PARTICLES, "orientation", path, &ov);
+        g->orient = has_orient ? (sd_scene_orient)ov.choice : SD_ORIENT_RANDOM;
+        memcpy(g->quat, ov.q, sizeof g->quat);
+        if (has_orient && g->shape < 0 && g->kind != SD_GEN_LIST)
+            return sd_fail(p, ov.line, sd_kp(key, sizeof key, path, "orientation"),
+                           "orientation applies to bodies of a shape only (give shape: NAME)");
 
         switch (g->kind) {
         case SD_GEN_LATTICE: {
@@ -1011,6 +1440,7 @@ static sd_status sd_parse_particles(sd_parse *p, yaml_node_t *list, int line)
             sd_value sp;
             sd_get(p, m, SD_SEC_PARTICLES, "spacing", path, &sp);
             g->spacing = sd_v3(sp.v);
+            g->spacing_line = sp.line; /* a shape's bound is checked at generation */
             for (int a = 0; a < 3; ++a)
                 if (sp.v[a] < 2.0 * g->radius_max)
                     return sd_fail(p, sp.line, sd_kp(key, sizeof key, path, "spacing"),
@@ -1030,6 +1460,7 @@ static sd_status sd_parse_particles(sd_parse *p, yaml_node_t *list, int line)
             sd_get(p, m, SD_SEC_PARTICLES, "box", path, &v);
             g->box_lo = v.box_lo;
             g->box_hi = v.box_hi;
+            g->box_line = v.line;
             double ext[3] = {v.box_hi.x - v.box_lo.x, v.box_hi.y - v.box_lo.y,
                              v.box_hi.z - v.box_lo.z};
             for (int a = 0; a < 3; ++a)
@@ -1049,6 +1480,15 @@ static sd_status sd_parse_particles(sd_parse *p, yaml_node_t *list, int line)
             sd_get(p, m, SD_SEC_PARTICLES, "spheres", path, &v);
             if ((st = sd_parse_list(p, g, v.node, path, has_material)))
                 return st;
+            if (has_orient) {
+                int shaped = 0;
+                for (size_t k = 0; k < g->list_count; ++k)
+                    shaped |= g->list_shape[k] >= 0;
+                if (!shaped)
+                    return sd_fail(p, ov.line, sd_kp(key, sizeof key, path, "orientation"),
+                                   "orientation applies to bodies of a shape only (no entry has "
+                                   "a shape)");
+            }
             break;
         case SD_GEN_CSV:
             sd_get(p, m, SD_SEC_PARTICLES, "file", path, &v);
@@ -1258,6 +1698,10 @@ static sd_status sd_parse_root(sd_parse *p, yaml_node_t *root)
     sd_get(p, root, SD_SEC_ROOT, "interactions", "", &v);
     if ((st = sd_parse_interactions(p, v.node)))
         return st;
+    /* Shapes before particles: generators refer to them by name. */
+    sd_get(p, root, SD_SEC_ROOT, "shapes", "", &v);
+    if ((st = sd_parse_shapes(p, v.node)))
+        return st;
     sd_get(p, root, SD_SEC_ROOT, "particles", "", &v);
     if ((st = sd_parse_particles(p, v.node, sd_key_line(p, root, "particles"))))
         return st;
@@ -1340,7 +1784,13 @@ void sd_scene_free(sd_scene *s)
     for (size_t i = 0; i < s->generator_count; ++i) {
         sd_free(s->generators[i].list);
         sd_free(s->generators[i].list_lines);
+        sd_free(s->generators[i].list_shape);
+        sd_free(s->generators[i].list_orient);
+        sd_free(s->generators[i].list_quat);
     }
+    for (size_t i = 0; i < s->shape_count; ++i)
+        sd_free(s->shapes[i].vertices);
+    sd_free(s->shapes);
     sd_free(s->generators);
     sd_free(s->materials);
     sd_free(s->interactions);

@@ -49,6 +49,12 @@ typedef struct sd_shape {
     sd_vec3 inertia;     /* m^5, principal second moments of the swept shape per
                             unit density (moment of inertia = density * inertia) */
     sd_real min_size;    /* m, smallest outer dimension (for overlap ratios) */
+    /* Cold, host-side (set by sd_shape_make): where the principal frame sits
+     * in the frame the shape was given in (polyhedron: its vertices' frame;
+     * cone: base centre at the origin, apex up; other kinds: centred), so
+     * x_given = given_com + rotate(given_q, x_principal). */
+    sd_vec3 given_com;   /* m, centre of mass in the given frame */
+    sd_quat given_q;     /* principal frame to the given frame (identity but for polyhedra) */
 } sd_shape;
 
 /* A convex body in the world: a shape with its pose. */

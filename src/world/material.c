@@ -69,6 +69,7 @@ sd_status sd_world_mix_materials(sd_world *w, sd_error *err)
                 p->y_star = (sd_real)(1.0 / ((1 - va * va) / ma->youngs_modulus + (1 - vb * vb) / mb->youngs_modulus));
                 p->g_star = (sd_real)(1.0 / (2 * (2 - va) * (1 + va) / ma->youngs_modulus +
                                              2 * (2 - vb) * (1 + vb) / mb->youngs_modulus));
+                p->gt_over_gn = (sd_real)sqrt(4.0 * (double)p->g_star / (double)p->y_star);
             }
         }
     return SD_OK;

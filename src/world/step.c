@@ -13,6 +13,7 @@
 #include "backend/cpu/loops.h"
 #include "broad/cells.h"
 #include "core/error.h"
+#include "grid/grid.h"
 #include "world/world.h"
 
 static sd_real sd_min_radius(const sd_world *w)
@@ -32,6 +33,7 @@ static sd_status sd_world_forces(sd_world *w, sd_error *err)
             return st;
     }
     sd_cpu_pair_forces(w);
+    sd_cpu_convex_forces(w);
     sd_cpu_wall_forces(w);
     sd_cpu_gather(w);
     sd_cpu_wall_totals(w);
@@ -40,6 +42,8 @@ static sd_status sd_world_forces(sd_world *w, sd_error *err)
 
 sd_status sd_world_prepare(sd_world *w, sd_error *err)
 {
+    if (w->def.solver == SD_SOLVER_GRID) /* the dense grid-stencil solver, src/grid (seed 001) */
+        return sd_grid_prepare(w, err);
     sd_status st = sd_world_mix_materials(w, err);
     if (st != SD_OK)
         return st;
@@ -77,6 +81,8 @@ SD_PARALLEL_FOR_REDUCE_OR(bad)
 
 sd_status sd_world_step(sd_world *w, long nsteps, sd_error *err)
 {
+    if (w->def.solver == SD_SOLVER_GRID)
+        return sd_grid_step(w, nsteps, err);
     if (!w->prepared) {
         sd_status st = sd_world_prepare(w, err);
         if (st != SD_OK)

@@ -16,6 +16,7 @@
 #include "broad/cells.h"
 #include "core/alloc.h"
 #include "core/error.h"
+#include "grid/grid.h"
 #include "world/world.h"
 
 #define SD_COOKIE 0x5D5D
@@ -178,6 +179,12 @@ void sd_world_destroy(sd_world *w)
     sd_free(w->interactions);
     sd_free(w->mix);
     sd_free(w->walls);
+    sd_grid_state_free(w->grid_state);
+    sd_free(w->shapes);
+    sd_free(w->shape_names);
+    sd_free(w->shape_req);
+    sd_free(w->shape_com);
+    sd_free(w->verts);
     sd_free(w);
 }
 
@@ -292,8 +299,9 @@ sd_status sd_world_add_spheres(sd_world *w, size_t n, const sd_sphere_def *defs,
         p->inv_mass[e] = SD_R(1.0) / mass;
         p->inv_inertia[e] = sd_v3(SD_R(1.0) / inertia, SD_R(1.0) / inertia, SD_R(1.0) / inertia);
         p->x_ref[e] = p->x[e];
+        p->q_ref[e] = p->q[e];
         p->material[e] = d->material;
-        p->shape[e] = 0;
+        p->shape[e] = -1;
         p->id[e] = w->next_id++;
     }
     p->n += n;
@@ -393,6 +401,7 @@ sd_status sd_world_get_particle(const sd_world *w, size_t k, sd_particle_state *
     out->radius = (double)p->radius[k];
     out->mass = p->inv_mass[k] > 0 ? 1.0 / (double)p->inv_mass[k] : (double)INFINITY;
     out->material = p->material[k];
+    out->shape = p->shape[k];
     return SD_OK;
 }
 

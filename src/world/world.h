@@ -15,6 +15,7 @@
 #include "broad/pairs.h"
 #include "contact/params.h"
 #include "core/quat.h"
+#include "shape/shape.h"
 
 /* X(type, name, unit, meaning) — hot per-step fields first. */
 #define SD_PARTICLE_FIELDS(X)                                                           \
@@ -28,8 +29,9 @@
     X(sd_real, inv_mass, "1/kg", "inverse mass, 0 for a fixed body")                    \
     X(sd_vec3, inv_inertia, "1/(kg m^2)", "inverse principal moments, body frame")      \
     X(sd_vec3, x_ref, "m", "position at the last pair-list rebuild")                    \
+    X(sd_quat, q_ref, "-", "orientation at the last pair-list rebuild")                 \
     X(int32_t, material, "-", "material index")                                         \
-    X(int32_t, shape, "-", "shape kind (0 = sphere)")                                   \
+    X(int32_t, shape, "-", "shape template index, -1 for a plain sphere")               \
     X(uint64_t, id, "-", "stable id")
 
 typedef struct sd_particles {
@@ -87,9 +89,20 @@ struct sd_world {
     size_t wall_count;
     sd_wall *walls;
 
+    /* shape templates and the polyhedron vertex pool they index */
+    size_t shape_count;
+    sd_shape *shapes;
+    char (*shape_names)[64];
+    sd_real *shape_req;       /* m, radius of the sphere of equal volume */
+    sd_vec3 *shape_com;       /* m, centre of mass in the frame the shape was given in */
+    size_t vert_count;
+    sd_vec3 *verts;
+    int has_shapes;           /* some particle is not a plain sphere */
+
     sd_pair_list pairs;       /* particle-particle candidates */
     sd_wall_pair_list wpairs; /* particle-wall candidates */
     sd_grid grid;
+    struct sd_grid_state *grid_state; /* solver grid (src/grid), NULL otherwise */
     long rebuilds;
     int prepared;
     int dirty;                /* particles added since the last rebuild */

@@ -4,6 +4,7 @@
  * with the host C++ compiler. Add every new SD_HD header here. */
 #include "contact/law.h"
 #include "contact/pair.h"
+#include "contact/pair_convex.h"
 #include "contact/params.h"
 #include "core/base.h"
 #include "core/mat3.h"
@@ -11,7 +12,13 @@
 #include "core/rng.h"
 #include "core/vec.h"
 #include "dynamics/integrate.h"
+#include "geom/convex_contact.h"
+#include "geom/epa.h"
+#include "geom/gjk.h"
+#include "geom/hull.h"
 #include "geom/sphere.h"
+#include "shape/shape.h"
+#include "shape/support.h"
 
 #if defined(__CUDACC__)
 #define SD_KERNEL __global__
@@ -33,7 +40,7 @@ SD_KERNEL void sd_check_pairs(const sd_pair_params *prm, const sd_body *a, const
     out[k] = sd_pair_spheres(prm, &a[k], &b[k], &ds[k], dt);
     sd_contact_geom g;
     int touching = sd_sphere_box_face(a[k].x, a[k].radius, 2, SD_R(0.0), SD_R(1.0), sd_v3_zero(), sd_v3_zero(), &g);
-    sd_pair_result wr = sd_pair_sphere_wall(prm, &a[k], &g, touching, &ds[k], dt);
+    sd_pair_result wr = sd_pair_wall(prm, &a[k], &g, touching, a[k].radius, &ds[k], dt);
     out[k].f = sd_v3_add(out[k].f, wr.f);
     if (sd_sphere_plane(a[k].x, a[k].radius, sd_v3_zero(), sd_v3(0, 0, 1), &g))
         out[k].delta += g.delta;

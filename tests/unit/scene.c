@@ -1,5 +1,7 @@
 /* scene.c — the scene module: parsing with values and defaults, the
- * four generators, building a world, the key table and its docs, and a
+ * four generators, shape templates and bodies of shapes (every type, OBJ
+ * and STL vertices, uniform random orientations), building a world, the
+ * key table and its docs, and a
  * table of bad scenes that must each fail with SD_ERR_INPUT at the right
  * line and key.
  *
@@ -196,7 +198,7 @@ static void test_good_scene(void)
 
     /* Generated spheres, in id order. */
     sd_scene_spheres sp;
-    st = sd_scene_generate(s, &sp, &err);
+    st = sd_scene_generate(s, NULL, &sp, &err);
     sd_test_require(st == SD_OK, "generate", &err);
     CHECK(sp.count == 60 + 2 + 2 + 200);
     int lattice_ok = 1;
@@ -267,7 +269,7 @@ static void gen_random(int seed, double rmin, double rmax, int n, sd_scene_spher
     sd_error err;
     snprintf(text, sizeof text, random_scene, seed, rmin, rmax, n);
     sd_test_require(load(text, NULL, &s, &err) == SD_OK, "load random scene", &err);
-    sd_test_require(sd_scene_generate(s, sp, &err) == SD_OK, "generate random", &err);
+    sd_test_require(sd_scene_generate(s, NULL, sp, &err) == SD_OK, "generate random", &err);
     sd_scene_free(s);
 }
 
@@ -315,6 +317,366 @@ static void test_random(void)
     CHECK(a.count == 100000);
     CHECK(sd_scene_find_overlap(a.count, a.defs, 0.0, &i, &j) == 0);
     sd_scene_spheres_free(&a);
+}
+
+/* ---- shapes: every type, generators of bodies, orientations ------------ */
+
+static const char *shape_scene =
+    "simulation:\n"                                   /* 1 */
+    "  dt: 1.0e-6\n"
+    "  steps: 10\n"
+    "  seed: 3\n"
+    "materials:\n"                                    /* 5 */
+    "  - name: glass\n"
+    "    density: 2500\n"
+    "    youngs_modulus: 1.0e7\n"
+    "shapes:\n"                                       /* 9 */
+    "  - name: ball\n"                                /* 10 */
+    "    type: sphere\n"
+    "    radius: 0.001\n"
+    "  - name: brick\n"                               /* 13 */
+    "    type: box\n"
+    "    size: [0.002, 0.001, 0.0015]\n"
+    "    rounding: 0.0001\n"
+    "  - name: rod\n"                                 /* 17 */
+    "    type: cylinder\n"
+    "    diameter: 0.001\n"
+    "    length: 0.003\n"
+    "  - name: peak\n"                                /* 21 */
+    "    type: cone\n"
+    "    size: [0.002, 0.002, 0.002]\n"
+    "    margin: 0.0001\n"
+    "  - name: egg\n"                                 /* 25 */
+    "    type: ellipsoid\n"
+    "    semi_axes: [0.001, 0.0008, 0.0006]\n"
+    "    scale: 2\n"
+    "  - name: tetra\n"                               /* 29 */
+    "    type: polyhedron\n"
+    "    vertices: [[0, 0, 0], [0.002, 0, 0], [0, 0.002, 0], [0, 0, 0.002]]\n"
+    "  - name: mesh\n"                                /* 32 */
+    "    type: polyhedron\n"
+    "    file: cube.obj\n"
+    "    scale: 0.001\n"
+    "particles:\n"                                    /* 36 */
+    "  - generator: lattice\n"                        /* 37 */
+    "    material: glass\n"
+    "    shape: brick\n"
+    "    origin: [0, 0, 0.01]\n"
+    "    spacing: 0.005\n"
+    "    count: [3, 3, 2]\n"
+    "  - generator: random\n"                         /* 43 */
+    "    material: glass\n"
+    "    shape: egg\n"
+    "    box: {min: [0.02, 0, 0.01], max: [0.05, 0.03, 0.04]}\n"
+    "    number: 20\n"
+    "    angular_velocity: [0, 0, 5]\n"
+    "  - generator: list\n"                           /* 49 */
+    "    material: glass\n"
+    "    shape: rod\n"
+    "    orientation: identity\n"
+    "    spheres:\n"
+    "      - {position: [0, 0.04, 0.01]}\n"          /* 54 */
+    "      - {position: [0.006, 0.04, 0.01], shape: peak, orientation: [2, 0, 0, 0]}\n"
+    "      - {position: [0.012, 0.04, 0.01], radius: 0.001}\n"
+    "      - {position: [0.018, 0.04, 0.01], shape: tetra, orientation: random}\n"
+    "      - {position: [0.024, 0.04, 0.01], shape: mesh}\n"
+    "      - {position: [0.03, 0.04, 0.01], shape: ball, angular_velocity: [1, 0, 0]}\n"
+    "  - generator: lattice\n"                        /* 60 */
+    "    material: glass\n"
+    "    radius: 0.001\n"
+    "    origin: [0, 0.06, 0.01]\n"
+    "    spacing: 0.0025\n"
+    "    count: [2, 2, 2]\n"
+    "walls:\n"
+    "  - {type: plane, point: [0, 0, 0], normal: [0, 0, 1], material: glass}\n";
+
+/* A cube of edge 2 (before scale), with the lines an exporter writes. */
+static const char *cube_obj =
+    "# cube\n"
+    "o cube\n"
+    "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\n"
+    "v -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
+    "vn 0 0 1\nvt 0 0\n"
+    "f 1 2 3 4\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+
+/* Bounding radii handed to sd_scene_generate without a world. */
+static const double fake_bound[7] = {0.001, 0.0013, 0.0016, 0.0015, 0.002, 0.0017, 0.0018};
+
+static void write_side_file(const char *name, const void *data, size_t n)
+{
+    char path[192];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    FILE *f = fopen(path, "wb");
+    sd_test_require(f != NULL, path, NULL);
+    fwrite(data, 1, n, f);
+    fclose(f);
+}
+
+static void remove_side_file(const char *name)
+{
+    char path[192];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    remove(path);
+}
+
+static double quat_norm(const double q[4])
+{
+    return sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+}
+
+static int is_identity(const double q[4])
+{
+    return q[0] == 1.0 && q[1] == 0.0 && q[2] == 0.0 && q[3] == 0.0;
+}
+
+static void test_shapes(void)
+{
+    printf("shapes: every type, bodies, orientations\n");
+    write_side_file("cube.obj", cube_obj, strlen(cube_obj));
+    sd_scene *s;
+    sd_error err;
+    sd_status st = load(shape_scene, NULL, &s, &err);
+    if (st != SD_OK)
+        print_err("load", &err);
+    sd_test_require(st == SD_OK, "load the shape scene", &err);
+
+    CHECK(s->shape_count == 7);
+    const sd_scene_shape *sh = s->shapes;
+    CHECK(!strcmp(sh[0].name, "ball") && sh[0].kind == 0 && sh[0].size.x == 0.001 && sh[0].line == 10);
+    CHECK(sh[1].kind == 1 && sh[1].size.x == 0.002 && sh[1].size.y == 0.001 && sh[1].size.z == 0.0015);
+    CHECK(sh[1].rounding == 0.0001 && sh[1].margin == 0.0 && sh[1].scale == 1.0);
+    CHECK(sh[2].kind == 2 && sh[2].size.x == 0.001 && sh[2].size.y == 0.001 && sh[2].size.z == 0.003);
+    CHECK(sh[3].kind == 3 && sh[3].size.z == 0.002 && sh[3].margin == 0.0001 && sh[3].rounding == 0.0);
+    CHECK(sh[4].kind == 4 && sh[4].size.y == 0.0008 && sh[4].scale == 2.0);
+    CHECK(sh[5].kind == 5 && sh[5].vertex_count == 4 && sh[5].vertices[1].x == 0.002);
+    CHECK(sh[6].kind == 5 && sh[6].vertex_count == 8 && sh[6].scale == 0.001 && sh[6].file[0]);
+
+    CHECK(s->generator_count == 4);
+    const sd_scene_generator *lat = &s->generators[0], *rnd = &s->generators[1],
+                             *lst = &s->generators[2], *sph = &s->generators[3];
+    CHECK(lat->shape == 1 && lat->orient == SD_ORIENT_RANDOM && lat->spacing_line == 41);
+    CHECK(rnd->shape == 4 && rnd->angular_velocity.z == 5.0 && rnd->box_line == 46);
+    CHECK(lst->shape == 2 && lst->orient == SD_ORIENT_IDENTITY && lst->list_count == 6);
+    CHECK(lst->list_shape[0] == 2 && lst->list_shape[1] == 3 && lst->list_shape[2] == -1);
+    CHECK(lst->list_shape[3] == 5 && lst->list_shape[4] == 6 && lst->list_shape[5] == 0);
+    CHECK(lst->list_orient[1] == SD_ORIENT_FIXED && lst->list_quat[1][0] == 1.0);
+    CHECK(lst->list_orient[3] == SD_ORIENT_RANDOM && lst->list_orient[4] == SD_ORIENT_IDENTITY);
+    CHECK(sph->shape == -1 && sph->radius_max == 0.001);
+
+    /* Generation: bounding radii stand in for the radius, shapes and
+     * orientations travel with each particle. */
+    sd_scene_spheres a, b;
+    st = sd_scene_generate(s, fake_bound, &a, &err);
+    sd_test_require(st == SD_OK, "generate shapes", &err);
+    CHECK(a.count == 18 + 20 + 6 + 8);
+    int ok = 1;
+    for (size_t k = 0; k < 18; ++k)
+        ok &= a.shape[k] == 1 && a.defs[k].radius == fake_bound[1] &&
+              fabs(quat_norm(a.quat[k]) - 1.0) < 1e-12 && !is_identity(a.quat[k]);
+    for (size_t k = 18; k < 38; ++k)
+        ok &= a.shape[k] == 4 && a.defs[k].radius == fake_bound[4] &&
+              a.defs[k].angular_velocity.z == 5.0 && fabs(quat_norm(a.quat[k]) - 1.0) < 1e-12;
+    CHECK(ok);
+    static const int list_shapes[6] = {2, 3, -1, 5, 6, 0};
+    ok = 1;
+    for (size_t k = 0; k < 6; ++k) {
+        size_t q = 38 + k;
+        ok &= a.shape[q] == list_shapes[k] && a.entry[q] == (int)k && a.line[q] == 54 + (int)k;
+        ok &= a.defs[q].radius == (list_shapes[k] >= 0 ? fake_bound[list_shapes[k]] : 0.001);
+    }
+    CHECK(ok);
+    CHECK(is_identity(a.quat[38]) && is_identity(a.quat[39]) && is_identity(a.quat[40]));
+    CHECK(!is_identity(a.quat[41]) && fabs(quat_norm(a.quat[41]) - 1.0) < 1e-12);
+    CHECK(is_identity(a.quat[42]) && a.defs[43].angular_velocity.x == 1.0);
+    ok = 1;
+    for (size_t k = 44; k < a.count; ++k)
+        ok &= a.shape[k] == -1 && a.defs[k].radius == 0.001 && is_identity(a.quat[k]);
+    CHECK(ok);
+    size_t oi, oj;
+    CHECK(sd_scene_find_overlap(a.count, a.defs, 0.0, &oi, &oj) == 0);
+    /* The same seed gives the same bodies and orientations. */
+    st = sd_scene_generate(s, fake_bound, &b, &err);
+    CHECK(st == SD_OK && b.count == a.count);
+    CHECK(memcmp(a.defs, b.defs, a.count * sizeof *a.defs) == 0);
+    CHECK(memcmp(a.quat, b.quat, a.count * sizeof *a.quat) == 0);
+    CHECK(memcmp(a.shape, b.shape, a.count * sizeof *a.shape) == 0);
+    sd_scene_spheres_free(&b);
+    /* Shapes need their bounds. */
+    CHECK(sd_scene_generate(s, NULL, &b, &err) == SD_ERR_INTERNAL);
+
+    /* The world: shapes by index, mass = density x volume, the bounding
+     * radius, the generated orientation. */
+    sd_world *w;
+    st = sd_scene_build(s, &w, &err);
+    if (st != SD_OK)
+        print_err("build", &err);
+    CHECK(st == SD_OK);
+    if (st == SD_OK) {
+        CHECK(sd_world_shape_count(w) == 7 && sd_world_find_shape(w, "egg") == 4);
+        CHECK(sd_world_particle_count(w) == a.count);
+        int match = 1;
+        for (size_t k = 0; k < a.count; ++k) {
+            sd_particle_state ps;
+            size_t idx = sd_world_find_particle(w, (uint64_t)k);
+            match &= idx != (size_t)-1 && sd_world_get_particle(w, idx, &ps) == SD_OK;
+            match &= ps.shape == a.shape[k] && ps.position.x == a.defs[k].position.x;
+            if (a.shape[k] >= 0) {
+                sd_shape_info info;
+                match &= sd_world_get_shape(w, (size_t)a.shape[k], &info) == SD_OK;
+                match &= fabs(ps.mass - 2500.0 * info.volume) <= 1e-12 * ps.mass;
+                match &= fabs(ps.radius - info.bounding_radius) <= 1e-12 * ps.radius;
+                for (int c = 0; c < 4; ++c)
+                    match &= fabs(ps.quat[c] - a.quat[k][c]) < 1e-12;
+            } else {
+                match &= fabs(ps.mass - 2500.0 * 4.0 / 3.0 * 3.14159265358979323846 * 1e-9) <= 1e-12 * ps.mass;
+            }
+            if (!match) {
+                printf("  particle %zu: shape %d (expected %d), mass %g\n", k, ps.shape, a.shape[k],
+                       ps.mass);
+                break;
+            }
+        }
+        CHECK(match);
+        sd_world_destroy(w);
+    }
+    sd_scene_spheres_free(&a);
+    sd_scene_free(s);
+
+    /* Out of memory anywhere in loading and building shapes: a clean
+     * SD_ERR_MEMORY, nothing half-made (the sanitizer build checks leaks). */
+    int oom_ok = 1, oom_seen = 0;
+    for (long n = 1; n <= 2000; ++n) {
+        sd_scene *t = NULL;
+        sd_world *tw = NULL;
+        sd_alloc_fail_after(n);
+        st = sd_scene_load(scene_path, &t, &err);
+        if (st == SD_OK) {
+            st = sd_scene_build(t, &tw, &err);
+            oom_ok &= (st == SD_OK) == (tw != NULL);
+        } else {
+            oom_ok &= t == NULL;
+        }
+        sd_alloc_fail_after(0);
+        oom_ok &= st == SD_OK || st == SD_ERR_MEMORY;
+        oom_seen += st == SD_ERR_MEMORY;
+        sd_world_destroy(tw);
+        sd_scene_free(t);
+        if (st == SD_OK)
+            break;
+    }
+    CHECK(oom_ok && oom_seen > 5);
+    remove_side_file("cube.obj");
+}
+
+/* A tetrahedron as binary and ASCII STL: 4 triangles, 12 vertices, 4 distinct. */
+static void test_stl(void)
+{
+    printf("shapes: polyhedra from STL files\n");
+    static const float tv[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    static const int tri[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+    unsigned char bin[84 + 4 * 50];
+    memset(bin, 0, sizeof bin);
+    bin[80] = 4; /* little-endian triangle count */
+    char ascii[2048];
+    size_t used = (size_t)snprintf(ascii, sizeof ascii, "solid tetra\n");
+    for (int t = 0; t < 4; ++t) {
+        used += (size_t)snprintf(ascii + used, sizeof ascii - used, " facet normal 0 0 0\n  outer loop\n");
+        for (int c = 0; c < 3; ++c) {
+            const float *p = tv[tri[t][c]];
+            for (int a = 0; a < 3; ++a) {
+                uint32_t u;
+                memcpy(&u, &p[a], 4);
+                unsigned char *q = bin + 84 + 50 * t + 12 + 12 * c + 4 * a;
+                q[0] = (unsigned char)u;
+                q[1] = (unsigned char)(u >> 8);
+                q[2] = (unsigned char)(u >> 16);
+                q[3] = (unsigned char)(u >> 24);
+            }
+            used += (size_t)snprintf(ascii + used, sizeof ascii - used, "   vertex %g %g %g\n",
+                                     (double)p[0], (double)p[1], (double)p[2]);
+        }
+        used += (size_t)snprintf(ascii + used, sizeof ascii - used, "  endloop\n endfacet\n");
+    }
+    snprintf(ascii + used, sizeof ascii - used, "endsolid tetra\n");
+    write_side_file("tb.stl", bin, sizeof bin);
+    write_side_file("ta.stl", ascii, strlen(ascii));
+    const char *text =
+        "simulation: {dt: 1e-6, steps: 1}\n"
+        "materials: [{name: a, density: 1000, youngs_modulus: 1e7}]\n"
+        "shapes:\n"
+        "  - {name: b, type: polyhedron, file: tb.stl, scale: 0.001}\n"
+        "  - {name: t, type: polyhedron, file: ta.stl, scale: 0.001}\n"
+        "particles:\n"
+        "  - {generator: list, material: a, spheres: [{position: [0, 0, 0], radius: 0.001}]}\n";
+    sd_scene *s;
+    sd_error err;
+    sd_status st = load(text, NULL, &s, &err);
+    if (st != SD_OK)
+        print_err("load", &err);
+    CHECK(st == SD_OK);
+    if (st == SD_OK) {
+        CHECK(s->shapes[0].vertex_count == 4 && s->shapes[1].vertex_count == 4);
+        int same = 1;
+        for (size_t k = 0; k < 4; ++k)
+            same &= !memcmp(&s->shapes[0].vertices[k], &s->shapes[1].vertices[k], sizeof(sd_v3d));
+        CHECK(same);
+        sd_scene_free(s);
+    }
+    remove_side_file("tb.stl");
+    remove_side_file("ta.stl");
+}
+
+/* Random orientations are uniform over rotations: the mean rotation matrix
+ * of N of them is 0 within a few / sqrt(3 N) per entry, and the mean of each
+ * squared entry is 1/3. A different seed gives different orientations. */
+static void test_random_orientation(void)
+{
+    printf("shapes: uniform random orientations\n");
+    const char *fmt = "simulation: {dt: 1e-6, steps: 1, seed: %d}\n"
+                      "materials: [{name: a, density: 1000, youngs_modulus: 1e7}]\n"
+                      "shapes: [{name: c, type: box, size: 0.001}]\n"
+                      "particles:\n"
+                      "  - {generator: lattice, material: a, shape: c, origin: [0, 0, 0],\n"
+                      "     spacing: 0.002, count: [20, 20, 10]}\n";
+    char text[512];
+    sd_scene *s;
+    sd_error err;
+    sd_scene_spheres a, b;
+    const double bound[1] = {0.00087};
+    snprintf(text, sizeof text, fmt, 9);
+    sd_test_require(load(text, NULL, &s, &err) == SD_OK, "load orientation scene", &err);
+    sd_test_require(sd_scene_generate(s, bound, &a, &err) == SD_OK, "generate", &err);
+    sd_scene_free(s);
+    snprintf(text, sizeof text, fmt, 10);
+    sd_test_require(load(text, NULL, &s, &err) == SD_OK, "load orientation scene", &err);
+    sd_test_require(sd_scene_generate(s, bound, &b, &err) == SD_OK, "generate", &err);
+    sd_scene_free(s);
+    CHECK(a.count == 4000 && b.count == 4000);
+    CHECK(memcmp(a.quat, b.quat, a.count * sizeof *a.quat) != 0);
+    double mean[3][3] = {{0}}, sq[3][3] = {{0}};
+    for (size_t k = 0; k < a.count; ++k) {
+        const double *q = a.quat[k];
+        double w = q[0], x = q[1], y = q[2], z = q[3];
+        double r[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)},
+                          {2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)},
+                          {2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)}};
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) {
+                mean[i][j] += r[i][j] / (double)a.count;
+                sq[i][j] += r[i][j] * r[i][j] / (double)a.count;
+            }
+    }
+    /* sd of a mean entry: sqrt(1 / (3 N)) = 0.009; 5 sd. */
+    double worst = 0.0, worst_sq = 0.0;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            worst = fmax(worst, fabs(mean[i][j]));
+            worst_sq = fmax(worst_sq, fabs(sq[i][j] - 1.0 / 3.0));
+        }
+    CHECK_NEAR("largest |mean rotation matrix entry|", worst, 0.0, 0.046);
+    CHECK_NEAR("largest |mean squared entry - 1/3|", worst_sq, 0.0, 0.03);
+    sd_scene_spheres_free(&a);
+    sd_scene_spheres_free(&b);
 }
 
 /* ---- the example scene in the docs, and the docs themselves ------------- */
@@ -400,6 +762,9 @@ typedef struct bad_case {
     "particles:\n  - generator: list\n    material: glass\n    spheres:\n"                          \
     "      - {position: [0, 0, 0.01], radius: 0.001}\n"                                             \
     "      - {position: [0.003, 0, 0.01], radius: 0.001}\n" /* 8-13 */
+
+/* One box shape, lines 8-9, for the shape cases. */
+#define CUBE "shapes:\n  - {name: cube, type: box, size: 0.001}\n"
 
 static const bad_case bad_cases[] = {
     {"good scene as a control", SIM MAT PARTS, NULL, 0, "", "", 0},
@@ -508,6 +873,57 @@ static const bad_case bad_cases[] = {
     {"particle through a box face", SIM MAT PARTS "walls:\n  - type: box\n    min: [-0.002, -0.002, 0]\n"
                                                   "    max: [0.0035, 0.002, 0.02]\n    material: glass\n",
      NULL, 13, "particles[0].spheres[1]", "closed xmax face", 0},
+    {"unknown shape type", SIM MAT "shapes:\n  - name: a\n    type: torus\n" PARTS, NULL, 10,
+     "shapes[0].type", "expected one of sphere, box, cylinder, cone, ellipsoid, polyhedron, got torus", 0},
+    {"shape without a size", SIM MAT "shapes:\n  - name: cube\n    type: box\n" PARTS, NULL, 9,
+     "shapes[0].size", "missing required key 'size'", 0},
+    {"cylinder with diameter only", SIM MAT "shapes:\n  - name: rod\n    type: cylinder\n"
+                                            "    diameter: 0.001\n" PARTS,
+     NULL, 9, "shapes[0].length", "missing required key 'length'", 0},
+    {"polyhedron with 3 vertices", SIM MAT "shapes:\n  - name: tri\n    type: polyhedron\n"
+                                           "    vertices: [[0, 0, 0], [1, 0, 0], [0, 1, 0]]\n" PARTS,
+     NULL, 11, "shapes[0].vertices", "at least 4 vertices", 0},
+    {"polyhedron mesh file missing", SIM MAT "shapes:\n  - name: m\n    type: polyhedron\n"
+                                             "    file: nothere.obj\n" PARTS,
+     NULL, 11, "shapes[0].file", "cannot open the mesh file", 0},
+    {"rounding and margin", SIM MAT "shapes:\n  - name: cube\n    type: box\n    size: 0.001\n"
+                                    "    rounding: 0.0001\n    margin: 0.0001\n" PARTS,
+     NULL, 13, "shapes[0].margin", "at most one of rounding and margin", 0},
+    {"radius key on a box", SIM MAT "shapes:\n  - name: cube\n    type: box\n    radius: 0.001\n" PARTS,
+     NULL, 11, "shapes[0].radius", "does not apply to a box shape", 0},
+    {"duplicate shape name", SIM MAT CUBE "  - {name: cube, type: sphere, radius: 0.001}\n" PARTS, NULL,
+     10, "shapes[1].name", "duplicate shape name 'cube'", 0},
+    {"shape and radius together", SIM MAT CUBE
+     "particles:\n  - generator: lattice\n    material: glass\n    radius: 0.001\n    shape: cube\n"
+     "    origin: [0, 0, 0]\n    spacing: 0.003\n    count: [2, 2, 2]\n",
+     NULL, 14, "particles[0].shape", "not both", 0},
+    {"neither shape nor radius", SIM MAT CUBE
+     "particles:\n  - generator: lattice\n    material: glass\n"
+     "    origin: [0, 0, 0]\n    spacing: 0.003\n    count: [2, 2, 2]\n",
+     NULL, 11, "particles[0].radius", "missing required key 'radius' (or shape", 0},
+    {"unknown shape name", SIM MAT CUBE
+     "particles:\n  - generator: random\n    material: glass\n    shape: cub\n"
+     "    box: {min: [0, 0, 0], max: [1, 1, 1]}\n    number: 5\n",
+     NULL, 13, "particles[0].shape", "unknown shape 'cub' (shapes: cube)", 0},
+    {"shape in a list entry and radius", SIM MAT CUBE
+     "particles:\n  - generator: list\n    material: glass\n    spheres:\n"
+     "      - {position: [0, 0, 0.01], radius: 0.001, shape: cube}\n",
+     NULL, 14, "particles[0].spheres[0].shape", "not both", 0},
+    {"orientation of a sphere", SIM MAT CUBE
+     "particles:\n  - generator: list\n    material: glass\n    spheres:\n"
+     "      - {position: [0, 0, 0.01], radius: 0.001, orientation: identity}\n",
+     NULL, 14, "particles[0].spheres[0].orientation", "bodies of a shape only", 0},
+    {"zero quaternion", SIM MAT CUBE
+     "particles:\n  - generator: list\n    material: glass\n    shape: cube\n    spheres:\n"
+     "      - {position: [0, 0, 0.01], orientation: [0, 0, 0, 0]}\n",
+     NULL, 15, "particles[0].spheres[0].orientation", "non-zero quaternion", 0},
+    {"shape in a csv generator", SIM MAT CUBE
+     "particles:\n  - generator: csv\n    material: glass\n    shape: cube\n    file: spheres.csv\n",
+     "x,y,z,radius\n0,0,0,0.001\n", 13, "particles[0].shape", "does not apply to a csv generator", 0},
+    {"lattice too tight for a shape", SIM MAT CUBE
+     "particles:\n  - generator: lattice\n    material: glass\n    shape: cube\n"
+     "    origin: [0, 0, 0.01]\n    spacing: 0.0015\n    count: [2, 2, 2]\n",
+     NULL, 15, "particles[0].spacing", "bounding radius of shape 'cube'", 0},
     {"time step above the stability limit", "simulation:\n  dt: 1.0e-3\n  steps: 10\n" MAT PARTS, NULL,
      2, "simulation.dt", "time step above the stability limit", 0},
 };
@@ -596,6 +1012,9 @@ int main(void)
     test_good_scene();
     test_out_of_memory();
     test_random();
+    test_shapes();
+    test_stl();
+    test_random_orientation();
     test_example_and_docs();
     test_bad_scenes();
 

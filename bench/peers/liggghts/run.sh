@@ -38,11 +38,10 @@ work=$(cd "$work" && pwd)
 data="$work/spheres-$n.data"
 log="$work/$case_name-np$procs.log"
 
-# The data file depends only on N (fixed seed), so write it once.
-if [[ ! -s "$data" ]]; then
-  { awk -v n="$n" -v seed=42 -v zmax=0.5 -f "$here/gen-data.awk" >"$data.tmp" &&
-    mv "$data.tmp" "$data"; } || fail "cannot write the data file"
-fi
+# Written afresh each time (under a second, outside the timed loop), so that it
+# always matches gen-data.awk.
+{ awk -v n="$n" -v seed=42 -v zmax=0.5 -f "$here/gen-data.awk" >"$data.tmp" &&
+  mv "$data.tmp" "$data"; } || fail "cannot write the data file"
 
 # Peak RSS: meter.sh writes one file per process into $rss_dir.
 rss_dir="$work/rss-np$procs"
@@ -71,6 +70,7 @@ loop=$(grep -m1 '^Loop time of' "$log")
 # "Loop time of X on P procs for S steps with N atoms"
 read -r wall p_got s_got n_got < <(awk '{print $4, $6, $9, $12}' <<<"$loop")
 [[ "$p_got" == "$procs" && "$s_got" == "$steps" ]] || fail "unexpected loop line: $loop"
+awk -v w="$wall" 'BEGIN {exit !(w > 0)}' || fail "loop time too short to measure: $loop"
 rss_kb=$(cat "$rss_dir"/peak-rss.* 2>/dev/null | awk '{s += $1} END {print s + 0}')
 
 awk -v c="$case_name" -v n="$n_got" -v s="$s_got" -v p="$p_got" -v w="$wall" \

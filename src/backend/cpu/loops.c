@@ -6,6 +6,7 @@
 #include "backend/cpu/loops.h"
 
 #include "contact/pair.h"
+#include "contact/pair_convex.h"
 #include "dynamics/integrate.h"
 
 static sd_body sd_body_of(const sd_particles *p, size_t k)
@@ -16,7 +17,34 @@ static sd_body sd_body_of(const sd_particles *p, size_t k)
     b.w = p->w[k];
     b.radius = p->radius[k];
     b.inv_mass = p->inv_mass[k];
+    /* spheres: contacts are central, no rotational term in the effective mass */
+    b.inv_inertia = p->shape[k] >= 0 ? p->inv_inertia[k] : sd_v3_zero();
+    b.q = p->q[k];
     return b;
+}
+
+/* The plane of a wall feature: the plane wall itself, or a closed box face
+ * (inward normal). Returns 0 when x does not project inside the face's
+ * rectangle: a shape beside a box face meets it only through the
+ * neighbouring face (box rims are not resolved for shapes). */
+static int sd_wall_feature_plane(const sd_wall *wl, int face, sd_vec3 x, sd_vec3 *p0, sd_vec3 *n)
+{
+    if (wl->kind == SD_WALL_PLANE) {
+        *p0 = wl->point;
+        *n = wl->normal;
+        return 1;
+    }
+    int axis = face / 2;
+    sd_real lo[3] = {wl->lo.x, wl->lo.y, wl->lo.z}, hi[3] = {wl->hi.x, wl->hi.y, wl->hi.z}, c[3] = {x.x, x.y, x.z};
+    for (int k = 0; k < 3; ++k)
+        if (k != axis && (c[k] < lo[k] || c[k] > hi[k]))
+            return 0;
+    sd_real nn[3] = {0, 0, 0}, pp[3] = {c[0], c[1], c[2]};
+    nn[axis] = (face & 1) ? SD_R(-1.0) : SD_R(1.0);
+    pp[axis] = (face & 1) ? hi[axis] : lo[axis];
+    *p0 = sd_v3(pp[0], pp[1], pp[2]);
+    *n = sd_v3(nn[0], nn[1], nn[2]);
+    return 1;
 }
 
 void sd_cpu_kick_drift(sd_world *w)
@@ -48,14 +76,19 @@ void sd_cpu_pair_forces(sd_world *w)
 {
     const sd_particles *p = &w->p;
     sd_pair_list *l = &w->pairs;
-    size_t n = l->n, nm = w->material_count;
+    size_t n = l->n_sphere, nm = w->material_count;
     sd_real dt = w->dt;
 SD_PARALLEL_FOR
     for (size_t e = 0; e < n; ++e) {
         uint32_t i = l->i[e], j = l->j[e];
         sd_body a = sd_body_of(p, i), b = sd_body_of(p, j);
         const sd_pair_params *prm = &w->mix[(size_t)p->material[i] * nm + (size_t)p->material[j]];
-        sd_pair_result r = sd_pair_spheres(prm, &a, &b, &l->ds[e], dt);
+        /* the spring is stored as seen from the lower stable id: storage
+         * order (hence which body is i) may flip at a rebuild, the key not */
+        int flip = p->id[i] > p->id[j];
+        sd_vec3 ds = flip ? sd_v3_neg(l->ds[e]) : l->ds[e];
+        sd_pair_result r = sd_pair_spheres(prm, &a, &b, &ds, dt);
+        l->ds[e] = flip ? sd_v3_neg(ds) : ds;
         l->f[e] = r.f;
         l->ti[e] = r.ti;
         l->tj[e] = r.tj;
@@ -77,7 +110,20 @@ SD_PARALLEL_FOR
         sd_body a = sd_body_of(p, i);
         sd_contact_geom g;
         int touching;
-        if (wl->kind == SD_WALL_PLANE) {
+        sd_real r_star = a.radius;
+        if (p->shape[i] >= 0) {
+            /* a shape: its support point against the wall's plane */
+            sd_convex c;
+            c.shape = &w->shapes[p->shape[i]];
+            c.verts = w->verts;
+            c.x = a.x;
+            c.q = p->q[i];
+            sd_vec3 p0, nw;
+            int inside = sd_wall_feature_plane(wl, l->sub[e], a.x, &p0, &nw);
+            sd_narrow_stats ns;
+            touching = inside && sd_convex_wall_geom(&c, p0, nw, &g, &ns);
+            r_star = w->shape_req[p->shape[i]];
+        } else if (wl->kind == SD_WALL_PLANE) {
             touching = sd_sphere_plane(a.x, a.radius, wl->point, wl->normal, &g);
         } else {
             int face = l->sub[e], axis = face / 2;
@@ -88,7 +134,7 @@ SD_PARALLEL_FOR
                                           wl->hi, &g);
         }
         const sd_pair_params *prm = &w->mix[(size_t)p->material[i] * nm + (size_t)wl->material];
-        sd_pair_result r = sd_pair_sphere_wall(prm, &a, &g, touching, &l->ds[e], dt);
+        sd_pair_result r = sd_pair_wall(prm, &a, &g, touching, r_star, &l->ds[e], dt);
         l->f[e] = r.f;
         l->t[e] = r.ti;
         l->c[e] = touching ? g.point : a.x;

@@ -14,6 +14,8 @@ void sd_cpu_kick(sd_world *w);
 void sd_cpu_pair_forces(sd_world *w);
 /* Force and torque of every particle-wall pair, into the wall pair list. */
 void sd_cpu_wall_forces(sd_world *w);
+/* Force and torques of every pair that involves a shape template. */
+void sd_cpu_convex_forces(sd_world *w);
 /* Each particle sums its pairs in list order (deterministic reduction). */
 void sd_cpu_gather(sd_world *w);
 /* Total force and torque on each wall, summed in pair order. */

@@ -1,0 +1,194 @@
+/* gjk_micro.c — micro-benchmark of the convex narrow phase: GJK distance,
+ * and GJK + EPA through sd_convex_collide (geom/convex_contact.h), on fixed
+ * random pairs per shape pair, one core. Prints pairs per second.
+ *
+ * Invariant: the pairs are a pure function of the seed (sd_rng), so runs on
+ * one machine compare; each measurement keeps the best of several repeats
+ * (bench/README.md: benchmarks keep the best, tests never time).
+ * Seed 004 §2.5 (shrink / GJK / swell), seed 002 Table 1 (support calls).
+ *
+ * Build (header-only numerics; needs no library):
+ *   cc -std=c17 -O2 -march=native -Isrc -Iinclude bench/gjk_micro.c -lm -o build-release/gjk_micro
+ * or in CMake: add_executable(gjk_micro bench/gjk_micro.c) with
+ *   target_include_directories(gjk_micro PRIVATE src include) and target_link_libraries(gjk_micro m).
+ * Run: gjk_micro [pairs per type, default 4096] [repeats, default 5]
+ */
+#define _POSIX_C_SOURCE 199309L
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "core/rng.h"
+#include "geom/convex_contact.h"
+
+#define POOL_MAX (1 << 20)
+static sd_vec3 pool[POOL_MAX];
+static uint32_t pool_n;
+
+static double now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static sd_vec3 rand_unit(sd_rng *r)
+{
+    sd_vec3 p;
+    do {
+        p = sd_v3(sd_rng_range(r, -1, 1), sd_rng_range(r, -1, 1), sd_rng_range(r, -1, 1));
+    } while (sd_v3_norm2(p) > 1 || sd_v3_norm2(p) < 1e-4);
+    return sd_v3_normalize(p);
+}
+
+static sd_quat rand_quat(sd_rng *r)
+{
+    double u1 = sd_rng_uniform(r), u2 = 2 * SD_PI_D * sd_rng_uniform(r), u3 = 2 * SD_PI_D * sd_rng_uniform(r);
+    double s1 = sqrt(1 - u1), s2 = sqrt(u1);
+    return sd_quat_make(s2 * cos(u3), s1 * sin(u2), s1 * cos(u2), s2 * sin(u3));
+}
+
+/* kind: SD_SHAPE_*; radius: the swept radius (rounded shapes) */
+static sd_shape make_shape(sd_rng *r, int kind, double radius)
+{
+    sd_shape s;
+    memset(&s, 0, sizeof s);
+    s.kind = kind;
+    s.radius = radius;
+    double z = sd_rng_range(r, 0.3, 0.5);
+    s.a = sd_v3(z * sd_rng_range(r, 0.6, 1), z * sd_rng_range(r, 0.6, 1), z * sd_rng_range(r, 0.6, 1));
+    switch (kind) {
+    case SD_SHAPE_SPHERE:
+        s.a = sd_v3_zero();
+        s.radius = z;
+        s.bound = z;
+        break;
+    case SD_SHAPE_BOX:
+        s.bound = sd_v3_norm(s.a) + radius;
+        break;
+    case SD_SHAPE_CYLINDER:
+        s.a.y = s.a.x;
+        s.bound = sqrt(s.a.x * s.a.x + s.a.z * s.a.z) + radius;
+        break;
+    case SD_SHAPE_CONE:
+        s.a.y = s.a.x;
+        s.a.z *= 2;
+        s.offset = sd_v3(0, 0, -0.25 * s.a.z);
+        s.bound = sd_max(0.75 * s.a.z, sqrt(s.a.x * s.a.x + 0.0625 * s.a.z * s.a.z)) + radius;
+        break;
+    case SD_SHAPE_ELLIPSOID:
+        s.bound = sd_max(s.a.x, sd_max(s.a.y, s.a.z)) + radius;
+        break;
+    default: { /* polyhedron: 20 points on a squashed sphere */
+        int n = 20;
+        s.vstart = pool_n;
+        s.vcount = (uint32_t)n;
+        double b = 0;
+        for (int i = 0; i < n; ++i) {
+            sd_vec3 p = sd_v3_mul(rand_unit(r), s.a);
+            pool[pool_n++] = p;
+            b = sd_max(b, sd_v3_norm(p));
+        }
+        s.bound = b + radius;
+    }
+    }
+    return s;
+}
+
+typedef struct pair_set {
+    const char *name;
+    int ka, kb;
+    double ra, rb;
+} pair_set;
+
+int main(int argc, char **argv)
+{
+    int n = argc > 1 ? atoi(argv[1]) : 4096;
+    int reps = argc > 2 ? atoi(argv[2]) : 5;
+    if (n < 1 || reps < 1)
+        return 1;
+    const pair_set sets[] = {
+        {"sphere-sphere (point cores)", SD_SHAPE_SPHERE, SD_SHAPE_SPHERE, 0, 0},
+        {"box-box", SD_SHAPE_BOX, SD_SHAPE_BOX, 0, 0},
+        {"rounded box-box (r=0.05)", SD_SHAPE_BOX, SD_SHAPE_BOX, 0.05, 0.05},
+        {"polyhedron-polyhedron (20 v)", SD_SHAPE_POLYHEDRON, SD_SHAPE_POLYHEDRON, 0, 0},
+        {"box-polyhedron", SD_SHAPE_BOX, SD_SHAPE_POLYHEDRON, 0, 0},
+        {"sphere-box", SD_SHAPE_SPHERE, SD_SHAPE_BOX, 0, 0},
+        {"cylinder-cone", SD_SHAPE_CYLINDER, SD_SHAPE_CONE, 0, 0},
+        {"ellipsoid-ellipsoid", SD_SHAPE_ELLIPSOID, SD_SHAPE_ELLIPSOID, 0, 0},
+        {"rounded ellipsoid-ellipsoid (r=0.05)", SD_SHAPE_ELLIPSOID, SD_SHAPE_ELLIPSOID, 0.05, 0.05},
+    };
+    const int nsets = (int)(sizeof sets / sizeof sets[0]);
+    sd_shape *sa = malloc(sizeof(sd_shape) * (size_t)n), *sb = malloc(sizeof(sd_shape) * (size_t)n);
+    sd_convex *A = malloc(sizeof(sd_convex) * (size_t)n), *B = malloc(sizeof(sd_convex) * (size_t)n);
+    sd_vec3 *warm = malloc(sizeof(sd_vec3) * (size_t)n);
+    if (!sa || !sb || !A || !B || !warm)
+        return 1;
+    printf("gjk_micro: %d fixed random pairs per type, best of %d, one core\n", n, reps);
+    printf("%-38s %8s %10s %12s %12s %12s %8s\n", "pair type", "overlap", "cores ovl", "GJK pairs/s", "collide/s", "warm/s",
+           "sup/pair");
+    volatile double sink = 0;
+    for (int t = 0; t < nsets; ++t) {
+        sd_rng r = sd_rng_seed(1000u + (uint64_t)t);
+        pool_n = 0;
+        for (int i = 0; i < n; ++i) {
+            sa[i] = make_shape(&r, sets[t].ka, sets[t].ra);
+            sb[i] = make_shape(&r, sets[t].kb, sets[t].rb);
+        }
+        for (int i = 0; i < n; ++i) {
+            /* centres 0.5–1.0 of the summed bounding radii apart: about half
+             * the pairs touch, as in a dense packing's candidate list */
+            double sep = sd_rng_range(&r, 0.5, 1.0) * (sa[i].bound + sb[i].bound);
+            A[i].shape = &sa[i];
+            B[i].shape = &sb[i];
+            A[i].verts = B[i].verts = pool;
+            A[i].x = sd_v3_zero();
+            B[i].x = sd_v3_scale(rand_unit(&r), sep);
+            A[i].q = rand_quat(&r);
+            B[i].q = rand_quat(&r);
+        }
+        int touching = 0, core_ovl = 0;
+        long sup = 0;
+        for (int i = 0; i < n; ++i) {
+            warm[i] = sd_v3_zero();
+            sd_convex_contact c = sd_convex_collide(&A[i], &B[i], &warm[i]);
+            touching += c.touching;
+            core_ovl += c.used_epa;
+            sup += c.support_calls;
+        }
+        double best_gjk = 1e300, best_col = 1e300, best_warm = 1e300;
+        for (int k = 0; k < reps; ++k) {
+            double t0 = now();
+            for (int i = 0; i < n; ++i) {
+                sd_gjk_result g = sd_gjk_distance(&A[i], &B[i], sd_v3_zero());
+                sink += g.distance;
+            }
+            double t1 = now();
+            for (int i = 0; i < n; ++i) {
+                sd_convex_contact c = sd_convex_collide(&A[i], &B[i], NULL);
+                sink += c.delta;
+            }
+            double t2 = now();
+            for (int i = 0; i < n; ++i) { /* warm start from the previous pass (a static pair) */
+                sd_convex_contact c = sd_convex_collide(&A[i], &B[i], &warm[i]);
+                sink += c.delta;
+            }
+            double t3 = now();
+            best_gjk = sd_min(best_gjk, t1 - t0);
+            best_col = sd_min(best_col, t2 - t1);
+            best_warm = sd_min(best_warm, t3 - t2);
+        }
+        printf("%-38s %7.0f%% %9.0f%% %12.3g %12.3g %12.3g %8.2f\n", sets[t].name, 100.0 * touching / n,
+               100.0 * core_ovl / n, n / best_gjk, n / best_col, n / best_warm, (double)sup / n);
+    }
+    printf("(GJK pairs/s: sd_gjk_distance alone; collide/s: sd_convex_collide, GJK + EPA where the cores overlap,\n"
+           " cold start; warm/s: the same with each pair's cached direction; sup/pair: support calls of K = A - B per\n"
+           " collide, cold)\n");
+    free(sa);
+    free(sb);
+    free(A);
+    free(B);
+    free(warm);
+    return sink == 12345.678 ? 2 : 0;
+}

@@ -1,0 +1,76 @@
+/* convex.c — CPU loops of the convex narrow phase: pairs that involve a
+ * shape template, and shapes against walls. No physics here: each item
+ * calls the single-source functions of contact/pair_convex.h.
+ */
+#include <string.h>
+
+#include "backend/cpu/loops.h"
+
+#include "contact/pair_convex.h"
+
+/* The convex view of particle k; plain spheres become point cores swept by
+ * their radius, written into *tmp. */
+static sd_convex sd_convex_of(const sd_world *w, size_t k, sd_shape *tmp)
+{
+    const sd_particles *p = &w->p;
+    sd_convex c;
+    if (p->shape[k] >= 0) {
+        c.shape = &w->shapes[p->shape[k]];
+    } else {
+        memset(tmp, 0, sizeof *tmp);
+        tmp->kind = SD_SHAPE_SPHERE;
+        tmp->radius = p->radius[k];
+        tmp->bound = p->radius[k];
+        c.shape = tmp;
+    }
+    c.verts = w->verts;
+    c.x = p->x[k];
+    c.q = p->q[k];
+    return c;
+}
+
+/* Radius of the sphere of the same volume: the R* of Hertz for shapes. */
+static sd_real sd_equivalent_radius(const sd_world *w, size_t k)
+{
+    int s = w->p.shape[k];
+    return s >= 0 ? w->shape_req[s] : w->p.radius[k];
+}
+
+static sd_body sd_body_at(const sd_particles *p, size_t k)
+{
+    sd_body b;
+    b.x = p->x[k];
+    b.v = p->v[k];
+    b.w = p->w[k];
+    b.radius = p->radius[k];
+    b.inv_mass = p->inv_mass[k];
+    b.inv_inertia = p->shape[k] >= 0 ? p->inv_inertia[k] : sd_v3_zero();
+    b.q = p->q[k];
+    return b;
+}
+
+void sd_cpu_convex_forces(sd_world *w)
+{
+    const sd_particles *p = &w->p;
+    sd_pair_list *l = &w->pairs;
+    size_t n0 = l->n_sphere, n = l->n, nm = w->material_count;
+    sd_real dt = w->dt;
+SD_PARALLEL_FOR_DYNAMIC
+    for (size_t e = n0; e < n; ++e) {
+        uint32_t i = l->i[e], j = l->j[e];
+        sd_shape si, sj;
+        sd_convex ci = sd_convex_of(w, i, &si), cj = sd_convex_of(w, j, &sj);
+        sd_body a = sd_body_at(p, i), b = sd_body_at(p, j);
+        const sd_pair_params *prm = &w->mix[(size_t)p->material[i] * nm + (size_t)p->material[j]];
+        sd_real ra = sd_equivalent_radius(w, i), rb = sd_equivalent_radius(w, j);
+        sd_narrow_stats ns;
+        sd_pair_result r = sd_pair_convex(prm, &a, &b, &ci, &cj, ra * rb / (ra + rb), &l->ds[e], &l->warm[e], dt, &ns);
+        l->f[e] = r.f;
+        l->ti[e] = r.ti;
+        l->tj[e] = r.tj;
+        l->delta[e] = r.delta;
+        l->energy[e] = r.energy;
+        l->iters[e] = ns.iterations;
+        l->supports[e] = ns.supports;
+    }
+}

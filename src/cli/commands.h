@@ -1,0 +1,11 @@
+/* commands.h — the subcommands of the shapedem program. */
+#ifndef SD_CLI_COMMANDS_H
+#define SD_CLI_COMMANDS_H
+
+#include <shapedem/shapedem.h>
+
+/* Prints "shapedem: file:line: key: message" and returns exit status 2. */
+int sd_cli_fail_input(const sd_error *err);
+int sd_cmd_shape(int argc, char **argv);
+
+#endif

@@ -1,0 +1,48 @@
+/* pair_convex.h — one contact between bodies of which at least one is a
+ * shape template: the convex narrow phase (shrink / GJK / swell, EPA when
+ * the cores overlap; seed 004 §2.5) gives the contact geometry, then the
+ * same law as spheres (pair.h). Single source (SD_HD).
+ */
+#ifndef SD_CONTACT_PAIR_CONVEX_H
+#define SD_CONTACT_PAIR_CONVEX_H
+
+#include "contact/pair.h"
+#include "geom/convex_contact.h"
+
+/* Narrow-phase statistics of one evaluation. */
+typedef struct sd_narrow_stats {
+    int32_t iterations, supports;
+} sd_narrow_stats;
+
+SD_HD static SD_INLINE sd_pair_result sd_pair_convex(const sd_pair_params *prm, const sd_body *a, const sd_body *b,
+                                                     const sd_convex *ca, const sd_convex *cb, sd_real r_star,
+                                                     sd_vec3 *ds, sd_vec3 *warm, sd_real dt, sd_narrow_stats *ns)
+{
+    sd_convex_contact c = sd_convex_collide(ca, cb, warm);
+    ns->iterations = c.iterations;
+    ns->supports = c.support_calls;
+    if (!c.touching)
+        return sd_pair_none(SD_R(0.0), ds);
+    sd_contact_geom g;
+    g.n = c.n;
+    g.point = c.point;
+    g.delta = c.delta;
+    return sd_pair_apply(prm, a, b, &g, r_star, ds, dt);
+}
+
+/* A shape against a half-space wall (point p0, unit normal nw into free space). */
+SD_HD static SD_INLINE int sd_convex_wall_geom(const sd_convex *ca, sd_vec3 p0, sd_vec3 nw, sd_contact_geom *g,
+                                               sd_narrow_stats *ns)
+{
+    sd_convex_contact c = sd_convex_plane(ca, p0, nw);
+    ns->iterations = 0;
+    ns->supports = c.support_calls;
+    if (!c.touching)
+        return 0;
+    g->n = c.n;
+    g->point = c.point;
+    g->delta = c.delta;
+    return 1;
+}
+
+#endif

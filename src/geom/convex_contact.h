@@ -1,0 +1,175 @@
+/* convex_contact.h — contact geometry (normal, point, overlap) of two posed
+ * convex bodies, and of one body against a half-space wall.
+ * Single source (SD_HD): C17 and CUDA C++, no allocation, no printing.
+ *
+ * What: seed 004 §2.5 shrink / GJK / swell. Every shape is a convex core
+ * swept by a sphere of radius r (shape.h). GJK measures the core distance d;
+ * while d < ra + rb the swept bodies overlap by δ = ra + rb − d along
+ * n = (pa − pb)/d, exactly, with no EPA (n is taken from GJK's v = pa − pb). Only when the cores themselves
+ * touch or overlap does EPA give the core depth D, and then δ = D + ra + rb
+ * along EPA's normal (DESIGN.md note "GJK/EPA"; notes/algorithms.md §C).
+ *
+ * Invariants: n is unit and points from b to a (moving a along n reduces the
+ * overlap); the contact point lies halfway between the two outer surfaces
+ * along n: with pa, pb the witness (or deepest) points of the cores, A's
+ * outer surface there is pa − ra·n and B's is pb + rb·n, and
+ *     point = ½ (pa − ra·n + pb + rb·n).
+ * In both branches (pa − ra·n) − (pb + rb·n) = −δ·n. Nothing is NaN, even
+ * for coincident point cores (two spheres at one centre: n = +z).
+ */
+#ifndef SD_GEOM_CONVEX_CONTACT_H
+#define SD_GEOM_CONVEX_CONTACT_H
+
+#include "geom/epa.h"
+
+typedef struct sd_convex_contact {
+    int touching;  /* 1 when the swept bodies overlap (delta > 0) */
+    sd_vec3 n;     /* unit, from b to a */
+    sd_vec3 point; /* m, midway through the overlap */
+    sd_real delta; /* m, overlap > 0 (negative: the gap, when GJK measured one) */
+    int used_epa;  /* the cores overlapped: EPA gave the depth */
+    int iterations, support_calls; /* GJK + EPA together */
+    int status;     /* sd_gjk_status of the core distance */
+    int epa_status; /* sd_epa_status when used_epa, else -1 */
+} sd_convex_contact;
+
+/* Contact of the swept bodies a and b. warm_dir (may be NULL) holds the
+ * pair's cached GJK direction; it is read as the start and updated. */
+SD_HD static SD_INLINE sd_convex_contact sd_convex_collide(const sd_convex *a, const sd_convex *b, sd_vec3 *warm_dir)
+{
+    sd_convex_contact c;
+    const sd_real ra = a->shape->radius, rb = b->shape->radius;
+    sd_gjk_result g = sd_gjk_distance(a, b, warm_dir ? *warm_dir : sd_v3_zero());
+    if (warm_dir)
+        *warm_dir = g.dir;
+    c.status = g.status;
+    c.epa_status = -1;
+    c.used_epa = 0;
+    c.iterations = g.iterations;
+    c.support_calls = g.support_calls;
+    c.touching = 0;
+    c.n = sd_v3(SD_R(0.0), SD_R(0.0), SD_R(1.0));
+    c.point = sd_v3_scale(sd_v3_add(a->x, b->x), SD_R(0.5));
+    c.delta = SD_R(0.0);
+    if (g.status == SD_GJK_DEGENERATE)
+        return c;
+
+    sd_vec3 pa = g.pa, pb = g.pb;
+    if (g.status == SD_GJK_SEPARATED || g.status == SD_GJK_MAX_ITER) {
+        /* shrink / GJK / swell: exact while the cores stay apart */
+        sd_real d = g.distance;
+        c.delta = ra + rb - d;
+        /* n from v = −dir, which GJK keeps exactly; pa − pb carries the
+         * rounding of the barycentric weights */
+        if (d > SD_R(0.0))
+            c.n = sd_v3_normalize(sd_v3_neg(g.dir));
+    } else {
+        /* the cores touch or overlap: EPA on the cores */
+        sd_epa_result e = sd_epa_penetration(a, b, &g);
+        c.used_epa = 1;
+        c.epa_status = e.status;
+        c.iterations += e.iterations;
+        c.support_calls += e.support_calls;
+        c.delta = e.depth + ra + rb;
+        c.n = e.normal;
+        pa = e.pa;
+        pb = e.pb;
+    }
+    c.touching = c.delta > SD_R(0.0);
+    c.point = sd_v3_scale(sd_v3_add(sd_v3_madd(pa, -ra, c.n), sd_v3_madd(pb, rb, c.n)), SD_R(0.5));
+    return c;
+}
+
+/* Body-frame point p of a's core in the world (the pose convention of
+ * shape.h: the core's reference point sits at `offset` in the principal frame). */
+SD_HD static SD_INLINE sd_vec3 sd_convex_core_to_world(const sd_convex *a, sd_vec3 p)
+{
+    return sd_v3_add(a->x, sd_quat_rotate(a->q, sd_v3_add(a->shape->offset, p)));
+}
+
+/* Contact of the swept body a with the half-space wall {x : (x − p0)·nplane < 0}
+ * (nplane unit, pointing into free space; n of the result is nplane).
+ *
+ * The depth comes from the core's support point s in −nplane:
+ * δ = r − (s − p0)·nplane. The contact point is halfway through the overlap
+ * below the deepest core point — except that a FLAT face nearly parallel to
+ * the wall (box and polyhedron faces; the end caps of cylinders and the base
+ * of cones) has many deepest points, and the support function returns one of
+ * them, chosen by rounding: a box resting on a face would then jump from
+ * corner to corner and rock. So the point is taken below the centroid of all
+ * core points within 1e-9 L (L = the bounding radius) of the deepest one:
+ * the vertex centroid of the face, edge or corner for boxes and polyhedra,
+ * the cap centre for a cap tilted by less than 1e-9 L over its diameter.
+ * (For a polyhedron face the vertex centroid is not the area centroid, but it
+ * lies in the face and does not jump; the volume model handles area.) */
+SD_HD static SD_INLINE sd_convex_contact sd_convex_plane(const sd_convex *a, sd_vec3 p0, sd_vec3 nplane)
+{
+    sd_convex_contact c;
+    const sd_shape *sh = a->shape;
+    const sd_real r = sh->radius;
+    const sd_real L = sh->bound > SD_R(0.0) ? sh->bound : SD_R(1.0);
+    const sd_real tol = SD_R(1e-9) * L;
+    sd_vec3 s = SD_GJK_SUPPORT_CORE(a, sd_v3_neg(nplane));
+    c.status = sd_gjk_finite(s) ? SD_GJK_SEPARATED : SD_GJK_DEGENERATE;
+    c.epa_status = -1;
+    c.used_epa = 0;
+    c.iterations = 0;
+    c.support_calls = 1;
+    c.n = nplane;
+    if (c.status == SD_GJK_DEGENERATE) {
+        c.touching = 0;
+        c.delta = SD_R(0.0);
+        c.point = a->x;
+        return c;
+    }
+    sd_real h = sd_v3_dot(sd_v3_sub(s, p0), nplane);
+    c.delta = r - h;
+    c.touching = c.delta > SD_R(0.0);
+
+    /* the centroid of the deepest core points, in the body frame */
+    sd_vec3 nl = sd_quat_rotate_inv(a->q, nplane); /* wall normal in the body frame */
+    sd_vec3 cen = s;
+    if (sh->kind == SD_SHAPE_BOX || sh->kind == SD_SHAPE_POLYHEDRON) {
+        int nv = sh->kind == SD_SHAPE_BOX ? 8 : (int)sh->vcount;
+        sd_real hmin = SD_R(0.0);
+        for (int pass = 0; pass < 2; ++pass) {
+            sd_vec3 sum = sd_v3_zero();
+            int cnt = 0;
+            for (int i = 0; i < nv; ++i) {
+                sd_vec3 p;
+                if (sh->kind == SD_SHAPE_BOX)
+                    p = sd_v3((i & 1) ? sh->a.x : -sh->a.x, (i & 2) ? sh->a.y : -sh->a.y, (i & 4) ? sh->a.z : -sh->a.z);
+                else
+                    p = a->verts[sh->vstart + (uint32_t)i];
+                sd_real hi = sd_v3_dot(p, nl);
+                if (pass == 0) {
+                    if (i == 0 || hi < hmin)
+                        hmin = hi;
+                } else if (hi <= hmin + tol) {
+                    sum = sd_v3_add(sum, p);
+                    cnt++;
+                }
+            }
+            if (pass == 1 && cnt > 0)
+                cen = sd_convex_core_to_world(a, sd_v3_scale(sum, SD_R(1.0) / (sd_real)cnt));
+        }
+    } else if (sh->kind == SD_SHAPE_CYLINDER || sh->kind == SD_SHAPE_CONE) {
+        /* a cap of radius R tilted by angle t dips 2 R sin t across */
+        sd_real sin_t = sd_sqrt(sd_max(SD_R(0.0), SD_R(1.0) - nl.z * nl.z));
+        if (SD_R(2.0) * sh->a.x * sin_t <= tol) {
+            /* cylinder: cap at ±half length; cone: the base (at the core's
+             * reference point) when the wall is below it, else the apex */
+            sd_real zc;
+            if (sh->kind == SD_SHAPE_CYLINDER)
+                zc = nl.z > SD_R(0.0) ? -sh->a.z : sh->a.z;
+            else
+                zc = nl.z > SD_R(0.0) ? SD_R(0.0) : sh->a.z;
+            cen = sd_convex_core_to_world(a, sd_v3(SD_R(0.0), SD_R(0.0), zc));
+        }
+    }
+    sd_real hc = sd_v3_dot(sd_v3_sub(cen, p0), nplane);
+    c.point = sd_v3_madd(cen, -(hc + SD_R(0.5) * c.delta), nplane);
+    return c;
+}
+
+#endif

@@ -1,0 +1,222 @@
+/* bodies.c — shape templates and the rigid bodies made of them.
+ *
+ * A template is built once (src/shape: exact mass properties, principal
+ * frame); a body stores only its template index, its mass and principal
+ * moments (density times the template's), and its bounding radius for the
+ * broad phase.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "core/alloc.h"
+#include "core/error.h"
+#include "geom/hull.h"
+#include "shape/shape_make.h"
+#include "world/world.h"
+
+#define SD_COOKIE 0x5D5D
+
+sd_shape_desc sd_shape_desc_default(void)
+{
+    sd_shape_desc d;
+    memset(&d, 0, sizeof d);
+    d.kind = "sphere";
+    d.size.x = d.size.y = d.size.z = 1e-3;
+    d.scale = 1.0;
+    d.cookie = SD_COOKIE;
+    return d;
+}
+
+int sd_world_find_shape(const sd_world *w, const char *name)
+{
+    for (size_t k = 0; k < w->shape_count; ++k)
+        if (name && strcmp(w->shape_names[k], name) == 0)
+            return (int)k;
+    return -1;
+}
+
+size_t sd_world_shape_count(const sd_world *w) { return w->shape_count; }
+
+/* Centre of mass of a polyhedron's hull in the frame its vertices were
+ * given in (the template itself lives in its principal frame); analytic
+ * kinds are given about their centre of mass. */
+static sd_status sd_input_centroid(const sd_vec3 *v, size_t n, sd_vec3 *out)
+{
+    *out = sd_v3_zero();
+    if (n < 4)
+        return SD_OK;
+    sd_hull_workspace *ws = sd_malloc(sizeof *ws);
+    sd_hull *h = sd_malloc(sizeof *h);
+    if (!ws || !h) {
+        sd_free(ws);
+        sd_free(h);
+        return SD_ERR_MEMORY;
+    }
+    if (sd_hull_build(v, n, ws, h) == SD_HULL_OK) {
+        /* signed tetrahedra from the first vertex: centroid = sum V_t c_t / sum V_t */
+        sd_vec3 o = v[h->vert[0]], acc = sd_v3_zero();
+        sd_real vol = 0;
+        for (int t = 0; t < h->ntri; ++t) {
+            sd_vec3 a = sd_v3_sub(v[h->tri[t][0]], o), b = sd_v3_sub(v[h->tri[t][1]], o),
+                    c = sd_v3_sub(v[h->tri[t][2]], o);
+            sd_real vt = sd_v3_dot(a, sd_v3_cross(b, c)) / SD_R(6.0);
+            vol += vt;
+            acc = sd_v3_madd(acc, vt * SD_R(0.25), sd_v3_add(a, sd_v3_add(b, c)));
+        }
+        if (vol > 0)
+            *out = sd_v3_add(o, sd_v3_scale(acc, SD_R(1.0) / vol));
+    }
+    sd_free(ws);
+    sd_free(h);
+    return SD_OK;
+}
+
+int sd_world_add_shape(sd_world *w, const char *name, const sd_shape_desc *desc, sd_error *err)
+{
+    if (!desc || desc->cookie != SD_COOKIE) {
+        sd_error_set(err, SD_ERR_INPUT, "", 0, "shapes", "shape desc not made by sd_shape_desc_default");
+        return -1;
+    }
+    if (!name || !name[0] || strlen(name) >= 64) {
+        sd_error_set(err, SD_ERR_INPUT, "", 0, "name", "a shape needs a name of 1 to 63 characters");
+        return -1;
+    }
+    if (sd_world_find_shape(w, name) >= 0) {
+        sd_error_set(err, SD_ERR_INPUT, "", 0, "name", "shape '%s' defined twice", name);
+        return -1;
+    }
+    int kind = sd_shape_kind_from_name(desc->kind);
+    if (kind < 0 || kind >= SD_SHAPE_KIND_COUNT) {
+        sd_error_set(err, SD_ERR_INPUT, "", 0, "type", "unknown shape kind '%s'", desc->kind ? desc->kind : "");
+        return -1;
+    }
+    if (desc->vertex_count > SD_SHAPE_MAX_VERTICES) {
+        sd_error_set(err, SD_ERR_INPUT, "", 0, "vertices", "a polyhedron may have at most %d vertices, got %zu",
+                     SD_SHAPE_MAX_VERTICES, desc->vertex_count);
+        return -1;
+    }
+    sd_vec3 in[SD_SHAPE_MAX_VERTICES];
+    for (size_t k = 0; k < desc->vertex_count; ++k)
+        in[k] = sd_v3((sd_real)desc->vertices[k].x, (sd_real)desc->vertices[k].y, (sd_real)desc->vertices[k].z);
+    sd_shape_def def = sd_shape_def_default();
+    def.kind = kind;
+    def.size = sd_v3((sd_real)desc->size.x, (sd_real)desc->size.y, (sd_real)desc->size.z);
+    def.rounding = (sd_real)desc->rounding;
+    def.margin = (sd_real)desc->margin;
+    def.scale = (sd_real)desc->scale;
+    def.vertices = in;
+    def.vertex_count = desc->vertex_count;
+
+    /* room for the hull vertices in the pool */
+    sd_vec3 *pool = sd_realloc(w->verts, (w->vert_count + desc->vertex_count + 1) * sizeof *pool);
+    sd_shape *shapes = sd_realloc(w->shapes, (w->shape_count + 1) * sizeof *shapes);
+    char(*names)[64] = sd_realloc(w->shape_names, (w->shape_count + 1) * sizeof *names);
+    sd_real *req = sd_realloc(w->shape_req, (w->shape_count + 1) * sizeof *req);
+    if (req)
+        w->shape_req = req;
+    sd_vec3 *com = sd_realloc(w->shape_com, (w->shape_count + 1) * sizeof *com);
+    if (com)
+        w->shape_com = com;
+    if (pool)
+        w->verts = pool;
+    if (shapes)
+        w->shapes = shapes;
+    if (names)
+        w->shape_names = names;
+    if (!pool || !shapes || !names || !req || !com) {
+        sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory adding shape '%s'", name);
+        return -1;
+    }
+    size_t used = 0;
+    sd_shape s;
+    if (sd_shape_make(&def, &s, w->verts + w->vert_count, desc->vertex_count, &used, err) != SD_OK)
+        return -1;
+    s.vstart = (uint32_t)w->vert_count;
+    s.vcount = (uint32_t)used;
+    w->vert_count += used;
+    if (kind == SD_SHAPE_POLYHEDRON) {
+        sd_vec3 scaled[SD_SHAPE_MAX_VERTICES];
+        for (size_t k = 0; k < desc->vertex_count; ++k)
+            scaled[k] = sd_v3_scale(in[k], (sd_real)desc->scale);
+        if (sd_input_centroid(scaled, desc->vertex_count, &w->shape_com[w->shape_count]) != SD_OK) {
+            sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory adding shape '%s'", name);
+            return -1;
+        }
+    } else {
+        w->shape_com[w->shape_count] = sd_v3_zero();
+    }
+    w->shapes[w->shape_count] = s;
+    w->shape_req[w->shape_count] = (sd_real)cbrt(3.0 * (double)s.volume / (4.0 * SD_PI_D));
+    snprintf(w->shape_names[w->shape_count], 64, "%s", name);
+    w->prepared = 0;
+    return (int)w->shape_count++;
+}
+
+sd_status sd_world_get_shape(const sd_world *w, size_t k, sd_shape_info *out)
+{
+    if (k >= w->shape_count)
+        return SD_ERR_INPUT;
+    const sd_shape *s = &w->shapes[k];
+    out->name = w->shape_names[k];
+    out->kind = sd_shape_kind_name(s->kind);
+    out->volume = (double)s->volume;
+    out->bounding_radius = (double)s->bound;
+    out->equivalent_radius = cbrt(3.0 * (double)s->volume / (4.0 * SD_PI_D));
+    out->inertia.x = (double)s->inertia.x;
+    out->inertia.y = (double)s->inertia.y;
+    out->inertia.z = (double)s->inertia.z;
+    out->center_of_mass.x = w->shape_com[k].x;
+    out->center_of_mass.y = w->shape_com[k].y;
+    out->center_of_mass.z = w->shape_com[k].z;
+    out->rounding = (double)s->radius;
+    out->vertex_count = s->vcount;
+    return SD_OK;
+}
+
+sd_status sd_world_add_bodies(sd_world *w, size_t n, const sd_body_def *defs, sd_error *err)
+{
+    for (size_t k = 0; k < n; ++k) {
+        const sd_body_def *d = &defs[k];
+        if (d->shape < 0 || (size_t)d->shape >= w->shape_count)
+            return sd_error_set(err, SD_ERR_INPUT, "", 0, "shape", "body %zu: unknown shape index %d", k, d->shape);
+        if (d->material < 0 || (size_t)d->material >= w->material_count)
+            return sd_error_set(err, SD_ERR_INPUT, "", 0, "material", "body %zu: unknown material index %d", k,
+                                d->material);
+        if (!isfinite(d->position.x) || !isfinite(d->position.y) || !isfinite(d->position.z))
+            return sd_error_set(err, SD_ERR_INPUT, "", 0, "position", "body %zu: position is not finite", k);
+    }
+    sd_particles *p = &w->p;
+    if (sd_particles_reserve(p, p->n + n))
+        return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory adding %zu bodies", n);
+    for (size_t k = 0; k < n; ++k) {
+        const sd_body_def *d = &defs[k];
+        const sd_shape *s = &w->shapes[d->shape];
+        size_t e = p->n + k;
+        sd_real rho = (sd_real)w->materials[d->material].def.density;
+        sd_real mass = rho * s->volume;
+        sd_quat q = sd_quat_make((sd_real)d->orientation[0], (sd_real)d->orientation[1], (sd_real)d->orientation[2],
+                                 (sd_real)d->orientation[3]);
+        p->x[e] = sd_v3((sd_real)d->position.x, (sd_real)d->position.y, (sd_real)d->position.z);
+        p->v[e] = sd_v3((sd_real)d->velocity.x, (sd_real)d->velocity.y, (sd_real)d->velocity.z);
+        p->w[e] = sd_v3((sd_real)d->angular_velocity.x, (sd_real)d->angular_velocity.y,
+                        (sd_real)d->angular_velocity.z);
+        p->q[e] = sd_quat_normalize(q); /* a zero quaternion becomes the identity */
+        p->f[e] = sd_v3_zero();
+        p->t[e] = sd_v3_zero();
+        p->radius[e] = s->bound;
+        p->inv_mass[e] = SD_R(1.0) / mass;
+        p->inv_inertia[e] = sd_v3(SD_R(1.0) / (rho * s->inertia.x), SD_R(1.0) / (rho * s->inertia.y),
+                                  SD_R(1.0) / (rho * s->inertia.z));
+        p->x_ref[e] = p->x[e];
+        p->q_ref[e] = p->q[e];
+        p->material[e] = d->material;
+        p->shape[e] = d->shape;
+        p->id[e] = w->next_id++;
+    }
+    p->n += n;
+    w->has_shapes = 1;
+    w->dirty = 1;
+    w->prepared = 0;
+    return SD_OK;
+}
