@@ -265,7 +265,8 @@ typedef struct sd_stats {
     double potential_elastic;      /* J, stored in contact springs */
     long contacts;            /* particle-particle pairs in contact */
     long wall_contacts;       /* particle-wall contacts */
-    double max_overlap_ratio; /* max overlap / smaller radius */
+    double max_overlap_ratio; /* max overlap / smaller radius (half the smallest
+                                 outer dimension for shapes) */
     double max_speed;         /* m/s */
     long rebuilds;            /* pair-list rebuilds so far */
     size_t pairs;             /* candidate pairs in the list */

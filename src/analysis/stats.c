@@ -3,10 +3,19 @@
  * Sums run serially in storage order so a run's statistics are the same
  * bits whatever the thread count.
  */
+#include <math.h>
 #include <string.h>
 
 #include "grid/grid.h"
 #include "world/world.h"
+
+/* The size an overlap is measured against: a sphere's radius, half the
+ * smallest outer dimension of a shape. */
+static double sd_half_size(const sd_world *w, size_t k)
+{
+    int s = w->p.shape[k];
+    return s >= 0 ? 0.5 * (double)w->shapes[s].min_size : (double)w->p.radius[k];
+}
 
 void sd_world_stats(const sd_world *w, sd_stats *out)
 {
@@ -37,7 +46,7 @@ void sd_world_stats(const sd_world *w, sd_stats *out)
             continue;
         contacts++;
         epe += (double)l->energy[e];
-        double rmin = (double)sd_min(p->radius[l->i[e]], p->radius[l->j[e]]);
+        double rmin = fmin(sd_half_size(w, l->i[e]), sd_half_size(w, l->j[e]));
         if ((double)l->delta[e] / rmin > ovl)
             ovl = (double)l->delta[e] / rmin;
     }
@@ -47,7 +56,7 @@ void sd_world_stats(const sd_world *w, sd_stats *out)
             continue;
         wcontacts++;
         epe += (double)wl->energy[e];
-        double r = (double)p->radius[wl->i[e]];
+        double r = sd_half_size(w, wl->i[e]);
         if ((double)wl->delta[e] / r > ovl)
             ovl = (double)wl->delta[e] / r;
     }

@@ -18,6 +18,14 @@ SD_HD static SD_INLINE sd_pair_result sd_pair_convex(const sd_pair_params *prm, 
                                                      const sd_convex *ca, const sd_convex *cb, sd_real r_star,
                                                      sd_vec3 *ds, sd_vec3 *warm, sd_real dt, sd_narrow_stats *ns)
 {
+    /* second level of the broad phase: bounding spheres (seed 000 §2.2,
+     * Algorithm I); the candidate list holds pairs within the skin */
+    sd_real reach = ca->shape->bound + cb->shape->bound;
+    if (sd_v3_norm2(sd_v3_sub(ca->x, cb->x)) >= reach * reach) {
+        ns->iterations = 0;
+        ns->supports = 0;
+        return sd_pair_none(SD_R(0.0), ds);
+    }
     sd_convex_contact c = sd_convex_collide(ca, cb, warm);
     ns->iterations = c.iterations;
     ns->supports = c.support_calls;

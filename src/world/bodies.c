@@ -11,7 +11,6 @@
 
 #include "core/alloc.h"
 #include "core/error.h"
-#include "geom/hull.h"
 #include "shape/shape_make.h"
 #include "world/world.h"
 
@@ -37,40 +36,6 @@ int sd_world_find_shape(const sd_world *w, const char *name)
 }
 
 size_t sd_world_shape_count(const sd_world *w) { return w->shape_count; }
-
-/* Centre of mass of a polyhedron's hull in the frame its vertices were
- * given in (the template itself lives in its principal frame); analytic
- * kinds are given about their centre of mass. */
-static sd_status sd_input_centroid(const sd_vec3 *v, size_t n, sd_vec3 *out)
-{
-    *out = sd_v3_zero();
-    if (n < 4)
-        return SD_OK;
-    sd_hull_workspace *ws = sd_malloc(sizeof *ws);
-    sd_hull *h = sd_malloc(sizeof *h);
-    if (!ws || !h) {
-        sd_free(ws);
-        sd_free(h);
-        return SD_ERR_MEMORY;
-    }
-    if (sd_hull_build(v, n, ws, h) == SD_HULL_OK) {
-        /* signed tetrahedra from the first vertex: centroid = sum V_t c_t / sum V_t */
-        sd_vec3 o = v[h->vert[0]], acc = sd_v3_zero();
-        sd_real vol = 0;
-        for (int t = 0; t < h->ntri; ++t) {
-            sd_vec3 a = sd_v3_sub(v[h->tri[t][0]], o), b = sd_v3_sub(v[h->tri[t][1]], o),
-                    c = sd_v3_sub(v[h->tri[t][2]], o);
-            sd_real vt = sd_v3_dot(a, sd_v3_cross(b, c)) / SD_R(6.0);
-            vol += vt;
-            acc = sd_v3_madd(acc, vt * SD_R(0.25), sd_v3_add(a, sd_v3_add(b, c)));
-        }
-        if (vol > 0)
-            *out = sd_v3_add(o, sd_v3_scale(acc, SD_R(1.0) / vol));
-    }
-    sd_free(ws);
-    sd_free(h);
-    return SD_OK;
-}
 
 int sd_world_add_shape(sd_world *w, const char *name, const sd_shape_desc *desc, sd_error *err)
 {
@@ -109,7 +74,10 @@ int sd_world_add_shape(sd_world *w, const char *name, const sd_shape_desc *desc,
     def.vertex_count = desc->vertex_count;
 
     /* room for the hull vertices in the pool */
-    sd_vec3 *pool = sd_realloc(w->verts, (w->vert_count + desc->vertex_count + 1) * sizeof *pool);
+    /* room for the core's vertices in the pool: with a margin the shrunk
+     * core of a polyhedron can have more corners than its input */
+    size_t room = 2 * desc->vertex_count + 1;
+    sd_vec3 *pool = sd_realloc(w->verts, (w->vert_count + room) * sizeof *pool);
     sd_shape *shapes = sd_realloc(w->shapes, (w->shape_count + 1) * sizeof *shapes);
     char(*names)[64] = sd_realloc(w->shape_names, (w->shape_count + 1) * sizeof *names);
     sd_real *req = sd_realloc(w->shape_req, (w->shape_count + 1) * sizeof *req);
@@ -130,22 +98,13 @@ int sd_world_add_shape(sd_world *w, const char *name, const sd_shape_desc *desc,
     }
     size_t used = 0;
     sd_shape s;
-    if (sd_shape_make(&def, &s, w->verts + w->vert_count, desc->vertex_count, &used, err) != SD_OK)
+    if (sd_shape_make(&def, &s, w->verts + w->vert_count, room, &used, err) != SD_OK)
         return -1;
     s.vstart = (uint32_t)w->vert_count;
     s.vcount = (uint32_t)used;
     w->vert_count += used;
-    if (kind == SD_SHAPE_POLYHEDRON) {
-        sd_vec3 scaled[SD_SHAPE_MAX_VERTICES];
-        for (size_t k = 0; k < desc->vertex_count; ++k)
-            scaled[k] = sd_v3_scale(in[k], (sd_real)desc->scale);
-        if (sd_input_centroid(scaled, desc->vertex_count, &w->shape_com[w->shape_count]) != SD_OK) {
-            sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory adding shape '%s'", name);
-            return -1;
-        }
-    } else {
-        w->shape_com[w->shape_count] = sd_v3_zero();
-    }
+    /* where the centre of mass sits in the frame the shape was given in */
+    w->shape_com[w->shape_count] = s.given_com;
     w->shapes[w->shape_count] = s;
     w->shape_req[w->shape_count] = (sd_real)cbrt(3.0 * (double)s.volume / (4.0 * SD_PI_D));
     snprintf(w->shape_names[w->shape_count], 64, "%s", name);

@@ -2,10 +2,10 @@
  * scaled to CI time).
  *
  * Case I pours 72,029 Set I spheres (R = 0.05 m) layer by layer into a
- * 5 m cube at 4 layers/s with dt = 1e-3 s; here 2,000 of them go into a
+ * 5 m cube at 4 layers/s with dt = 1e-3 s; here 1,200 of them go into a
  * 1 m x 1 m x 2 m box: each sheet holds one sphere per two cells (10 x 10),
  * vertical velocities uniform in [-0.5, 0.5] m/s, horizontal ones in
- * [-0.1, 0.1] m/s, sheets at z = 1.9 m, 4 sheets/s, then 2 s of settling.
+ * [-0.1, 0.1] m/s, sheets at z = 1.9 m, 4 sheets/s, then 1.5 s of settling.
  *
  * Checks: every particle asked for is poured, none is lost or duplicated
  * (count and stable ids before and after settling), no cell conflict; the
@@ -19,7 +19,7 @@
 
 #include "grid/grid.h"
 
-#define NPOUR 2000
+#define NPOUR 1200
 
 static double bed_fraction(sd_world *w, double cut)
 {
@@ -80,8 +80,8 @@ int main(void)
     pd.count = NPOUR;
     sd_test_require(sd_grid_set_pour(w, &pd, &err) == SD_OK, "pour", &err);
 
-    /* 20 sheets at 4 per second: the last one at t = 4.75 s */
-    sd_test_require(sd_world_step(w, 5000, &err) == SD_OK, "pour", &err);
+    /* 12 sheets at 4 per second: the last one at t = 2.75 s */
+    sd_test_require(sd_world_step(w, 3000, &err) == SD_OK, "pour", &err);
     sd_grid_info gi;
     sd_grid_get_info(w, &gi);
     size_t n_poured = sd_world_particle_count(w);
@@ -89,7 +89,7 @@ int main(void)
            gi.pour_skipped);
     CHECK(gi.poured == NPOUR && n_poured == NPOUR && ids_ok(w));
 
-    sd_test_require(sd_world_step(w, 2000, &err) == SD_OK, "settle", &err);
+    sd_test_require(sd_world_step(w, 1500, &err) == SD_OK, "settle", &err);
     sd_grid_get_info(w, &gi);
     sd_stats st;
     sd_world_stats(w, &st);
@@ -101,7 +101,7 @@ int main(void)
         vol += 4.0 / 3.0 * 3.14159265358979 * p.radius * p.radius * p.radius;
     }
     double phi = bed_fraction(w, 0.5 * top);
-    printf("after 7 s: %zu particles, bed top %.3f m, kinetic energy %.3g J, %ld contacts, max overlap %.3g R\n",
+    printf("after 4.5 s: %zu particles, bed top %.3f m, kinetic energy %.3g J, %ld contacts, max overlap %.3g R\n",
            sd_world_particle_count(w), top, st.kinetic_translational, st.contacts, st.max_overlap_ratio);
     printf("packing fraction: bed (below %.3f m) %.4f; seed's measure (volume / whole 2 m box) %.4f\n", 0.5 * top,
            phi, vol / 2.0);
