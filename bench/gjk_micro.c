@@ -11,7 +11,23 @@
  *   cc -std=c17 -O2 -march=native -Isrc -Iinclude bench/gjk_micro.c -lm -o build-release/gjk_micro
  * or in CMake: add_executable(gjk_micro bench/gjk_micro.c) with
  *   target_include_directories(gjk_micro PRIVATE src include) and target_link_libraries(gjk_micro m).
- * Run: gjk_micro [pairs per type, default 4096] [repeats, default 5]
+ * Run: gjk_micro [--json] [pairs per type, default 4096] [repeats, default 5]
+ *
+ * Two sets of pairs per shape pair:
+ *   random: centres 0.5–1.0 of the summed bounding radii apart, random
+ *           orientations; about half the pairs touch and most of those have
+ *           overlapping cores (EPA);
+ *   dem:    rounded or margined shapes placed, along a random direction, at a
+ *           swept gap uniform in [−ρ, +ρ] (ρ = ra + rb): the cores never
+ *           overlap, half the swept bodies touch, as in a packing's candidate
+ *           list with a skin. This is the narrow phase of a settling scene
+ *           (GJK only: shrink / GJK / swell).
+ * --json prints one line per set (bench/run case gjk-micro):
+ *   {"case":"gjk-micro","set","pair","pairs","touching","cores_overlap",
+ *    "gjk_pps","collide_pps","warm_pps","collide_us","warm_us","sup_cold","sup_warm"}
+ * with pairs per second on one core (pps), µs per pair (us) and support
+ * calls per pair (sup) cold and warm (the pair's cached direction, static
+ * pairs).
  */
 #define _POSIX_C_SOURCE 199309L
 #include <stdio.h>
@@ -100,24 +116,59 @@ typedef struct pair_set {
     const char *name;
     int ka, kb;
     double ra, rb;
+    int dem; /* placed at a swept gap in [-(ra + rb), ra + rb] (see the top) */
 } pair_set;
+
+/* Centre distance along u at which the core distance is `target` > 0
+ * (bisection: the core distance grows with the separation along a ray). */
+static double place_at(sd_convex *A, sd_convex *B, sd_vec3 u, double target)
+{
+    double lo = 0, hi = A->shape->bound + B->shape->bound + target;
+    for (int k = 0; k < 60; ++k) {
+        double mid = 0.5 * (lo + hi);
+        B->x = sd_v3_scale(u, mid);
+        sd_gjk_result g = sd_gjk_distance(A, B, sd_v3_zero());
+        if (g.distance < target)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return hi;
+}
 
 int main(int argc, char **argv)
 {
+    int json = argc > 1 && !strcmp(argv[1], "--json");
+    if (json) {
+        argc--;
+        argv++;
+    }
     int n = argc > 1 ? atoi(argv[1]) : 4096;
     int reps = argc > 2 ? atoi(argv[2]) : 5;
     if (n < 1 || reps < 1)
         return 1;
     const pair_set sets[] = {
-        {"sphere-sphere (point cores)", SD_SHAPE_SPHERE, SD_SHAPE_SPHERE, 0, 0},
-        {"box-box", SD_SHAPE_BOX, SD_SHAPE_BOX, 0, 0},
-        {"rounded box-box (r=0.05)", SD_SHAPE_BOX, SD_SHAPE_BOX, 0.05, 0.05},
-        {"polyhedron-polyhedron (20 v)", SD_SHAPE_POLYHEDRON, SD_SHAPE_POLYHEDRON, 0, 0},
-        {"box-polyhedron", SD_SHAPE_BOX, SD_SHAPE_POLYHEDRON, 0, 0},
-        {"sphere-box", SD_SHAPE_SPHERE, SD_SHAPE_BOX, 0, 0},
-        {"cylinder-cone", SD_SHAPE_CYLINDER, SD_SHAPE_CONE, 0, 0},
-        {"ellipsoid-ellipsoid", SD_SHAPE_ELLIPSOID, SD_SHAPE_ELLIPSOID, 0, 0},
-        {"rounded ellipsoid-ellipsoid (r=0.05)", SD_SHAPE_ELLIPSOID, SD_SHAPE_ELLIPSOID, 0.05, 0.05},
+        {"sphere-sphere (point cores)", SD_SHAPE_SPHERE, SD_SHAPE_SPHERE, 0, 0, 0},
+        {"box-box", SD_SHAPE_BOX, SD_SHAPE_BOX, 0, 0, 0},
+        {"rounded box-box (r=0.05)", SD_SHAPE_BOX, SD_SHAPE_BOX, 0.05, 0.05, 0},
+        {"polyhedron-polyhedron (20 v)", SD_SHAPE_POLYHEDRON, SD_SHAPE_POLYHEDRON, 0, 0, 0},
+        {"box-polyhedron", SD_SHAPE_BOX, SD_SHAPE_POLYHEDRON, 0, 0, 0},
+        {"sphere-box", SD_SHAPE_SPHERE, SD_SHAPE_BOX, 0, 0, 0},
+        {"cylinder-cone", SD_SHAPE_CYLINDER, SD_SHAPE_CONE, 0, 0, 0},
+        {"ellipsoid-ellipsoid", SD_SHAPE_ELLIPSOID, SD_SHAPE_ELLIPSOID, 0, 0, 0},
+        {"rounded ellipsoid-ellipsoid (r=0.05)", SD_SHAPE_ELLIPSOID, SD_SHAPE_ELLIPSOID, 0.05, 0.05, 0},
+        /* dem: margins of 5-10 % of the size, shallow contacts, cores apart */
+        {"sphere-sphere", SD_SHAPE_SPHERE, SD_SHAPE_SPHERE, 0, 0, 1},
+        {"sphere-box (r=0.02)", SD_SHAPE_SPHERE, SD_SHAPE_BOX, 0, 0.02, 1},
+        {"box-box (r=0.02)", SD_SHAPE_BOX, SD_SHAPE_BOX, 0.02, 0.02, 1},
+        {"polyhedron-polyhedron (20 v, r=0.02)", SD_SHAPE_POLYHEDRON, SD_SHAPE_POLYHEDRON, 0.02, 0.02, 1},
+        {"box-polyhedron (r=0.02)", SD_SHAPE_BOX, SD_SHAPE_POLYHEDRON, 0.02, 0.02, 1},
+        {"sphere-ellipsoid (r=0.02)", SD_SHAPE_SPHERE, SD_SHAPE_ELLIPSOID, 0, 0.02, 1},
+        {"box-cylinder (r=0.02)", SD_SHAPE_BOX, SD_SHAPE_CYLINDER, 0.02, 0.02, 1},
+        {"cylinder-cone (r=0.02)", SD_SHAPE_CYLINDER, SD_SHAPE_CONE, 0.02, 0.02, 1},
+        {"cylinder-cylinder (r=0.02)", SD_SHAPE_CYLINDER, SD_SHAPE_CYLINDER, 0.02, 0.02, 1},
+        {"ellipsoid-ellipsoid (r=0.02)", SD_SHAPE_ELLIPSOID, SD_SHAPE_ELLIPSOID, 0.02, 0.02, 1},
+        {"ellipsoid-polyhedron (r=0.02)", SD_SHAPE_ELLIPSOID, SD_SHAPE_POLYHEDRON, 0.02, 0.02, 1},
     };
     const int nsets = (int)(sizeof sets / sizeof sets[0]);
     sd_shape *sa = malloc(sizeof(sd_shape) * (size_t)n), *sb = malloc(sizeof(sd_shape) * (size_t)n);
@@ -125,9 +176,11 @@ int main(int argc, char **argv)
     sd_vec3 *warm = malloc(sizeof(sd_vec3) * (size_t)n);
     if (!sa || !sb || !A || !B || !warm)
         return 1;
-    printf("gjk_micro: %d fixed random pairs per type, best of %d, one core\n", n, reps);
-    printf("%-38s %8s %10s %12s %12s %12s %8s\n", "pair type", "overlap", "cores ovl", "GJK pairs/s", "collide/s", "warm/s",
-           "sup/pair");
+    if (!json) {
+        printf("gjk_micro: %d fixed random pairs per type, best of %d, one core\n", n, reps);
+        printf("%-5s %-38s %8s %10s %12s %12s %12s %8s %8s\n", "set", "pair type", "overlap", "cores ovl", "GJK pairs/s",
+               "collide/s", "warm/s", "sup/pair", "sup warm");
+    }
     volatile double sink = 0;
     for (int t = 0; t < nsets; ++t) {
         sd_rng r = sd_rng_seed(1000u + (uint64_t)t);
@@ -137,16 +190,23 @@ int main(int argc, char **argv)
             sb[i] = make_shape(&r, sets[t].kb, sets[t].rb);
         }
         for (int i = 0; i < n; ++i) {
-            /* centres 0.5–1.0 of the summed bounding radii apart: about half
-             * the pairs touch, as in a dense packing's candidate list */
+            /* random: centres 0.5–1.0 of the summed bounding radii apart:
+             * about half the pairs touch */
             double sep = sd_rng_range(&r, 0.5, 1.0) * (sa[i].bound + sb[i].bound);
             A[i].shape = &sa[i];
             B[i].shape = &sb[i];
             A[i].verts = B[i].verts = pool;
             A[i].x = sd_v3_zero();
-            B[i].x = sd_v3_scale(rand_unit(&r), sep);
+            sd_vec3 u = rand_unit(&r);
+            B[i].x = sd_v3_scale(u, sep);
             A[i].q = rand_quat(&r);
             B[i].q = rand_quat(&r);
+            if (sets[t].dem) {
+                /* dem: a swept gap uniform in [-rho, rho], cores apart */
+                double rho = sa[i].radius + sb[i].radius;
+                double gap = sd_rng_range(&r, -1.0, 1.0) * rho;
+                place_at(&A[i], &B[i], u, sd_max(rho + gap, 1e-3 * rho));
+            }
         }
         int touching = 0, core_ovl = 0;
         long sup = 0;
@@ -156,6 +216,11 @@ int main(int argc, char **argv)
             touching += c.touching;
             core_ovl += c.used_epa;
             sup += c.support_calls;
+        }
+        long supw = 0;
+        for (int i = 0; i < n; ++i) {
+            sd_convex_contact c = sd_convex_collide(&A[i], &B[i], &warm[i]);
+            supw += c.support_calls;
         }
         double best_gjk = 1e300, best_col = 1e300, best_warm = 1e300;
         for (int k = 0; k < reps; ++k) {
@@ -179,12 +244,22 @@ int main(int argc, char **argv)
             best_col = sd_min(best_col, t2 - t1);
             best_warm = sd_min(best_warm, t3 - t2);
         }
-        printf("%-38s %7.0f%% %9.0f%% %12.3g %12.3g %12.3g %8.2f\n", sets[t].name, 100.0 * touching / n,
-               100.0 * core_ovl / n, n / best_gjk, n / best_col, n / best_warm, (double)sup / n);
+        const char *set = sets[t].dem ? "dem" : "random";
+        if (json)
+            printf("{\"case\":\"gjk-micro\",\"set\":\"%s\",\"pair\":\"%s\",\"pairs\":%d,\"touching\":%.3f,"
+                   "\"cores_overlap\":%.3f,\"gjk_pps\":%.4g,\"collide_pps\":%.4g,\"warm_pps\":%.4g,\"collide_us\":%.4g,"
+                   "\"warm_us\":%.4g,\"sup_cold\":%.2f,\"sup_warm\":%.2f}\n",
+                   set, sets[t].name, n, (double)touching / n, (double)core_ovl / n, n / best_gjk, n / best_col,
+                   n / best_warm, 1e6 * best_col / n, 1e6 * best_warm / n, (double)sup / n, (double)supw / n);
+        else
+            printf("%-5s %-38s %7.0f%% %9.0f%% %12.3g %12.3g %12.3g %8.2f %8.2f\n", sets[t].dem ? "dem" : "rand",
+                   sets[t].name, 100.0 * touching / n, 100.0 * core_ovl / n, n / best_gjk, n / best_col, n / best_warm,
+                   (double)sup / n, (double)supw / n);
     }
-    printf("(GJK pairs/s: sd_gjk_distance alone; collide/s: sd_convex_collide, GJK + EPA where the cores overlap,\n"
-           " cold start; warm/s: the same with each pair's cached direction; sup/pair: support calls of K = A - B per\n"
-           " collide, cold)\n");
+    if (!json)
+        printf("(GJK pairs/s: sd_gjk_distance alone; collide/s: sd_convex_collide, GJK + EPA where the cores overlap,\n"
+           " cold start; warm/s: the same with each pair's cached direction; sup/pair, sup warm: support calls of\n"
+           " K = A - B per collide, cold and warm)\n");
     free(sa);
     free(sb);
     free(A);

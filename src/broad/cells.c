@@ -34,8 +34,7 @@ static sd_status sd_pairs_reserve(sd_pair_list *l, size_t cap)
     cap = cap + cap / 2 + 16;
     if (sd_grow((void **)&l->i, cap, sizeof *l->i) || sd_grow((void **)&l->j, cap, sizeof *l->j) ||
         sd_grow((void **)&l->key, cap, sizeof *l->key) || sd_grow((void **)&l->ds, cap, sizeof *l->ds) ||
-        sd_grow((void **)&l->f, cap, sizeof *l->f) || sd_grow((void **)&l->ti, cap, sizeof *l->ti) ||
-        sd_grow((void **)&l->tj, cap, sizeof *l->tj) || sd_grow((void **)&l->delta, cap, sizeof *l->delta) ||
+        sd_grow((void **)&l->f, cap, sizeof *l->f) || sd_grow((void **)&l->t, 2 * cap, sizeof *l->t) || sd_grow((void **)&l->delta, cap, sizeof *l->delta) ||
         sd_grow((void **)&l->energy, cap, sizeof *l->energy) || sd_grow((void **)&l->gidx, 2 * cap, sizeof *l->gidx) ||
         sd_grow((void **)&l->warm, cap, sizeof *l->warm) || sd_grow((void **)&l->iters, cap, sizeof *l->iters) ||
         sd_grow((void **)&l->supports, cap, sizeof *l->supports))
@@ -62,7 +61,7 @@ static sd_status sd_wpairs_reserve(sd_wall_pair_list *l, size_t cap)
 
 void sd_broad_free(sd_pair_list *l, sd_wall_pair_list *wl, sd_grid *g)
 {
-    void *ptrs[] = {l->i, l->j, l->key, l->ds, l->f, l->ti, l->tj, l->delta, l->energy, l->gstart, l->gidx,
+    void *ptrs[] = {l->i, l->j, l->key, l->ds, l->f, l->t, l->delta, l->energy, l->gstart, l->gidx,
                     l->warm, l->iters, l->supports,
                     wl->i, wl->wall, wl->sub, wl->key, wl->ds, wl->f, wl->t, wl->delta, wl->energy, wl->start, wl->c,
                     g->cell_start, g->cell, g->perm, g->count, g->scratch};
@@ -320,8 +319,8 @@ static sd_status sd_pairs_build(sd_world *w)
             l->key[e] = a < b ? (a << 32 | b) : (b << 32 | a);
             l->ds[e] = sd_history_find(hist, nhist, l->key[e]);
             l->f[e] = sd_v3_zero();
-            l->ti[e] = sd_v3_zero();
-            l->tj[e] = sd_v3_zero();
+            l->t[2 * e] = sd_v3_zero();
+            l->t[2 * e + 1] = sd_v3_zero();
             l->delta[e] = 0;
             l->energy[e] = 0;
             l->warm[e] = sd_v3_zero();

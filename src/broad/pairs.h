@@ -22,7 +22,8 @@ typedef struct sd_pair_list {
     uint64_t *key;         /* (min id << 32) | max id */
     sd_vec3 *ds;           /* m, tangential spring (history), global frame */
     sd_vec3 *f;            /* N, force on i */
-    sd_vec3 *ti, *tj;      /* N m, torque on i and on j */
+    sd_vec3 *t;            /* N m, torques: t[2e] on i, t[2e + 1] on j, so a
+                              gather entry 2e + side indexes its torque */
     sd_real *delta;        /* m, overlap at the last evaluation (<= 0 apart) */
     sd_real *energy;       /* J, elastic energy at the last evaluation */
     sd_vec3 *warm;         /* convex pairs: GJK warm-start direction */

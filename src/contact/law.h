@@ -37,7 +37,7 @@ typedef struct sd_contact_out {
 } sd_contact_out;
 
 /* Turns the stored spring into the plane normal to n, keeping its length. */
-SD_HD static SD_INLINE sd_vec3 sd_law_rotate_spring(sd_vec3 ds, sd_vec3 n)
+SD_HD static SD_HOT sd_vec3 sd_law_rotate_spring(sd_vec3 ds, sd_vec3 n)
 {
     sd_real len2 = sd_v3_norm2(ds);
     if (len2 <= SD_R(0.0))
@@ -52,7 +52,7 @@ SD_HD static SD_INLINE sd_vec3 sd_law_rotate_spring(sd_vec3 ds, sd_vec3 n)
 /* Evaluates the pair's law. ds is the tangential spring (m), updated in
  * place; dt the time step; r_star the effective radius (m); m_star the
  * effective mass (kg). */
-SD_HD static SD_INLINE sd_contact_out sd_law_eval(const sd_pair_params *p, sd_vec3 n, sd_real delta, sd_real r_star,
+SD_HD static SD_HOT sd_contact_out sd_law_eval(const sd_pair_params *p, sd_vec3 n, sd_real delta, sd_real r_star,
                                                   sd_real m_star, sd_vec3 v_rel, sd_vec3 w_rel, sd_vec3 *ds,
                                                   sd_real dt)
 {

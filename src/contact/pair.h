@@ -23,7 +23,7 @@ typedef struct sd_body {
  * centre: 1/m + (r x n) . I^-1 (r x n). The dashpot of an off-centre
  * contact sees this mass (a cylinder hitting a wall on its rim), so the
  * restitution of the contact point is e_n for any impact geometry. */
-SD_HD static SD_INLINE sd_real sd_body_inv_mass_at(const sd_body *b, sd_vec3 r, sd_vec3 n)
+SD_HD static SD_HOT sd_real sd_body_inv_mass_at(const sd_body *b, sd_vec3 r, sd_vec3 n)
 {
     sd_real inv = b->inv_mass;
     if (b->inv_inertia.x == SD_R(0.0) && b->inv_inertia.y == SD_R(0.0) && b->inv_inertia.z == SD_R(0.0))
@@ -40,7 +40,7 @@ typedef struct sd_pair_result {
 } sd_pair_result;
 
 /* Applies a contact to the two bodies once the geometry is known. */
-SD_HD static SD_INLINE sd_pair_result sd_pair_apply(const sd_pair_params *prm, const sd_body *a, const sd_body *b,
+SD_HD static SD_HOT sd_pair_result sd_pair_apply(const sd_pair_params *prm, const sd_body *a, const sd_body *b,
                                                     const sd_contact_geom *g, sd_real r_star, sd_vec3 *ds, sd_real dt)
 {
     sd_pair_result r;
@@ -59,7 +59,7 @@ SD_HD static SD_INLINE sd_pair_result sd_pair_apply(const sd_pair_params *prm, c
     return r;
 }
 
-static SD_HD SD_INLINE sd_pair_result sd_pair_none(sd_real gap, sd_vec3 *ds)
+SD_HD static SD_HOT sd_pair_result sd_pair_none(sd_real gap, sd_vec3 *ds)
 {
     sd_pair_result r;
     r.f = r.ti = r.tj = sd_v3_zero();
@@ -70,7 +70,7 @@ static SD_HD SD_INLINE sd_pair_result sd_pair_none(sd_real gap, sd_vec3 *ds)
 }
 
 /* Sphere–sphere. */
-SD_HD static SD_INLINE sd_pair_result sd_pair_spheres(const sd_pair_params *prm, const sd_body *a, const sd_body *b,
+SD_HD static SD_HOT sd_pair_result sd_pair_spheres(const sd_pair_params *prm, const sd_body *a, const sd_body *b,
                                                       sd_vec3 *ds, sd_real dt)
 {
     sd_contact_geom g;
@@ -83,7 +83,7 @@ SD_HD static SD_INLINE sd_pair_result sd_pair_spheres(const sd_pair_params *prm,
 /* A body against a wall feature: the wall is a body of infinite mass at
  * rest (moving walls will set v and w). r_star is the body's radius (its
  * equivalent radius for shapes). */
-SD_HD static SD_INLINE sd_pair_result sd_pair_wall(const sd_pair_params *prm, const sd_body *a,
+SD_HD static SD_HOT sd_pair_result sd_pair_wall(const sd_pair_params *prm, const sd_body *a,
                                                    const sd_contact_geom *g, int touching, sd_real r_star,
                                                    sd_vec3 *ds, sd_real dt)
 {

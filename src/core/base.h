@@ -15,9 +15,17 @@
 #if defined(__CUDACC__)
 #define SD_HD __host__ __device__
 #define SD_INLINE __forceinline__
+#define SD_HOT SD_INLINE
 #else
 #define SD_HD
 #define SD_INLINE inline
+/* the per-pair and per-particle kernels of the hot loops: inlined even when
+ * the compiler's size heuristics would not (they run 10^8 times a second) */
+#if defined(__GNUC__)
+#define SD_HOT inline __attribute__((always_inline))
+#else
+#define SD_HOT inline
+#endif
 #endif
 
 /* One precision for state, chosen at build time (STYLE.md convention 6). */

@@ -17,7 +17,7 @@
 
 /* Half kick: v += h (F/m + g), w by the Euler equations. inv_mass = 0 marks
  * a body that does not move (gravity is not applied to it either). */
-SD_HD static SD_INLINE void sd_integrate_kick(sd_vec3 *v, sd_vec3 *w, sd_quat q, sd_vec3 f, sd_vec3 t, sd_real inv_mass,
+SD_HD static SD_HOT void sd_integrate_kick(sd_vec3 *v, sd_vec3 *w, sd_quat q, sd_vec3 f, sd_vec3 t, sd_real inv_mass,
                                               sd_vec3 inv_inertia, sd_vec3 gravity, sd_real h)
 {
     if (inv_mass <= SD_R(0.0))
@@ -37,7 +37,7 @@ SD_HD static SD_INLINE void sd_integrate_kick(sd_vec3 *v, sd_vec3 *w, sd_quat q,
 }
 
 /* Drift: x += dt v, q turned by w dt (world-frame angular velocity). */
-SD_HD static SD_INLINE void sd_integrate_drift(sd_vec3 *x, sd_quat *q, sd_vec3 v, sd_vec3 w, sd_real dt)
+SD_HD static SD_HOT void sd_integrate_drift(sd_vec3 *x, sd_quat *q, sd_vec3 v, sd_vec3 w, sd_real dt)
 {
     *x = sd_v3_madd(*x, dt, v);
     *q = sd_quat_normalize(sd_quat_mul(sd_quat_from_rotvec(sd_v3_scale(w, dt)), *q));

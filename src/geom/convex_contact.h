@@ -26,7 +26,8 @@ typedef struct sd_convex_contact {
     int touching;  /* 1 when the swept bodies overlap (delta > 0) */
     sd_vec3 n;     /* unit, from b to a */
     sd_vec3 point; /* m, midway through the overlap */
-    sd_real delta; /* m, overlap > 0 (negative: the gap, when GJK measured one) */
+    sd_real delta; /* m, overlap > 0 (negative: the gap when GJK measured one, or,
+                      when GJK stopped early, an upper bound of −gap) */
     int used_epa;  /* the cores overlapped: EPA gave the depth */
     int iterations, support_calls; /* GJK + EPA together */
     int status;     /* sd_gjk_status of the core distance */
@@ -39,7 +40,9 @@ SD_HD static SD_INLINE sd_convex_contact sd_convex_collide(const sd_convex *a, c
 {
     sd_convex_contact c;
     const sd_real ra = a->shape->radius, rb = b->shape->radius;
-    sd_gjk_result g = sd_gjk_distance(a, b, warm_dir ? *warm_dir : sd_v3_zero());
+    /* the swept bodies cannot touch once the core distance exceeds ra + rb:
+     * GJK stops as soon as a support point proves it (gjk.h, rule 0) */
+    sd_gjk_result g = sd_gjk_distance_bounded(a, b, warm_dir ? *warm_dir : sd_v3_zero(), ra + rb);
     if (warm_dir)
         *warm_dir = g.dir;
     c.status = g.status;
@@ -61,7 +64,7 @@ SD_HD static SD_INLINE sd_convex_contact sd_convex_collide(const sd_convex *a, c
         c.delta = ra + rb - d;
         /* n from v = −dir, which GJK keeps exactly; pa − pb carries the
          * rounding of the barycentric weights */
-        if (d > SD_R(0.0))
+        if (d > SD_R(0.0) || g.bounded)
             c.n = sd_v3_normalize(sd_v3_neg(g.dir));
     } else {
         /* the cores touch or overlap: EPA on the cores */

@@ -32,6 +32,7 @@
 #ifndef SD_GEOM_GJK_H
 #define SD_GEOM_GJK_H
 
+#include "core/quat.h"
 #include "core/vec.h"
 #include "shape/shape.h"
 
@@ -41,6 +42,7 @@
 #ifndef SD_GJK_SUPPORT_CORE
 #include "shape/support.h"
 #define SD_GJK_SUPPORT_CORE sd_convex_support_core
+#define SD_GJK_SUPPORT_FAST 1 /* the same support, with the rotation as a matrix */
 #endif
 
 typedef enum {
@@ -77,6 +79,8 @@ typedef struct sd_gjk_result {
                           separated (v = pa − pb exactly; the witnesses match
                           it to ~1e-11 L, the weights of a sliver are less exact) */
     int iterations, support_calls; /* support calls count K = A − B queries (one of A and one of B each) */
+    int bounded;       /* 1: stopped early, the distance proved > stop_beyond
+                          (sd_gjk_distance_bounded); distance is a lower bound */
     sd_gjk_simplex simplex;
 } sd_gjk_result;
 
@@ -104,135 +108,129 @@ SD_HD static SD_INLINE sd_real sd_gjk_length_scale(const sd_convex *a, const sd_
     return L > SD_R(0.0) ? L : SD_R(1.0); /* two bare points: any scale will do */
 }
 
-/* Keep only vertices i (and j, k) of the simplex with the given weights. */
-SD_HD static SD_INLINE void sd_gjk_keep1(sd_gjk_simplex *s, int i)
-{
-    s->v[0] = s->v[i];
-    s->lambda[0] = SD_R(1.0);
-    s->n = 1;
-}
-SD_HD static SD_INLINE void sd_gjk_keep2(sd_gjk_simplex *s, int i, int j, sd_real li, sd_real lj)
-{
-    sd_gjk_vertex vi = s->v[i], vj = s->v[j];
-    s->v[0] = vi;
-    s->v[1] = vj;
-    s->lambda[0] = li;
-    s->lambda[1] = lj;
-    s->n = 2;
-}
+/* ---- the closest-point sub-algorithm: signed volumes ------------------
+ *
+ * Montanari, Petrinic & Barbieri 2017 (ACM TOG 36(3) 30, "Improving the
+ * GJK algorithm for faster and more reliable distance queries between
+ * convex objects"), §3: the barycentric coordinates of the origin's
+ * projection on a k-simplex are ratios of signed volumes (determinants);
+ * the projection lies in the simplex when every coordinate has the sign of
+ * the whole, and otherwise the answer lies on a facet whose coordinate is
+ * not positive. Triangles are measured in the coordinate plane on which
+ * their shadow is largest (S2D), which keeps the areas of the thin triangles
+ * of curved cores well conditioned where the products of Voronoi-region
+ * tests cancel. Two safeguards over the paper: facets whose coordinate is
+ * below SD_GJK_SV_NEAR (rounding may have flipped its sign) are candidates
+ * too, and among the candidates the nearest is kept (as the former brute
+ * force over all facets did), so a blurred sign cannot pick a far facet.
+ *
+ * The functions work on the points p[] of K only and return a selection
+ * (indices into p[] and weights); the simplex is never copied. */
+#define SD_GJK_SV_NEAR SD_R(1e-9)
 
-/* Closest point of segment (s->v[i], s->v[j]) to the origin; reduces the simplex. */
-SD_HD static SD_INLINE sd_vec3 sd_gjk_segment(sd_gjk_simplex *s, int i, int j)
+typedef struct sd_gjk_sel {
+    int n;             /* 1..4 points kept */
+    int idx[4];        /* their indices into p[] */
+    sd_real lambda[4]; /* their barycentric weights, ≥ 0, sum 1 */
+} sd_gjk_sel;
+
+/* S1D: closest point of segment (p[i], p[j]) to the origin. */
+SD_HD static SD_INLINE sd_vec3 sd_gjk_sv_segment(const sd_vec3 *p, int i, int j, sd_gjk_sel *s)
 {
-    sd_vec3 a = s->v[i].w, b = s->v[j].w;
+    sd_vec3 a = p[i], b = p[j];
     sd_vec3 ab = sd_v3_sub(b, a);
     sd_real ab2 = sd_v3_norm2(ab);
     sd_real t = ab2 > SD_R(0.0) ? -sd_v3_dot(a, ab) / ab2 : SD_R(1.0);
     if (t <= SD_R(0.0)) {
-        sd_gjk_keep1(s, i);
+        s->n = 1;
+        s->idx[0] = i;
+        s->lambda[0] = SD_R(1.0);
         return a;
     }
     if (t >= SD_R(1.0)) {
-        sd_gjk_keep1(s, j);
+        s->n = 1;
+        s->idx[0] = j;
+        s->lambda[0] = SD_R(1.0);
         return b;
     }
-    sd_gjk_keep2(s, i, j, SD_R(1.0) - t, t);
+    s->n = 2;
+    s->idx[0] = i;
+    s->idx[1] = j;
+    s->lambda[0] = SD_R(1.0) - t;
+    s->lambda[1] = t;
     /* a + t ab, minus its component along ab, so v ⟂ ab to rounding: the
      * relative-gap test then sees the exact distance */
     sd_vec3 v = sd_v3_madd(a, t, ab);
     return sd_v3_madd(v, -sd_v3_dot(v, ab) / ab2, ab);
 }
 
-/* Closest point of triangle (v[i], v[j], v[k]) to the origin; reduces the
- * simplex. Either the origin projects into the triangle (all three
- * sub-triangle areas about the projection are ≥ 0) and the projection is the
- * answer, or the answer lies on an edge, and the best of the three edges is
- * taken. This costs a little more than Voronoi-region tests (Ericson §5.1.5)
- * but cannot pick a wrong region on the slivers that curved shapes produce
- * near convergence, where the region products cancel and GJK would stall. */
-SD_HD static SD_INLINE sd_vec3 sd_gjk_triangle(sd_gjk_simplex *s, int i, int j, int k)
+/* 2D cross product of x and y in the coordinate plane (k1, k2). */
+SD_HD static SD_INLINE sd_real sd_gjk_cross2(sd_vec3 x, sd_vec3 y, int drop)
 {
-    sd_vec3 a = s->v[i].w, b = s->v[j].w, c = s->v[k].w;
-    sd_vec3 nrm = sd_v3_cross(sd_v3_sub(b, a), sd_v3_sub(c, a));
+    if (drop == 0)
+        return x.y * y.z - x.z * y.y;
+    if (drop == 1)
+        return x.z * y.x - x.x * y.z;
+    return x.x * y.y - x.y * y.x;
+}
+
+/* S2D: closest point of triangle (p[i], p[j], p[k]) to the origin, given
+ * its normal nrm = (p[j] − p[i]) × (p[k] − p[i]). */
+SD_HD static SD_INLINE sd_vec3 sd_gjk_sv_triangle_n(const sd_vec3 *p, int i, int j, int k, sd_vec3 nrm,
+                                                     sd_gjk_sel *s)
+{
+    sd_vec3 a = p[i], b = p[j], c = p[k];
     sd_real n2 = sd_v3_norm2(nrm);
+    /* candidate edges when the projection falls outside: (i,j), (i,k), (j,k),
+     * opposite k, j and i */
+    int cand[3] = {1, 1, 1};
     if (n2 > SD_R(0.0)) {
         /* the projection of the origin on the plane, from the normal: exactly
          * perpendicular to the face, so |v| is the true distance to the plane */
-        sd_vec3 p = sd_v3_scale(nrm, sd_v3_dot(nrm, a) / n2);
-        sd_real l0 = sd_v3_dot(nrm, sd_v3_cross(sd_v3_sub(b, p), sd_v3_sub(c, p)));
-        sd_real l1 = sd_v3_dot(nrm, sd_v3_cross(sd_v3_sub(c, p), sd_v3_sub(a, p)));
-        sd_real l2 = sd_v3_dot(nrm, sd_v3_cross(sd_v3_sub(a, p), sd_v3_sub(b, p)));
+        sd_vec3 q = sd_v3_scale(nrm, sd_v3_dot(nrm, a) / n2);
+        /* signed areas in the coordinate plane of the largest shadow: the
+         * one that drops the normal's largest component (Montanari eq. 12) */
+        sd_real ax = sd_fabs(nrm.x), ay = sd_fabs(nrm.y), az = sd_fabs(nrm.z);
+        int drop = ax >= ay && ax >= az ? 0 : (ay >= az ? 1 : 2);
+        sd_real mu = drop == 0 ? nrm.x : (drop == 1 ? nrm.y : nrm.z); /* the shadow's area, ×2, signed */
+        sd_vec3 qa = sd_v3_sub(a, q), qb = sd_v3_sub(b, q), qc = sd_v3_sub(c, q);
+        sd_real l0 = sd_gjk_cross2(qb, qc, drop);
+        sd_real l1 = sd_gjk_cross2(qc, qa, drop);
+        sd_real l2 = sd_gjk_cross2(qa, qb, drop);
+        if (mu < SD_R(0.0)) {
+            l0 = -l0;
+            l1 = -l1;
+            l2 = -l2;
+        }
         sd_real ls = l0 + l1 + l2;
         if (l0 >= SD_R(0.0) && l1 >= SD_R(0.0) && l2 >= SD_R(0.0) && ls > SD_R(0.0)) {
-            sd_gjk_vertex vi = s->v[i], vj = s->v[j], vk = s->v[k];
-            s->v[0] = vi;
-            s->v[1] = vj;
-            s->v[2] = vk;
+            s->n = 3;
+            s->idx[0] = i;
+            s->idx[1] = j;
+            s->idx[2] = k;
             s->lambda[0] = l0 / ls;
             s->lambda[1] = l1 / ls;
             s->lambda[2] = l2 / ls;
-            s->n = 3;
-            return p;
+            return q;
+        }
+        if (ls > SD_R(0.0)) {
+            sd_real near = SD_GJK_SV_NEAR * ls;
+            cand[0] = l2 <= near;
+            cand[1] = l1 <= near;
+            cand[2] = l0 <= near;
+            if (!cand[0] && !cand[1] && !cand[2])
+                cand[0] = cand[1] = cand[2] = 1;
         }
     }
-    sd_gjk_simplex s1 = *s, s2 = *s, s3 = *s;
-    sd_vec3 p1 = sd_gjk_segment(&s1, i, j), p2 = sd_gjk_segment(&s2, i, k), p3 = sd_gjk_segment(&s3, j, k);
-    sd_real q1 = sd_v3_norm2(p1), q2 = sd_v3_norm2(p2), q3 = sd_v3_norm2(p3);
-    if (q1 <= q2 && q1 <= q3) {
-        *s = s1;
-        return p1;
-    }
-    if (q2 <= q3) {
-        *s = s2;
-        return p2;
-    }
-    *s = s3;
-    return p3;
-}
-
-/* Closest point of the tetrahedron v[0..3] to the origin; sets *inside when
- * the origin is enclosed (then v = 0 and all four weights are kept). */
-SD_HD static SD_INLINE sd_vec3 sd_gjk_tetrahedron(sd_gjk_simplex *s, int *inside)
-{
-    /* face f is opposite vertex f; the origin is outside face f when it and
-     * vertex f lie strictly on opposite sides of the face's plane */
-    const int fi[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-    sd_vec3 p[4];
-    for (int m = 0; m < 4; ++m)
-        p[m] = s->v[m].w;
-    sd_real vol = sd_v3_dot(sd_v3_sub(p[1], p[0]), sd_v3_cross(sd_v3_sub(p[2], p[0]), sd_v3_sub(p[3], p[0])));
-    int outside_any = 0;
-    *inside = 0;
-    for (int f = 0; f < 4; ++f) {
-        sd_vec3 a = p[fi[f][0]], b = p[fi[f][1]], c = p[fi[f][2]];
-        sd_vec3 nrm = sd_v3_cross(sd_v3_sub(b, a), sd_v3_sub(c, a));
-        sd_real so = -sd_v3_dot(nrm, a);                  /* origin side */
-        sd_real sv = sd_v3_dot(nrm, sd_v3_sub(p[f], a)); /* vertex side */
-        /* a flat tetrahedron (sv = 0) encloses nothing: treat every face as a candidate */
-        if (sv == SD_R(0.0) || so * sv < SD_R(0.0))
-            outside_any = 1;
-    }
-    if (!outside_any && vol != SD_R(0.0)) {
-        /* barycentric weights are the signed sub-volumes of the origin's tetrahedra */
-        for (int f = 0; f < 4; ++f) {
-            sd_vec3 a = p[fi[f][0]], b = p[fi[f][1]], c = p[fi[f][2]];
-            sd_real sub = sd_v3_dot(sd_v3_cross(sd_v3_sub(b, a), sd_v3_sub(c, a)), sd_v3_neg(a));
-            /* vertex f's weight: volume (origin, face f) over volume (vertex f, face f) */
-            sd_real full = sd_v3_dot(sd_v3_cross(sd_v3_sub(b, a), sd_v3_sub(c, a)), sd_v3_sub(p[f], a));
-            s->lambda[f] = sub / full;
-        }
-        s->n = 4;
-        *inside = 1;
-        return sd_v3_zero();
-    }
-    sd_gjk_simplex best = *s;
+    sd_gjk_sel best, t;
     sd_vec3 bestv = sd_v3_zero();
     sd_real bestd = SD_R(-1.0);
-    /* the origin is outside: the nearest point is on the surface, so the best
-     * of all four faces is right even where rounding blurs the side tests */
-    for (int f = 0; f < 4; ++f) {
-        sd_gjk_simplex t = *s;
-        sd_vec3 v = sd_gjk_triangle(&t, fi[f][0], fi[f][1], fi[f][2]);
+    const int e0[3] = {i, i, j}, e1[3] = {j, k, k};
+    best.n = 0;
+    for (int e = 0; e < 3; ++e) {
+        if (!cand[e])
+            continue;
+        sd_vec3 v = sd_gjk_sv_segment(p, e0[e], e1[e], &t);
         sd_real d = sd_v3_norm2(v);
         if (bestd < SD_R(0.0) || d < bestd) {
             bestd = d;
@@ -244,25 +242,105 @@ SD_HD static SD_INLINE sd_vec3 sd_gjk_tetrahedron(sd_gjk_simplex *s, int *inside
     return bestv;
 }
 
+SD_HD static SD_INLINE sd_vec3 sd_gjk_sv_triangle(const sd_vec3 *p, int i, int j, int k, sd_gjk_sel *s)
+{
+    sd_vec3 nrm = sd_v3_cross(sd_v3_sub(p[j], p[i]), sd_v3_sub(p[k], p[i]));
+    return sd_gjk_sv_triangle_n(p, i, j, k, nrm, s);
+}
+
+/* S3D: closest point of the tetrahedron p[0..3] to the origin; sets *inside
+ * when the origin is enclosed (then v = 0 and all four weights are kept). */
+SD_HD static SD_INLINE sd_vec3 sd_gjk_sv_tetrahedron(const sd_vec3 *p, sd_gjk_sel *s, int *inside)
+{
+    /* face f is opposite vertex f; the origin's weight for vertex f is the
+     * signed volume (origin, face f) over the volume (vertex f, face f) */
+    const int fi[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+    sd_vec3 nrm[4];
+    sd_real so[4], sv[4];
+    int enclosed = 1;
+    for (int f = 0; f < 4; ++f) {
+        sd_vec3 a = p[fi[f][0]];
+        nrm[f] = sd_v3_cross(sd_v3_sub(p[fi[f][1]], a), sd_v3_sub(p[fi[f][2]], a));
+        so[f] = -sd_v3_dot(nrm[f], a);                  /* origin side */
+        sv[f] = sd_v3_dot(nrm[f], sd_v3_sub(p[f], a)); /* vertex side: ±6 × volume */
+        /* a flat tetrahedron (sv = 0) encloses nothing */
+        if (sv[f] == SD_R(0.0) || so[f] * sv[f] < SD_R(0.0))
+            enclosed = 0;
+    }
+    *inside = 0;
+    if (enclosed) {
+        s->n = 4;
+        for (int f = 0; f < 4; ++f) {
+            s->idx[f] = f;
+            s->lambda[f] = so[f] / sv[f];
+        }
+        *inside = 1;
+        return sd_v3_zero();
+    }
+    /* the origin is outside: the nearest point is on a face whose weight is
+     * not positive (or nearly so: rounding blurs the side tests) */
+    sd_gjk_sel best, t;
+    sd_vec3 bestv = sd_v3_zero();
+    sd_real bestd = SD_R(-1.0);
+    best.n = 0;
+    for (int pass = 0; pass < 2 && bestd < SD_R(0.0); ++pass)
+        for (int f = 0; f < 4; ++f) {
+            /* pass 0: the candidates; pass 1 (none was): every face */
+            if (pass == 0 && !(sv[f] == SD_R(0.0) || so[f] * sv[f] <= SD_GJK_SV_NEAR * sv[f] * sv[f]))
+                continue;
+            sd_vec3 v = sd_gjk_sv_triangle_n(p, fi[f][0], fi[f][1], fi[f][2], nrm[f], &t);
+            sd_real d = sd_v3_norm2(v);
+            if (bestd < SD_R(0.0) || d < bestd) {
+                bestd = d;
+                best = t;
+                bestv = v;
+            }
+        }
+    *s = best;
+    return bestv;
+}
+
+/* Closest point of the simplex p[0..n−1] to the origin, as a selection of
+ * its points. Returns 1 if a tetrahedron encloses the origin. */
+SD_HD static SD_INLINE int sd_gjk_sv_solve(const sd_vec3 *p, int n, sd_gjk_sel *s, sd_vec3 *v)
+{
+    int inside = 0;
+    switch (n) {
+    case 1:
+        s->n = 1;
+        s->idx[0] = 0;
+        s->lambda[0] = SD_R(1.0);
+        *v = p[0];
+        break;
+    case 2:
+        *v = sd_gjk_sv_segment(p, 0, 1, s);
+        break;
+    case 3:
+        *v = sd_gjk_sv_triangle(p, 0, 1, 2, s);
+        break;
+    default:
+        *v = sd_gjk_sv_tetrahedron(p, s, &inside);
+        break;
+    }
+    return inside;
+}
+
 /* Closest point of the simplex to the origin; reduces it to the smallest
  * subset that holds that point. Returns 1 if a tetrahedron encloses the origin. */
 SD_HD static SD_INLINE int sd_gjk_solve(sd_gjk_simplex *s, sd_vec3 *v)
 {
-    int inside = 0;
-    switch (s->n) {
-    case 1:
-        s->lambda[0] = SD_R(1.0);
-        *v = s->v[0].w;
-        break;
-    case 2:
-        *v = sd_gjk_segment(s, 0, 1);
-        break;
-    case 3:
-        *v = sd_gjk_triangle(s, 0, 1, 2);
-        break;
-    default:
-        *v = sd_gjk_tetrahedron(s, &inside);
-        break;
+    sd_vec3 p[4];
+    sd_gjk_vertex y[4];
+    sd_gjk_sel sel;
+    for (int m = 0; m < s->n; ++m) {
+        p[m] = s->v[m].w;
+        y[m] = s->v[m];
+    }
+    int inside = sd_gjk_sv_solve(p, s->n, &sel, v);
+    s->n = sel.n;
+    for (int m = 0; m < sel.n; ++m) {
+        s->v[m] = y[sel.idx[m]];
+        s->lambda[m] = sel.lambda[m];
     }
     return inside;
 }
@@ -279,14 +357,56 @@ SD_HD static SD_INLINE void sd_gjk_witnesses(const sd_gjk_simplex *s, sd_vec3 *p
     *pb = b;
 }
 
+/* One body of a GJK query: the posed core with its rotation as a matrix,
+ * built once per query, so that a support costs two 3×3 products rather than
+ * two quaternion rotations (shape/support.h, sd_convex_support_core_m). */
+typedef struct sd_gjk_body {
+    const sd_convex *c;
+    sd_mat3 R; /* principal frame to world, from c->q */
+} sd_gjk_body;
+
+SD_HD static SD_INLINE sd_gjk_body sd_gjk_body_of(const sd_convex *c)
+{
+    sd_gjk_body b;
+    b.c = c;
+    b.R = sd_quat_to_mat3(c->q);
+    return b;
+}
+
+/* The support point of K in direction d, into *v. */
+SD_HD static SD_INLINE void sd_gjk_support_body(const sd_gjk_body *a, const sd_gjk_body *b, sd_vec3 d, sd_gjk_vertex *v)
+{
+#ifdef SD_GJK_SUPPORT_FAST
+    v->a = sd_convex_support_core_m(a->c, &a->R, d);
+    v->b = sd_convex_support_core_m(b->c, &b->R, sd_v3_neg(d));
+#else
+    v->a = SD_GJK_SUPPORT_CORE(a->c, d);
+    v->b = SD_GJK_SUPPORT_CORE(b->c, sd_v3_neg(d));
+#endif
+    v->w = sd_v3_sub(v->a, v->b);
+}
+
 /* GJK distance between the cores of a and b. warm_dir: a search direction
  * to start from (the previous result's dir for this pair), or zero for the
- * centre-to-centre direction. */
-SD_HD static SD_INLINE sd_gjk_result sd_gjk_distance(const sd_convex *a, const sd_convex *b, sd_vec3 warm_dir)
+ * centre-to-centre direction.
+ *
+ * stop_beyond ≥ 0 asks for an early answer: as soon as a support point
+ * proves the core distance greater than stop_beyond (the lower bound
+ * −d·w/|d| of the search direction d and its support point w, Gilbert,
+ * Johnson & Keerthi 1988 §V), the loop ends with SD_GJK_SEPARATED and
+ * r.bounded = 1; distance is then that lower bound (not the distance),
+ * the witnesses are the current simplex's, and dir is the direction that
+ * separates, the best warm start for the next query. A negative
+ * stop_beyond never stops early (sd_gjk_distance). */
+SD_HD static SD_INLINE sd_gjk_result sd_gjk_distance_bounded(const sd_convex *a, const sd_convex *b, sd_vec3 warm_dir,
+                                                             sd_real stop_beyond)
 {
     sd_gjk_result r;
     const sd_real L = sd_gjk_length_scale(a, b);
     const sd_real abs_tol2 = sd_sq(SD_GJK_ABS_TOL * L);
+    const int bound_on = stop_beyond >= SD_R(0.0);
+    const sd_real stop2 = bound_on ? stop_beyond * stop_beyond : SD_R(0.0);
+    const sd_gjk_body A = sd_gjk_body_of(a), B = sd_gjk_body_of(b);
 
     sd_vec3 d = warm_dir;
     if (!(sd_v3_norm2(d) > SD_R(0.0)) || !sd_gjk_finite(d))
@@ -294,20 +414,35 @@ SD_HD static SD_INLINE sd_gjk_result sd_gjk_distance(const sd_convex *a, const s
     if (!(sd_v3_norm2(d) > SD_R(0.0)))
         d = sd_v3(SD_R(1.0), SD_R(0.0), SD_R(0.0));
 
+    /* the simplex lives in four fixed slots y[]; act[0..na−1] are the slots
+     * in use with weights lam[]; a new point takes a free slot, so neither
+     * reducing nor rejecting a step copies any vertex */
+    sd_gjk_vertex y[4];
+    int act[4], na = 1;
+    sd_real lam[4];
     r.status = SD_GJK_MAX_ITER;
+    r.bounded = 0;
     r.iterations = 0;
     r.support_calls = 1;
-    r.simplex.n = 1;
-    r.simplex.v[0] = sd_gjk_support(a, b, d);
-    r.simplex.lambda[0] = SD_R(1.0);
+    sd_gjk_support_body(&A, &B, d, &y[0]);
+    act[0] = 0;
+    lam[0] = SD_R(1.0);
     r.dir = d;
-    sd_vec3 v = r.simplex.v[0].w;
+    sd_vec3 v = y[0].w;
     sd_real vv = sd_v3_norm2(v);
+    sd_real lower = SD_R(0.0); /* the distance's lower bound when bounded */
 
     if (!sd_gjk_finite(v)) {
         r.status = SD_GJK_DEGENERATE;
     } else {
-        while (r.iterations < SD_GJK_MAX_ITERATIONS) {
+        /* 0: the first support point may already prove the distance large */
+        sd_real dw = sd_v3_dot(d, v);
+        if (bound_on && dw < SD_R(0.0) && dw * dw > stop2 * sd_v3_norm2(d)) {
+            r.status = SD_GJK_SEPARATED;
+            r.bounded = 1;
+            lower = -dw / sd_v3_norm(d);
+        }
+        while (!r.bounded && r.iterations < SD_GJK_MAX_ITERATIONS) {
             r.iterations++;
             if (vv <= abs_tol2) { /* 3: the origin lies on the simplex */
                 r.status = SD_GJK_TOUCHING;
@@ -315,31 +450,59 @@ SD_HD static SD_INLINE sd_gjk_result sd_gjk_distance(const sd_convex *a, const s
             }
             d = sd_v3_neg(v);
             r.dir = d;
-            sd_gjk_vertex w = sd_gjk_support(a, b, d);
+            /* a free slot for the new point */
+            int used = 0;
+            for (int m = 0; m < na; ++m)
+                used |= 1 << act[m];
+            int f = 0;
+            while (used & (1 << f))
+                ++f;
+            sd_gjk_vertex *w = &y[f];
+            sd_gjk_support_body(&A, &B, d, w);
             r.support_calls++;
-            if (!sd_gjk_finite(w.w)) {
+            if (!sd_gjk_finite(w->w)) {
                 r.status = SD_GJK_DEGENERATE;
+                break;
+            }
+            sd_real vw = sd_v3_dot(v, w->w);
+            /* 0: v·w/|v| bounds the distance from below */
+            if (bound_on && vw > SD_R(0.0) && vw * vw > stop2 * vv) {
+                r.status = SD_GJK_SEPARATED;
+                r.bounded = 1;
+                lower = vw / sd_sqrt(vv);
                 break;
             }
             /* 1: a support point already in the simplex: K has nothing nearer */
             int dup = 0;
-            for (int i = 0; i < r.simplex.n; ++i)
-                if (sd_v3_norm2(sd_v3_sub(w.w, r.simplex.v[i].w)) <= abs_tol2)
+            for (int m = 0; m < na; ++m)
+                if (sd_v3_norm2(sd_v3_sub(w->w, y[act[m]].w)) <= abs_tol2)
                     dup = 1;
             if (dup) {
                 r.status = SD_GJK_SEPARATED;
                 break;
             }
             /* 2: v·w is a lower bound of |v|·distance; close enough to |v|² */
-            if (vv - sd_v3_dot(v, w.w) <= SD_GJK_REL_GAP * vv) {
+            if (vv - vw <= SD_GJK_REL_GAP * vv) {
                 r.status = SD_GJK_SEPARATED;
                 break;
             }
-            sd_gjk_simplex prev = r.simplex;
-            r.simplex.v[r.simplex.n++] = w;
+            sd_vec3 p[4];
+            int slot[4];
+            for (int m = 0; m < na; ++m) {
+                slot[m] = act[m];
+                p[m] = y[act[m]].w;
+            }
+            slot[na] = f;
+            p[na] = w->w;
+            sd_gjk_sel sel;
             sd_vec3 vn;
-            int inside = sd_gjk_solve(&r.simplex, &vn);
+            int inside = sd_gjk_sv_solve(p, na + 1, &sel, &vn);
             if (inside) { /* 5 */
+                na = 4;
+                for (int m = 0; m < 4; ++m) {
+                    act[m] = slot[sel.idx[m]];
+                    lam[m] = sel.lambda[m];
+                }
                 v = vn;
                 vv = SD_R(0.0);
                 r.status = SD_GJK_OVERLAP;
@@ -348,9 +511,13 @@ SD_HD static SD_INLINE sd_gjk_result sd_gjk_distance(const sd_convex *a, const s
             sd_real vvn = sd_v3_norm2(vn);
             if (!(vvn <= abs_tol2) && vvn >= vv * sd_sq(SD_R(1.0) - SD_GJK_NO_PROGRESS)) {
                 /* 4: rounding stalls the descent; the previous simplex is the best */
-                r.simplex = prev;
                 r.status = SD_GJK_SEPARATED;
                 break;
+            }
+            na = sel.n;
+            for (int m = 0; m < sel.n; ++m) {
+                act[m] = slot[sel.idx[m]];
+                lam[m] = sel.lambda[m];
             }
             v = vn;
             vv = vvn;
@@ -359,6 +526,11 @@ SD_HD static SD_INLINE sd_gjk_result sd_gjk_distance(const sd_convex *a, const s
             r.status = SD_GJK_TOUCHING; /* converged on the very last iteration */
     }
 
+    r.simplex.n = na;
+    for (int m = 0; m < na; ++m) {
+        r.simplex.v[m] = y[act[m]];
+        r.simplex.lambda[m] = lam[m];
+    }
     if (r.status == SD_GJK_DEGENERATE) {
         r.distance = SD_R(0.0);
         r.pa = a->x;
@@ -367,13 +539,21 @@ SD_HD static SD_INLINE sd_gjk_result sd_gjk_distance(const sd_convex *a, const s
         return r;
     }
     sd_gjk_witnesses(&r.simplex, &r.pa, &r.pb);
-    if (r.status == SD_GJK_SEPARATED || r.status == SD_GJK_MAX_ITER) {
+    if (r.bounded) {
+        r.distance = lower; /* the lower bound of the direction that separated */
+    } else if (r.status == SD_GJK_SEPARATED || r.status == SD_GJK_MAX_ITER) {
         r.distance = sd_sqrt(vv);
         r.dir = sd_v3_neg(v);
     } else {
         r.distance = SD_R(0.0);
     }
     return r;
+}
+
+/* GJK distance between the cores of a and b (no early stop). */
+SD_HD static SD_INLINE sd_gjk_result sd_gjk_distance(const sd_convex *a, const sd_convex *b, sd_vec3 warm_dir)
+{
+    return sd_gjk_distance_bounded(a, b, warm_dir, SD_R(-1.0));
 }
 
 #endif

@@ -16,7 +16,7 @@ typedef struct sd_contact_geom {
     sd_real delta;  /* m, overlap > 0 */
 } sd_contact_geom;
 
-SD_HD static SD_INLINE int sd_sphere_sphere(sd_vec3 xi, sd_real ri, sd_vec3 xj, sd_real rj, sd_contact_geom *g)
+SD_HD static SD_HOT int sd_sphere_sphere(sd_vec3 xi, sd_real ri, sd_vec3 xj, sd_real rj, sd_contact_geom *g)
 {
     sd_vec3 d = sd_v3_sub(xi, xj);
     sd_real dist2 = sd_v3_norm2(d);
@@ -33,7 +33,7 @@ SD_HD static SD_INLINE int sd_sphere_sphere(sd_vec3 xi, sd_real ri, sd_vec3 xj, 
 
 /* Half-space wall through point p with unit normal nw (the side it points to
  * is free space). */
-SD_HD static SD_INLINE int sd_sphere_plane(sd_vec3 x, sd_real r, sd_vec3 p, sd_vec3 nw, sd_contact_geom *g)
+SD_HD static SD_HOT int sd_sphere_plane(sd_vec3 x, sd_real r, sd_vec3 p, sd_vec3 nw, sd_contact_geom *g)
 {
     sd_real s = sd_v3_dot(sd_v3_sub(x, p), nw);
     if (s >= r)
@@ -50,7 +50,7 @@ SD_HD static SD_INLINE int sd_sphere_plane(sd_vec3 x, sd_real r, sd_vec3 p, sd_v
  * meets the face plane (only from at most one radius behind it, so spheres
  * that escaped through an open face are not pulled back through a closed
  * one); otherwise it meets the rectangle's rim from the inner side only. */
-SD_HD static SD_INLINE int sd_sphere_box_face(sd_vec3 x, sd_real r, int axis, sd_real value, sd_real dir, sd_vec3 lo,
+SD_HD static SD_HOT int sd_sphere_box_face(sd_vec3 x, sd_real r, int axis, sd_real value, sd_real dir, sd_vec3 lo,
                                               sd_vec3 hi, sd_contact_geom *g)
 {
     sd_real c[3] = {x.x, x.y, x.z};

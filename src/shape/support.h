@@ -29,7 +29,16 @@ SD_HD static SD_INLINE sd_vec3 sd_shape_dir_scaled(sd_vec3 d)
     sd_real m = sd_max(sd_fabs(d.x), sd_max(sd_fabs(d.y), sd_fabs(d.z)));
     if (!(m > SD_R(0.0))) /* zero (or NaN): a fixed, valid direction */
         return sd_v3(SD_R(0.0), SD_R(0.0), SD_R(1.0));
-    /* divide, not multiply by 1/m: 1/m overflows for a subnormal m */
+    /* one division, not three: 1/m is finite for every normal m (and for
+     * m = inf it is 0, read as +z below); a subnormal m divides, since its
+     * reciprocal overflows */
+    if (m >= SD_R(1e-300)) {
+        sd_real k = SD_R(1.0) / m;
+        sd_vec3 u = sd_v3(d.x * k, d.y * k, d.z * k);
+        if (!(u.x == u.x && u.y == u.y && u.z == u.z)) /* inf · 0 */
+            return sd_v3(SD_R(0.0), SD_R(0.0), SD_R(1.0));
+        return u;
+    }
     return sd_v3(d.x / m, d.y / m, d.z / m);
 }
 
@@ -55,9 +64,10 @@ SD_HD static SD_INLINE sd_vec3 sd_shape_support_core(const sd_shape *s, const sd
         /* rim point of the end cap facing d: radius a.x along d's xy part */
         sd_real rxy = sd_sqrt(u.x * u.x + u.y * u.y);
         sd_real z = sd_shape_sign(u.z) * s->a.z;
-        if (rxy > SD_R(0.0))
-            p = sd_v3(s->a.x * u.x / rxy, s->a.x * u.y / rxy, z);
-        else /* d along the axis: the cap centre is a maximiser */
+        if (rxy > SD_R(0.0)) {
+            sd_real k = s->a.x / rxy;
+            p = sd_v3(k * u.x, k * u.y, z);
+        } else /* d along the axis: the cap centre is a maximiser */
             p = sd_v3(SD_R(0.0), SD_R(0.0), z);
         break;
     }
@@ -68,8 +78,10 @@ SD_HD static SD_INLINE sd_vec3 sd_shape_support_core(const sd_shape *s, const sd
         sd_real h_apex = s->a.z * u.z, h_rim = s->a.x * rxy;
         if (h_apex >= h_rim)
             p = sd_v3(SD_R(0.0), SD_R(0.0), s->a.z);
-        else if (rxy > SD_R(0.0))
-            p = sd_v3(s->a.x * u.x / rxy, s->a.x * u.y / rxy, SD_R(0.0));
+        else if (rxy > SD_R(0.0)) {
+            sd_real k = s->a.x / rxy;
+            p = sd_v3(k * u.x, k * u.y, SD_R(0.0));
+        }
         else /* d = -z: the base centre */
             p = sd_v3_zero();
         break;
@@ -79,7 +91,12 @@ SD_HD static SD_INLINE sd_vec3 sd_shape_support_core(const sd_shape *s, const sd
          * normal A^-2 x is parallel to d */
         sd_vec3 ad = sd_v3(s->a.x * u.x, s->a.y * u.y, s->a.z * u.z);
         sd_real n = sd_v3_norm(ad); /* >= min(a) since max |u_i| = 1 */
-        p = n > SD_R(0.0) ? sd_v3(s->a.x * ad.x / n, s->a.y * ad.y / n, s->a.z * ad.z / n) : sd_v3_zero();
+        if (n > SD_R(0.0)) {
+            sd_real k = SD_R(1.0) / n; /* n ≥ min(a): 1/n is finite */
+            p = sd_v3(s->a.x * ad.x * k, s->a.y * ad.y * k, s->a.z * ad.z * k);
+        } else {
+            p = sd_v3_zero();
+        }
         break;
     }
     case SD_SHAPE_POLYHEDRON: {
@@ -127,6 +144,21 @@ SD_HD static SD_INLINE sd_vec3 sd_convex_support_core(const sd_convex *c, sd_vec
 {
     sd_vec3 dl = sd_quat_rotate_inv(c->q, d_world);
     return sd_v3_add(c->x, sd_quat_rotate(c->q, sd_shape_support_core(c->shape, c->verts, dl)));
+}
+
+/* The same with the body's rotation given as a matrix R (principal frame to
+ * world, sd_quat_to_mat3(c->q)): two 3×3 products instead of two quaternion
+ * rotations, for loops (GJK) that query one pose many times. */
+SD_HD static SD_INLINE sd_vec3 sd_convex_support_core_m(const sd_convex *c, const sd_mat3 *R, sd_vec3 d_world)
+{
+    const sd_real(*m)[3] = R->m;
+    sd_vec3 dl = sd_v3(m[0][0] * d_world.x + m[1][0] * d_world.y + m[2][0] * d_world.z,
+                       m[0][1] * d_world.x + m[1][1] * d_world.y + m[2][1] * d_world.z,
+                       m[0][2] * d_world.x + m[1][2] * d_world.y + m[2][2] * d_world.z);
+    sd_vec3 p = sd_shape_support_core(c->shape, c->verts, dl);
+    return sd_v3(c->x.x + m[0][0] * p.x + m[0][1] * p.y + m[0][2] * p.z,
+                 c->x.y + m[1][0] * p.x + m[1][1] * p.y + m[1][2] * p.z,
+                 c->x.z + m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z);
 }
 
 /* World-frame support of a posed body, swept radius included. */

@@ -66,8 +66,8 @@ SD_PARALLEL_FOR_DYNAMIC
         sd_narrow_stats ns;
         sd_pair_result r = sd_pair_convex(prm, &a, &b, &ci, &cj, ra * rb / (ra + rb), &l->ds[e], &l->warm[e], dt, &ns);
         l->f[e] = r.f;
-        l->ti[e] = r.ti;
-        l->tj[e] = r.tj;
+        l->t[2 * e] = r.ti;
+        l->t[2 * e + 1] = r.tj;
         l->delta[e] = r.delta;
         l->energy[e] = r.energy;
         l->iters[e] = ns.iterations;

@@ -9,7 +9,22 @@
 #include "contact/pair_convex.h"
 #include "dynamics/integrate.h"
 
-static sd_body sd_body_of(const sd_particles *p, size_t k)
+/* A plain sphere: central contacts, so no rotational term and no
+ * orientation to load in the hot sphere-sphere loop. */
+static SD_HOT sd_body sd_sphere_body(const sd_particles *p, size_t k)
+{
+    sd_body b;
+    b.x = p->x[k];
+    b.v = p->v[k];
+    b.w = p->w[k];
+    b.radius = p->radius[k];
+    b.inv_mass = p->inv_mass[k];
+    b.inv_inertia = sd_v3_zero();
+    b.q = sd_quat_identity();
+    return b;
+}
+
+static SD_HOT sd_body sd_body_of(const sd_particles *p, size_t k)
 {
     sd_body b;
     b.x = p->x[k];
@@ -81,7 +96,7 @@ void sd_cpu_pair_forces(sd_world *w)
 SD_PARALLEL_FOR
     for (size_t e = 0; e < n; ++e) {
         uint32_t i = l->i[e], j = l->j[e];
-        sd_body a = sd_body_of(p, i), b = sd_body_of(p, j);
+        sd_body a = sd_sphere_body(p, i), b = sd_sphere_body(p, j);
         const sd_pair_params *prm = &w->mix[(size_t)p->material[i] * nm + (size_t)p->material[j]];
         /* the spring is stored as seen from the lower stable id: storage
          * order (hence which body is i) may flip at a rebuild, the key not */
@@ -90,8 +105,8 @@ SD_PARALLEL_FOR
         sd_pair_result r = sd_pair_spheres(prm, &a, &b, &ds, dt);
         l->ds[e] = flip ? sd_v3_neg(ds) : ds;
         l->f[e] = r.f;
-        l->ti[e] = r.ti;
-        l->tj[e] = r.tj;
+        l->t[2 * e] = r.ti;
+        l->t[2 * e + 1] = r.tj;
         l->delta[e] = r.delta;
         l->energy[e] = r.energy;
     }
@@ -153,14 +168,12 @@ SD_PARALLEL_FOR
     for (size_t k = 0; k < n; ++k) {
         sd_vec3 f = sd_v3_zero(), t = sd_v3_zero();
         for (uint32_t g = l->gstart[k]; g < l->gstart[k + 1]; ++g) {
-            uint32_t e = l->gidx[g] >> 1;
-            if (l->gidx[g] & 1u) {
-                f = sd_v3_sub(f, l->f[e]);
-                t = sd_v3_add(t, l->tj[e]);
-            } else {
-                f = sd_v3_add(f, l->f[e]);
-                t = sd_v3_add(t, l->ti[e]);
-            }
+            /* branch-free: j receives -F (multiplying by -1 is exact) and
+             * its own torque at t[2e + 1] */
+            uint32_t idx = l->gidx[g];
+            sd_real sign = SD_R(1.0) - SD_R(2.0) * (sd_real)(idx & 1u);
+            f = sd_v3_madd(f, sign, l->f[idx >> 1]);
+            t = sd_v3_add(t, l->t[idx]);
         }
         for (uint32_t e = wl->start[k]; e < wl->start[k + 1]; ++e) {
             f = sd_v3_add(f, wl->f[e]);
