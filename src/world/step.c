@@ -24,8 +24,9 @@ static sd_real sd_min_radius(const sd_world *w)
     return r;
 }
 
-/* Contact forces for the current positions and velocities. */
-static sd_status sd_world_forces(sd_world *w, sd_error *err)
+/* Contact forces of every pair for the current positions and velocities,
+ * stored per pair (the gather into particles follows). */
+static sd_status sd_world_pair_forces(sd_world *w, sd_error *err)
 {
     if (sd_broad_needs_rebuild(w)) {
         sd_status st = sd_broad_rebuild(w, err);
@@ -35,7 +36,6 @@ static sd_status sd_world_forces(sd_world *w, sd_error *err)
     sd_cpu_pair_forces(w);
     sd_cpu_convex_forces(w);
     sd_cpu_wall_forces(w);
-    sd_cpu_gather(w);
     sd_cpu_wall_totals(w);
     return SD_OK;
 }
@@ -57,9 +57,10 @@ sd_status sd_world_prepare(sd_world *w, sd_error *err)
     else
         w->skin = SD_R(0.0);
     w->dirty = 1;
-    st = sd_world_forces(w, err);
+    st = sd_world_pair_forces(w, err);
     if (st != SD_OK)
         return st;
+    sd_cpu_gather(w);
     w->prepared = 1;
     return SD_OK;
 }
@@ -89,11 +90,11 @@ sd_status sd_world_step(sd_world *w, long nsteps, sd_error *err)
             return st;
     }
     for (long s = 0; s < nsteps; ++s) {
-        sd_cpu_kick_drift(w);               /* v(t + dt/2), x(t + dt) */
-        sd_status st = sd_world_forces(w, err); /* F(t + dt) */
+        sd_cpu_kick_drift(w);                        /* v(t + dt/2), x(t + dt) */
+        sd_status st = sd_world_pair_forces(w, err); /* per pair, at t + dt */
         if (st != SD_OK)
             return st;
-        sd_cpu_kick(w);                     /* v(t + dt) */
+        sd_cpu_gather_kick(w);                       /* F(t + dt), v(t + dt) */
         w->step++;
         w->time = (double)w->step * (double)w->dt;
         if ((w->step & 255) == 0 && (st = sd_world_check_finite(w, err)) != SD_OK)

@@ -158,29 +158,47 @@ SD_PARALLEL_FOR
     }
 }
 
+/* Sums particle k's pair forces in gather-list order, then its wall pairs. */
+static SD_HOT void sd_gather_one(const sd_world *w, size_t k, sd_vec3 *fo, sd_vec3 *to)
+{
+    const sd_pair_list *l = &w->pairs;
+    const sd_wall_pair_list *wl = &w->wpairs;
+    sd_vec3 f = sd_v3_zero(), t = sd_v3_zero();
+    for (uint32_t g = l->gstart[k]; g < l->gstart[k + 1]; ++g) {
+        /* branch-free: j receives -F (multiplying by -1 is exact) and its
+         * own torque at t[2e + 1] */
+        uint32_t idx = l->gidx[g];
+        sd_real sign = SD_R(1.0) - SD_R(2.0) * (sd_real)(idx & 1u);
+        f = sd_v3_madd(f, sign, l->f[idx >> 1]);
+        t = sd_v3_add(t, l->t[idx]);
+    }
+    for (uint32_t e = wl->start[k]; e < wl->start[k + 1]; ++e) {
+        f = sd_v3_add(f, wl->f[e]);
+        t = sd_v3_add(t, wl->t[e]);
+    }
+    *fo = f;
+    *to = t;
+}
+
 void sd_cpu_gather(sd_world *w)
 {
     sd_particles *p = &w->p;
-    const sd_pair_list *l = &w->pairs;
-    const sd_wall_pair_list *wl = &w->wpairs;
     size_t n = p->n;
 SD_PARALLEL_FOR
+    for (size_t k = 0; k < n; ++k)
+        sd_gather_one(w, k, &p->f[k], &p->t[k]);
+}
+
+void sd_cpu_gather_kick(sd_world *w)
+{
+    sd_particles *p = &w->p;
+    size_t n = p->n;
+    sd_real h = SD_R(0.5) * w->dt;
+    sd_vec3 g = w->gravity;
+SD_PARALLEL_FOR
     for (size_t k = 0; k < n; ++k) {
-        sd_vec3 f = sd_v3_zero(), t = sd_v3_zero();
-        for (uint32_t g = l->gstart[k]; g < l->gstart[k + 1]; ++g) {
-            /* branch-free: j receives -F (multiplying by -1 is exact) and
-             * its own torque at t[2e + 1] */
-            uint32_t idx = l->gidx[g];
-            sd_real sign = SD_R(1.0) - SD_R(2.0) * (sd_real)(idx & 1u);
-            f = sd_v3_madd(f, sign, l->f[idx >> 1]);
-            t = sd_v3_add(t, l->t[idx]);
-        }
-        for (uint32_t e = wl->start[k]; e < wl->start[k + 1]; ++e) {
-            f = sd_v3_add(f, wl->f[e]);
-            t = sd_v3_add(t, wl->t[e]);
-        }
-        p->f[k] = f;
-        p->t[k] = t;
+        sd_gather_one(w, k, &p->f[k], &p->t[k]);
+        sd_integrate_kick(&p->v[k], &p->w[k], p->q[k], p->f[k], p->t[k], p->inv_mass[k], p->inv_inertia[k], g, h);
     }
 }
 

@@ -18,6 +18,8 @@ void sd_cpu_wall_forces(sd_world *w);
 void sd_cpu_convex_forces(sd_world *w);
 /* Each particle sums its pairs in list order (deterministic reduction). */
 void sd_cpu_gather(sd_world *w);
+/* The same, followed by the second half kick of the particle (one pass). */
+void sd_cpu_gather_kick(sd_world *w);
 /* Total force and torque on each wall, summed in pair order. */
 void sd_cpu_wall_totals(sd_world *w);
 
