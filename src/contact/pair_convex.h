@@ -10,13 +10,13 @@
 #include "geom/convex_contact.h"
 
 /* Narrow-phase statistics of one evaluation. */
-typedef struct sd_narrow_stats {
+typedef struct sd_narrow_count {
     int32_t iterations, supports;
-} sd_narrow_stats;
+} sd_narrow_count;
 
 SD_HD static SD_INLINE sd_pair_result sd_pair_convex(const sd_pair_params *prm, const sd_body *a, const sd_body *b,
                                                      const sd_convex *ca, const sd_convex *cb, sd_real r_star,
-                                                     sd_vec3 *ds, sd_vec3 *warm, sd_real dt, sd_narrow_stats *ns)
+                                                     sd_vec3 *ds, sd_vec3 *warm, sd_real dt, sd_narrow_count *ns)
 {
     /* second level of the broad phase: bounding spheres (seed 000 §2.2,
      * Algorithm I); the candidate list holds pairs within the skin */
@@ -40,7 +40,7 @@ SD_HD static SD_INLINE sd_pair_result sd_pair_convex(const sd_pair_params *prm, 
 
 /* A shape against a half-space wall (point p0, unit normal nw into free space). */
 SD_HD static SD_INLINE int sd_convex_wall_geom(const sd_convex *ca, sd_vec3 p0, sd_vec3 nw, sd_contact_geom *g,
-                                               sd_narrow_stats *ns)
+                                               sd_narrow_count *ns)
 {
     sd_convex_contact c = sd_convex_plane(ca, p0, nw);
     ns->iterations = 0;

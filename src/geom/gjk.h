@@ -7,10 +7,14 @@
  * sphere; the caller adds the radii, seed 004 §2.5 shrink / GJK / swell, see
  * geom/convex_contact.h). It finds the point v of K closest to the origin;
  * |v| is the core distance and v = pa − pb gives witness points on each core.
- * The closest point of each simplex is found as in Johnson's sub-algorithm,
- * by brute force over sub-simplices (the origin's projection on the simplex
- * if it falls inside, else the best face / edge): robust on the slivers that
- * curved cores produce near convergence.
+ * The closest point of each simplex is found by the signed-volumes
+ * sub-algorithm (Montanari, Petrinic & Barbieri 2017): the origin's
+ * projection if its barycentric coordinates are all ≥ 0, else the nearest of
+ * the faces / edges whose coordinate is ≤ 1e-9 (the former brute force over
+ * all of them, restricted to those that can hold the answer): robust on the
+ * slivers that curved cores produce near convergence. The simplex sits in
+ * four fixed slots and is never copied; supports use the bodies' rotation
+ * matrices, built once per query.
  *
  * Invariant: the simplex holds 1–4 support points w_i = a_i − b_i of K with
  * the support points a_i (of A) and b_i (of B) that made them, and barycentric
@@ -20,6 +24,10 @@
  *
  * Termination, in this order (DESIGN.md engineering note "GJK/EPA",
  * notes/algorithms.md §C recommendation; L = sum of the two bounding radii):
+ *   0. only when the caller asks (sd_gjk_distance_bounded, stop_beyond ≥ 0):
+ *      a support point w in direction d proves the distance −d·w/|d| >
+ *      stop_beyond → SEPARATED with bounded = 1 (the swept bodies of
+ *      convex_contact.h cannot touch: nothing more is needed);
  *   1. duplicate support: |w − w_i| ≤ 1e-12 L for a simplex vertex → SEPARATED;
  *   2. relative gap |v|² − v·w ≤ 1e-10 |v|² → SEPARATED (distance exact to 1e-10);
  *   3. absolute |v| ≤ 1e-12 L → TOUCHING (the origin lies on the simplex:

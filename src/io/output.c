@@ -462,6 +462,16 @@ static void sd_output_summary_text(FILE *fp, const sd_output *o, const sd_world 
         fprintf(fp, "wall %zu (%s) force_N: %.10g %.10g %.10g\n", i,
                 wi.name && wi.name[0] ? wi.name : "unnamed", wi.force.x, wi.force.y, wi.force.z);
     }
+    /* convex narrow phase per pair type: mean GJK (+EPA) iterations and
+     * support calls per evaluation over the whole run */
+    sd_narrow_stats ns[64];
+    size_t nn = sd_world_narrow_stats(w, ns, 64);
+    for (size_t i = 0; i < nn && i < 64; ++i) {
+        double ev = (double)ns[i].evaluations;
+        fprintf(fp, "narrow_phase %s-%s: evaluations %lld, mean_iterations %.3f, mean_support_calls %.3f\n",
+                ns[i].kind_a, ns[i].kind_b, ns[i].evaluations, (double)ns[i].iterations / ev,
+                (double)ns[i].support_calls / ev);
+    }
 }
 
 sd_status sd_output_close(sd_output *o, const sd_world *w, const sd_run_summary *sum, sd_error *err)

@@ -179,3 +179,23 @@ sd_status sd_world_add_bodies(sd_world *w, size_t n, const sd_body_def *defs, sd
     w->prepared = 0;
     return SD_OK;
 }
+
+size_t sd_world_narrow_stats(const sd_world *w, sd_narrow_stats *out, size_t max)
+{
+    size_t m = 0;
+    for (int a = 0; a < SD_SHAPE_KIND_COUNT; ++a)
+        for (int b = a; b < SD_SHAPE_KIND_COUNT; ++b) {
+            const long long *t = w->narrow[a][b];
+            if (t[0] == 0)
+                continue;
+            if (m < max) {
+                out[m].kind_a = sd_shape_kind_name(a);
+                out[m].kind_b = sd_shape_kind_name(b);
+                out[m].evaluations = t[0];
+                out[m].iterations = t[1];
+                out[m].support_calls = t[2];
+            }
+            ++m;
+        }
+    return m;
+}

@@ -35,6 +35,8 @@ static sd_status sd_world_pair_forces(sd_world *w, sd_error *err)
     }
     sd_cpu_pair_forces(w);
     sd_cpu_convex_forces(w);
+    if (w->pairs.n > w->pairs.n_sphere)
+        sd_cpu_narrow_totals(w);
     sd_cpu_wall_forces(w);
     sd_cpu_wall_totals(w);
     return SD_OK;

@@ -98,6 +98,8 @@ struct sd_world {
     size_t vert_count;
     sd_vec3 *verts;
     int has_shapes;           /* some particle is not a plain sphere */
+    /* narrow-phase totals per pair of shape kinds (sorted), since creation */
+    long long narrow[SD_SHAPE_KIND_COUNT][SD_SHAPE_KIND_COUNT][3];
 
     sd_pair_list pairs;       /* particle-particle candidates */
     sd_wall_pair_list wpairs; /* particle-wall candidates */

@@ -63,7 +63,7 @@ SD_PARALLEL_FOR_DYNAMIC
         sd_body a = sd_body_at(p, i), b = sd_body_at(p, j);
         const sd_pair_params *prm = &w->mix[(size_t)p->material[i] * nm + (size_t)p->material[j]];
         sd_real ra = sd_equivalent_radius(w, i), rb = sd_equivalent_radius(w, j);
-        sd_narrow_stats ns;
+        sd_narrow_count ns;
         sd_pair_result r = sd_pair_convex(prm, &a, &b, &ci, &cj, ra * rb / (ra + rb), &l->ds[e], &l->warm[e], dt, &ns);
         l->f[e] = r.f;
         l->t[2 * e] = r.ti;
@@ -72,5 +72,28 @@ SD_PARALLEL_FOR_DYNAMIC
         l->energy[e] = r.energy;
         l->iters[e] = ns.iterations;
         l->supports[e] = ns.supports;
+    }
+}
+
+/* Adds this step's convex evaluations to the per-kind totals, serially in
+ * pair order (integer sums: exact whatever the order anyway). */
+void sd_cpu_narrow_totals(sd_world *w)
+{
+    const sd_particles *p = &w->p;
+    const sd_pair_list *l = &w->pairs;
+    for (size_t e = l->n_sphere; e < l->n; ++e) {
+        if (l->supports[e] == 0)
+            continue; /* culled by the bounding spheres */
+        int si = p->shape[l->i[e]], sj = p->shape[l->j[e]];
+        int a = si >= 0 ? w->shapes[si].kind : SD_SHAPE_SPHERE;
+        int b = sj >= 0 ? w->shapes[sj].kind : SD_SHAPE_SPHERE;
+        if (a > b) {
+            int t = a;
+            a = b;
+            b = t;
+        }
+        w->narrow[a][b][0] += 1;
+        w->narrow[a][b][1] += l->iters[e];
+        w->narrow[a][b][2] += l->supports[e];
     }
 }

@@ -135,7 +135,7 @@ SD_PARALLEL_FOR
             c.q = p->q[i];
             sd_vec3 p0, nw;
             int inside = sd_wall_feature_plane(wl, l->sub[e], a.x, &p0, &nw);
-            sd_narrow_stats ns;
+            sd_narrow_count ns;
             touching = inside && sd_convex_wall_geom(&c, p0, nw, &g, &ns);
             r_star = w->shape_req[p->shape[i]];
         } else if (wl->kind == SD_WALL_PLANE) {

@@ -16,6 +16,8 @@ void sd_cpu_pair_forces(sd_world *w);
 void sd_cpu_wall_forces(sd_world *w);
 /* Force and torques of every pair that involves a shape template. */
 void sd_cpu_convex_forces(sd_world *w);
+/* Accumulates the narrow-phase statistics of the convex pairs. */
+void sd_cpu_narrow_totals(sd_world *w);
 /* Each particle sums its pairs in list order (deterministic reduction). */
 void sd_cpu_gather(sd_world *w);
 /* The same, followed by the second half kick of the particle (one pass). */
