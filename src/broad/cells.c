@@ -36,7 +36,7 @@ static sd_status sd_pairs_reserve(sd_pair_list *l, size_t cap)
         sd_grow((void **)&l->key, cap, sizeof *l->key) || sd_grow((void **)&l->ds, cap, sizeof *l->ds) ||
         sd_grow((void **)&l->f, cap, sizeof *l->f) || sd_grow((void **)&l->t, 2 * cap, sizeof *l->t) || sd_grow((void **)&l->delta, cap, sizeof *l->delta) ||
         sd_grow((void **)&l->energy, cap, sizeof *l->energy) || sd_grow((void **)&l->gidx, 2 * cap, sizeof *l->gidx) ||
-        sd_grow((void **)&l->warm, cap, sizeof *l->warm) || sd_grow((void **)&l->iters, cap, sizeof *l->iters) ||
+        sd_grow((void **)&l->warm, cap, sizeof *l->warm) || sd_grow((void **)&l->flip, cap, sizeof *l->flip) || sd_grow((void **)&l->iters, cap, sizeof *l->iters) ||
         sd_grow((void **)&l->supports, cap, sizeof *l->supports))
         return SD_ERR_MEMORY;
     l->cap = cap;
@@ -62,7 +62,7 @@ static sd_status sd_wpairs_reserve(sd_wall_pair_list *l, size_t cap)
 void sd_broad_free(sd_pair_list *l, sd_wall_pair_list *wl, sd_grid *g)
 {
     void *ptrs[] = {l->i, l->j, l->key, l->ds, l->f, l->t, l->delta, l->energy, l->gstart, l->gidx,
-                    l->warm, l->iters, l->supports,
+                    l->warm, l->iters, l->supports, l->flip,
                     wl->i, wl->wall, wl->sub, wl->key, wl->ds, wl->f, wl->t, wl->delta, wl->energy, wl->start, wl->c,
                     g->cell_start, g->cell, g->perm, g->count, g->scratch};
     for (size_t k = 0; k < sizeof ptrs / sizeof ptrs[0]; ++k)
@@ -331,6 +331,9 @@ static sd_status sd_pairs_build(sd_world *w)
     sd_free(hist);
     if (sd_pairs_partition(w) != SD_OK)
         return SD_ERR_MEMORY;
+    SD_PARALLEL_FOR
+    for (size_t e = 0; e < total; ++e)
+        l->flip[e] = p->id[l->i[e]] > p->id[l->j[e]];
 
     /* gather lists, filled in pair order so every particle sums its pairs in
      * the same order whatever the thread count */

@@ -20,7 +20,11 @@ typedef struct sd_pair_list {
                               each loop then runs one homogeneous kind */
     uint32_t *i, *j;       /* storage indices, i < j */
     uint64_t *key;         /* (min id << 32) | max id */
-    sd_vec3 *ds;           /* m, tangential spring (history), global frame */
+    sd_vec3 *ds;           /* m, tangential spring (history), global frame, as
+                              seen from the body with the lower stable id:
+                              storage order (which body is i) may flip at a
+                              rebuild, the key does not */
+    uint8_t *flip;         /* 1 when i has the higher stable id (negate ds) */
     sd_vec3 *f;            /* N, force on i */
     sd_vec3 *t;            /* N m, torques: t[2e] on i, t[2e + 1] on j, so a
                               gather entry 2e + side indexes its torque */

@@ -194,7 +194,8 @@ int main(void)
     printf("hopper %.3f x %.4f m, orifice %.3f m, %zu spheres, dt %g s: discharged %.1f %% in %.2f s "
            "(20 %% at %.3f s, 50 %% at %.3f s, 80 %% at %.3f s)\n",
            hp.w, hp.d, hp.orifice, n0, hp.dt, 100 * f[nr - 1], t[nr - 1], t20, t50, t80);
-    CHECK(t20 > 0 && t50 > t20 && t80 > t50);
+    if (!longrun) /* a shortened long run may stop before 80 % */
+        CHECK(t20 > 0 && t50 > t20 && t80 > t50);
     if (t80 > 0) {
         double r1 = 0.3 / (t50 - t20), r2 = 0.3 / (t80 - t50), mean = 0.5 * (r1 + r2);
         printf("discharge rate: 20-50 %% %.4f, 50-80 %% %.4f (mass fraction / s); %.4f kg/s over 20-80 %%\n", r1, r2,

@@ -64,7 +64,11 @@ SD_PARALLEL_FOR_DYNAMIC
         const sd_pair_params *prm = &w->mix[(size_t)p->material[i] * nm + (size_t)p->material[j]];
         sd_real ra = sd_equivalent_radius(w, i), rb = sd_equivalent_radius(w, j);
         sd_narrow_count ns;
-        sd_pair_result r = sd_pair_convex(prm, &a, &b, &ci, &cj, ra * rb / (ra + rb), &l->ds[e], &l->warm[e], dt, &ns);
+        /* the spring is kept as seen from the lower stable id (pairs.h) */
+        int flip = l->flip[e];
+        sd_vec3 ds = flip ? sd_v3_neg(l->ds[e]) : l->ds[e];
+        sd_pair_result r = sd_pair_convex(prm, &a, &b, &ci, &cj, ra * rb / (ra + rb), &ds, &l->warm[e], dt, &ns);
+        l->ds[e] = flip ? sd_v3_neg(ds) : ds;
         l->f[e] = r.f;
         l->t[2 * e] = r.ti;
         l->t[2 * e + 1] = r.tj;

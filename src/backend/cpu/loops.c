@@ -100,7 +100,7 @@ SD_PARALLEL_FOR
         const sd_pair_params *prm = &w->mix[(size_t)p->material[i] * nm + (size_t)p->material[j]];
         /* the spring is stored as seen from the lower stable id: storage
          * order (hence which body is i) may flip at a rebuild, the key not */
-        int flip = p->id[i] > p->id[j];
+        int flip = l->flip[e];
         sd_vec3 ds = flip ? sd_v3_neg(l->ds[e]) : l->ds[e];
         sd_pair_result r = sd_pair_spheres(prm, &a, &b, &ds, dt);
         l->ds[e] = flip ? sd_v3_neg(ds) : ds;
