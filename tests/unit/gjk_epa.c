@@ -751,9 +751,55 @@ static void regressions(void)
     CHECK_NEAR("cone on its base: point z", c.point.z, -0.005, 1e-12);
 }
 
+/* The early stop of sd_gjk_distance_bounded (gjk.h rule 0), as
+ * sd_convex_collide uses it: on random pairs with random swept radii, a
+ * bounded answer must be a true lower bound above the threshold (so the
+ * swept bodies do not touch), and the contact decision (touching or not)
+ * must equal the one of the full-accuracy query; with warm starts too. */
+static void bounded_stop(void)
+{
+    sd_rng rng = sd_rng_seed(77);
+    int wrong_bound = 0, wrong_touch = 0, stopped = 0, n = 4000;
+    for (int k = 0; k < n; ++k) {
+        int ka = (int)(sd_rng_next(&rng) % NK), kb = (int)(sd_rng_next(&rng) % NK);
+        g_pool_n = 0;
+        sd_shape sa = random_shape(&rng, ka), sb = random_shape(&rng, kb);
+        double stop = sd_rng_range(&rng, 0, 0.3);
+        double L = sa.bound + sb.bound;
+        sd_vec3 xb = sd_v3_scale(random_unit(&rng), sd_rng_range(&rng, 0.3, 1.4) * L);
+        sd_convex A = body(&sa, sd_v3_zero(), random_quat(&rng)), B = body(&sb, xb, random_quat(&rng));
+        sd_vec3 warm = (k & 1) ? random_unit(&rng) : sd_v3_zero();
+        sd_gjk_result full = sd_gjk_distance(&A, &B, sd_v3_zero());
+        sd_gjk_result g = sd_gjk_distance_bounded(&A, &B, warm, stop);
+        int full_sep = full.status == SD_GJK_SEPARATED || full.status == SD_GJK_MAX_ITER;
+        if (g.bounded) {
+            stopped++;
+            /* a lower bound, above the threshold */
+            if (!(g.distance > stop) || !full_sep || g.distance > full.distance * (1 + 1e-12) + 1e-12 * L)
+                wrong_bound++;
+        } else if (g.status == SD_GJK_SEPARATED || g.status == SD_GJK_MAX_ITER) {
+            if (!full_sep || fabs(g.distance - full.distance) > 1e-9 * L)
+                wrong_bound++;
+        }
+        /* the contact decision with threshold stop (full: distance < stop;
+         * away from the boundary by 1e-9 L) */
+        double fd = full_sep ? full.distance : 0;
+        if (fabs(fd - stop) > 1e-9 * L) {
+            int touch_full = fd < stop;
+            int touch_b = !(g.bounded || ((g.status == SD_GJK_SEPARATED || g.status == SD_GJK_MAX_ITER) && g.distance >= stop));
+            wrong_touch += touch_full != touch_b;
+        }
+    }
+    printf("bounded GJK: %d of %d queries stopped early\n", stopped, n);
+    CHECK_NEAR("bounded GJK: wrong lower bounds or distances", wrong_bound, 0, 0);
+    CHECK_NEAR("bounded GJK: contact decisions that differ from the full query", wrong_touch, 0, 0);
+    CHECK(stopped > n / 10);
+}
+
 int main(void)
 {
     regressions();
+    bounded_stop();
 
     /* (a) random pairs against the oracles */
     sd_rng rng = sd_rng_seed(20240611);

@@ -205,7 +205,7 @@ int main(void)
     }
     CHECK(gi.removed == gi.removed_outlet);
     CHECK(sd_world_particle_count(w) + gi.removed == n0);
-    double al, ar;
+    double al = 0, ar = 0;
     dead_zone_angles(w, &hp, &al, &ar);
     printf("surface angle beside the orifice now: left %.1f deg, right %.1f deg (seed 001: 18 deg at 6 s)\n", al, ar);
     printf("grid: conflicts %ld, slot overflows %ld, max in overflow %zu\n", gi.conflicts, gi.slot_overflows,

@@ -35,7 +35,21 @@ int main(void)
     for (size_t k = 0; k < n; ++k)
         smallest = fmin(smallest, body_size(w, k));
     long chunk = scene->steps / 20;
+    double fz_sum = 0;
+    long fz_count = 0;
     for (int c = 0; c < 20; ++c) {
+        if (c == 19) {
+            /* the last chunk step by step: the box force averaged over it
+             * (an instant still carries the pack's last vibrations) */
+            for (long s = 0; s < chunk; ++s) {
+                sd_test_require(sd_world_step(w, 1, &err) == SD_OK, "step", &err);
+                sd_wall_info wi;
+                sd_world_get_wall(w, 0, &wi);
+                fz_sum += wi.force.z;
+                fz_count++;
+            }
+        } else
+
         sd_test_require(sd_world_step(w, chunk, &err) == SD_OK, "step", &err);
         /* overlaps of every contact, against the smaller body of the pair */
         for (size_t e = 0; e < w->pairs.n; ++e)
@@ -57,16 +71,14 @@ int main(void)
     }
     sd_stats st;
     sd_world_stats(w, &st);
-    sd_wall_info box;
-    sd_world_get_wall(w, 0, &box);
     printf("     %zu bodies, %ld contacts, %ld wall contacts, smallest body size %.3g m\n", n, st.contacts,
            st.wall_contacts, smallest);
     CHECK_NEAR("bodies outside the box", (double)outside, 0.0, 0.0);
     CHECK_NEAR("largest overlap / smaller body size", worst, 0.0, 0.02);
     CHECK_NEAR("kinetic energy per body at the end (J)", (st.kinetic_translational + st.kinetic_rotational) / (double)n,
                0.0, 1e-9);
-    /* nearly at rest: the box carries the weight up to the last vibrations */
-    CHECK_REL("box force z = weight (N)", box.force.z, -mass * 9.81, 0.05);
+    CHECK_REL("box force z, mean over the last 5 % of the run = weight (N)", fz_sum / (double)fz_count,
+              -mass * 9.81, 0.02);
     sd_world_destroy(w);
     sd_scene_free(scene);
     return sd_test_summary();
