@@ -74,10 +74,39 @@ void sd_broad_free(sd_pair_list *l, sd_wall_pair_list *wl, sd_grid *g)
 
 /* ---- history carry-over ------------------------------------------------- */
 
-static int sd_history_cmp(const void *a, const void *b)
+/* Sorts h by key: least-significant-digit radix sort, 11 bits a pass,
+ * skipping the passes whose digit is the same in every key (the high bits
+ * of small ids). Linear in the count, which matters at every rebuild of a
+ * large list. tmp holds as many entries as h; returns where the result is. */
+static sd_history *sd_history_sort(sd_history *h, sd_history *tmp, size_t m)
 {
-    uint64_t ka = ((const sd_history *)a)->key, kb = ((const sd_history *)b)->key;
-    return ka < kb ? -1 : (ka > kb ? 1 : 0);
+    enum { BITS = 11, RADIX = 1 << BITS };
+    static const uint64_t mask = RADIX - 1;
+    uint64_t all_or = 0, all_and = ~(uint64_t)0;
+    for (size_t k = 0; k < m; ++k) {
+        all_or |= h[k].key;
+        all_and &= h[k].key;
+    }
+    size_t count[RADIX];
+    for (int shift = 0; shift < 64; shift += BITS) {
+        if ((((all_or ^ all_and) >> shift) & mask) == 0)
+            continue; /* the same digit everywhere: already in order */
+        memset(count, 0, sizeof count);
+        for (size_t k = 0; k < m; ++k)
+            count[(h[k].key >> shift) & mask]++;
+        size_t sum = 0;
+        for (size_t d = 0; d < RADIX; ++d) {
+            size_t c = count[d];
+            count[d] = sum;
+            sum += c;
+        }
+        for (size_t k = 0; k < m; ++k)
+            tmp[count[(h[k].key >> shift) & mask]++] = h[k];
+        sd_history *t = h;
+        h = tmp;
+        tmp = t;
+    }
+    return h;
 }
 
 /* Collects entries whose spring is non-zero, sorted by key. */
@@ -88,7 +117,8 @@ static sd_history *sd_history_collect(size_t n, const uint64_t *key, const sd_ve
         if (ds[k].x != 0 || ds[k].y != 0 || ds[k].z != 0)
             ++m;
     *count = m;
-    sd_history *h = sd_malloc((m ? m : 1) * sizeof *h);
+    /* one block: the entries, then the radix sort's scratch */
+    sd_history *h = sd_malloc(2 * (m ? m : 1) * sizeof *h);
     if (!h)
         return NULL;
     m = 0;
@@ -98,8 +128,9 @@ static sd_history *sd_history_collect(size_t n, const uint64_t *key, const sd_ve
             h[m].ds = ds[k];
             ++m;
         }
-    /* keys are unique, so the unstable qsort still gives one order */
-    qsort(h, m, sizeof *h, sd_history_cmp);
+    sd_history *sorted = sd_history_sort(h, h + m, m);
+    if (sorted != h)
+        memcpy(h, sorted, m * sizeof *h);
     return h;
 }
 
@@ -332,8 +363,14 @@ static sd_status sd_pairs_build(sd_world *w)
     if (sd_pairs_partition(w) != SD_OK)
         return SD_ERR_MEMORY;
     SD_PARALLEL_FOR
-    for (size_t e = 0; e < total; ++e)
+    for (size_t e = 0; e < total; ++e) {
         l->flip[e] = p->id[l->i[e]] > p->id[l->j[e]];
+        /* a pair that carries a spring is evaluated at the next step even if
+         * it has just come apart, so that its spring is cleared (the force
+         * loops skip pairs that were and are apart) */
+        sd_vec3 s = l->ds[e];
+        l->delta[e] = (s.x != 0 || s.y != 0 || s.z != 0) ? SD_R(1e-300) : SD_R(0.0);
+    }
 
     /* gather lists, filled in pair order so every particle sums its pairs in
      * the same order whatever the thread count */

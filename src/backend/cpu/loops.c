@@ -96,6 +96,12 @@ void sd_cpu_pair_forces(sd_world *w)
 SD_PARALLEL_FOR
     for (size_t e = 0; e < n; ++e) {
         uint32_t i = l->i[e], j = l->j[e];
+        /* a candidate that is apart and was apart has nothing to write: its
+         * force, torques and spring are already zero (most of the skin's
+         * pairs, and most of the memory traffic of this loop) */
+        sd_real rs = p->radius[i] + p->radius[j];
+        if (l->delta[e] <= 0 && sd_v3_norm2(sd_v3_sub(p->x[i], p->x[j])) >= rs * rs)
+            continue;
         sd_body a = sd_sphere_body(p, i), b = sd_sphere_body(p, j);
         const sd_pair_params *prm = &w->mix[(size_t)p->material[i] * nm + (size_t)p->material[j]];
         /* the spring is stored as seen from the lower stable id: storage
