@@ -18,6 +18,11 @@
 #include "geom/sphere.h"
 #include "world/world.h"
 
+/* Candidate slots per particle in the first search; the grid scratch holds
+ * them (and, before that, one field of the particle permutation). */
+#define SD_PAIR_SLOTS 16
+#define SD_GRID_SCRATCH (SD_PAIR_SLOTS * 4 > 32 ? SD_PAIR_SLOTS * 4 : 32)
+
 static sd_status sd_grow(void **p, size_t need, size_t elem)
 {
     void *q = sd_realloc(*p, need * elem);
@@ -190,7 +195,7 @@ static sd_status sd_grid_setup(sd_world *w)
     if (n > g->pcap) {
         size_t cap = n + n / 4 + 16;
         if (sd_grow((void **)&g->cell, cap, sizeof *g->cell) || sd_grow((void **)&g->perm, cap, sizeof *g->perm) ||
-            sd_grow((void **)&g->count, cap + 1, sizeof *g->count) || sd_grow(&g->scratch, cap, 32))
+            sd_grow((void **)&g->count, cap + 1, sizeof *g->count) || sd_grow(&g->scratch, cap, SD_GRID_SCRATCH))
             return SD_ERR_MEMORY;
         g->pcap = cap;
     }
@@ -236,8 +241,9 @@ static void sd_grid_sort(sd_world *w)
 
 /* ---- pair list ------------------------------------------------------------- */
 
-/* Visits the candidates of particle i; writes them when out != NULL. */
-static uint32_t sd_pairs_of(const sd_world *w, size_t i, uint32_t *out_j)
+/* Visits the candidates of particle i, writes the first `cap` of them to
+ * out_j and returns how many there are. */
+static uint32_t sd_pairs_of(const sd_world *w, size_t i, uint32_t *out_j, uint32_t cap)
 {
     const sd_grid *g = &w->grid;
     const sd_particles *p = &w->p;
@@ -261,7 +267,7 @@ static uint32_t sd_pairs_of(const sd_world *w, size_t i, uint32_t *out_j)
                 for (size_t j = j0; j < j1; ++j) {
                     sd_real rs = ri + p->radius[j];
                     if (sd_v3_norm2(sd_v3_sub(xi, p->x[j])) < rs * rs) {
-                        if (out_j)
+                        if (m < cap)
                             out_j[m] = (uint32_t)j;
                         ++m;
                     }
@@ -325,9 +331,13 @@ static sd_status sd_pairs_build(sd_world *w)
     if (!hist)
         return SD_ERR_MEMORY;
 
+    /* one search per particle: its candidates go to a small fixed slot in
+     * the grid scratch (SD_PAIR_SLOTS each); only a particle with more
+     * candidates than that is searched again in the fill */
+    uint32_t *slots = (uint32_t *)w->grid.scratch;
     SD_PARALLEL_FOR
     for (size_t i = 0; i < n; ++i)
-        cnt[i] = sd_pairs_of(w, i, NULL);
+        cnt[i] = sd_pairs_of(w, i, slots + i * SD_PAIR_SLOTS, SD_PAIR_SLOTS);
     size_t total = 0;
     for (size_t i = 0; i < n; ++i) {
         uint32_t c = cnt[i];
@@ -342,7 +352,11 @@ static sd_status sd_pairs_build(sd_world *w)
     SD_PARALLEL_FOR
     for (size_t i = 0; i < n; ++i) {
         uint32_t off = cnt[i];
-        uint32_t m = sd_pairs_of(w, i, l->j + off);
+        uint32_t m = (i + 1 < n ? cnt[i + 1] : (uint32_t)total) - off;
+        if (m <= SD_PAIR_SLOTS)
+            memcpy(l->j + off, slots + i * SD_PAIR_SLOTS, m * sizeof *l->j);
+        else
+            sd_pairs_of(w, i, l->j + off, UINT32_MAX);
         for (uint32_t k = 0; k < m; ++k) {
             size_t e = off + k;
             l->i[e] = (uint32_t)i;

@@ -42,6 +42,16 @@ SD_HD static SD_INLINE sd_quat sd_quat_normalize(sd_quat q)
     return sd_quat_make(q.w * s, q.x * s, q.y * s, q.z * s);
 }
 
+/* Renormalises a quaternion whose norm is 1 up to rounding (the product of
+ * two unit quaternions): one Newton step of 1/sqrt from 1, s = (3 - |q|^2)/2,
+ * is exact to rounding there and needs no square root or division. */
+SD_HD static SD_INLINE sd_quat sd_quat_renormalize(sd_quat q)
+{
+    sd_real n2 = q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z;
+    sd_real s = SD_R(1.5) - SD_R(0.5) * n2;
+    return sd_quat_make(q.w * s, q.x * s, q.y * s, q.z * s);
+}
+
 /* Rotation by angle |axis_angle| about axis_angle/|axis_angle|. */
 SD_HD static SD_INLINE sd_quat sd_quat_from_rotvec(sd_vec3 r)
 {

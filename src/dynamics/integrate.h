@@ -40,7 +40,8 @@ SD_HD static SD_HOT void sd_integrate_kick(sd_vec3 *v, sd_vec3 *w, sd_quat q, sd
 SD_HD static SD_HOT void sd_integrate_drift(sd_vec3 *x, sd_quat *q, sd_vec3 v, sd_vec3 w, sd_real dt)
 {
     *x = sd_v3_madd(*x, dt, v);
-    *q = sd_quat_normalize(sd_quat_mul(sd_quat_from_rotvec(sd_v3_scale(w, dt)), *q));
+    /* the product of two unit quaternions is unit up to rounding */
+    *q = sd_quat_renormalize(sd_quat_mul(sd_quat_from_rotvec(sd_v3_scale(w, dt)), *q));
 }
 
 #endif

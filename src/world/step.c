@@ -3,6 +3,11 @@
  *   kick + drift ─► rebuild pairs when the skin is used up ─► pair forces
  *   ─► wall forces ─► gather per particle ─► kick ─► clock
  *
+ * Within one call the gather and kick that end a step and the kick and
+ * drift that start the next run as one pass over the particles (the same
+ * operations in the same order, so the same bits as separate passes: a run
+ * cut into calls of any length gives the same state).
+ *
  * Velocity Verlet (seed 004 eq. 9): forces at the start of a step are the
  * ones computed at the end of the previous step, so sd_world_prepare
  * computes them once before the first step. Every stage is one loop of the
@@ -91,12 +96,16 @@ sd_status sd_world_step(sd_world *w, long nsteps, sd_error *err)
         if (st != SD_OK)
             return st;
     }
-    for (long s = 0; s < nsteps; ++s) {
+    if (nsteps > 0)
         sd_cpu_kick_drift(w);                        /* v(t + dt/2), x(t + dt) */
+    for (long s = 0; s < nsteps; ++s) {
         sd_status st = sd_world_pair_forces(w, err); /* per pair, at t + dt */
         if (st != SD_OK)
             return st;
-        sd_cpu_gather_kick(w);                       /* F(t + dt), v(t + dt) */
+        if (s + 1 < nsteps)
+            sd_cpu_gather_kick_drift(w);             /* F, v(t + dt); next v(t + 3dt/2), x(t + 2dt) */
+        else
+            sd_cpu_gather_kick(w);                   /* F(t + dt), v(t + dt) */
         w->step++;
         w->time = (double)w->step * (double)w->dt;
         if ((w->step & 255) == 0 && (st = sd_world_check_finite(w, err)) != SD_OK)

@@ -195,6 +195,26 @@ SD_PARALLEL_FOR
         sd_gather_one(w, k, &p->f[k], &p->t[k]);
 }
 
+void sd_cpu_gather_kick_drift(sd_world *w)
+{
+    sd_particles *p = &w->p;
+    size_t n = p->n;
+    sd_real h = SD_R(0.5) * w->dt, dt = w->dt;
+    sd_vec3 g = w->gravity;
+SD_PARALLEL_FOR
+    for (size_t k = 0; k < n; ++k) {
+        sd_gather_one(w, k, &p->f[k], &p->t[k]);
+        /* end of this step: v(t + dt) */
+        sd_integrate_kick(&p->v[k], &p->w[k], p->q[k], p->f[k], p->t[k], p->inv_mass[k], p->inv_inertia[k], g, h);
+        /* start of the next: the same kick again, then the drift (a particle
+         * may move before the others are gathered: gathering reads only the
+         * pair forces, never another particle's state) */
+        sd_integrate_kick(&p->v[k], &p->w[k], p->q[k], p->f[k], p->t[k], p->inv_mass[k], p->inv_inertia[k], g, h);
+        if (p->inv_mass[k] > 0)
+            sd_integrate_drift(&p->x[k], &p->q[k], p->v[k], p->w[k], dt);
+    }
+}
+
 void sd_cpu_gather_kick(sd_world *w)
 {
     sd_particles *p = &w->p;

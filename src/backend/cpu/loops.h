@@ -22,6 +22,10 @@ void sd_cpu_narrow_totals(sd_world *w);
 void sd_cpu_gather(sd_world *w);
 /* The same, followed by the second half kick of the particle (one pass). */
 void sd_cpu_gather_kick(sd_world *w);
+/* Gather and second kick of this step, then the first kick and the drift of
+ * the next step, in one pass (the same operations in the same order as the
+ * separate loops, so the same bits). */
+void sd_cpu_gather_kick_drift(sd_world *w);
 /* Total force and torque on each wall, summed in pair order. */
 void sd_cpu_wall_totals(sd_world *w);
 
