@@ -36,18 +36,6 @@ static sd_real sd_equivalent_radius(const sd_world *w, size_t k)
     return s >= 0 ? w->shape_req[s] : w->p.radius[k];
 }
 
-static sd_body sd_body_at(const sd_particles *p, size_t k)
-{
-    sd_body b;
-    b.x = p->x[k];
-    b.v = p->v[k];
-    b.w = p->w[k];
-    b.radius = p->radius[k];
-    b.inv_mass = p->inv_mass[k];
-    b.inv_inertia = p->shape[k] >= 0 ? p->inv_inertia[k] : sd_v3_zero();
-    b.q = p->q[k];
-    return b;
-}
 
 void sd_cpu_convex_forces(sd_world *w)
 {
@@ -60,7 +48,7 @@ SD_PARALLEL_FOR_DYNAMIC
         uint32_t i = l->i[e], j = l->j[e];
         sd_shape si, sj;
         sd_convex ci = sd_convex_of(w, i, &si), cj = sd_convex_of(w, j, &sj);
-        sd_body a = sd_body_at(p, i), b = sd_body_at(p, j);
+        sd_body a = sd_body_of(p, i), b = sd_body_of(p, j);
         const sd_pair_params *prm = &w->mix[(size_t)p->material[i] * nm + (size_t)p->material[j]];
         sd_real ra = sd_equivalent_radius(w, i), rb = sd_equivalent_radius(w, j);
         sd_narrow_count ns;

@@ -24,20 +24,6 @@ static SD_HOT sd_body sd_sphere_body(const sd_particles *p, size_t k)
     return b;
 }
 
-static SD_HOT sd_body sd_body_of(const sd_particles *p, size_t k)
-{
-    sd_body b;
-    b.x = p->x[k];
-    b.v = p->v[k];
-    b.w = p->w[k];
-    b.radius = p->radius[k];
-    b.inv_mass = p->inv_mass[k];
-    /* spheres: contacts are central, no rotational term in the effective mass */
-    b.inv_inertia = p->shape[k] >= 0 ? p->inv_inertia[k] : sd_v3_zero();
-    b.q = p->q[k];
-    return b;
-}
-
 /* The plane of a wall feature: the plane wall itself, or a closed box face
  * (inward normal). Returns 0 when x does not project inside the face's
  * rectangle: a shape beside a box face meets it only through the

@@ -4,7 +4,23 @@
 #ifndef SD_BACKEND_CPU_LOOPS_H
 #define SD_BACKEND_CPU_LOOPS_H
 
+#include "contact/pair.h"
 #include "world/world.h"
+
+/* The state of particle k as the pair evaluation needs it; plain spheres
+ * get no rotational term in the effective mass (their contacts are central). */
+static SD_HOT sd_body sd_body_of(const sd_particles *p, size_t k)
+{
+    sd_body b;
+    b.x = p->x[k];
+    b.v = p->v[k];
+    b.w = p->w[k];
+    b.radius = p->radius[k];
+    b.inv_mass = p->inv_mass[k];
+    b.inv_inertia = p->shape[k] >= 0 ? p->inv_inertia[k] : sd_v3_zero();
+    b.q = p->q[k];
+    return b;
+}
 
 /* First half kick and drift of every particle (velocity Verlet). */
 void sd_cpu_kick_drift(sd_world *w);
