@@ -323,17 +323,21 @@ static int sd_cmd_check(const sd_cli *c)
     double tc = 0, rec = sd_world_recommended_dt(w, &tc);
     double dt = sd_world_dt(w);
     printf("scene        %s\n", c->scene);
-    printf("particles    %zu spheres", n);
-    if (n) {
-        double rmin = 1e300, rmax = 0;
-        for (size_t k = 0; k < n; ++k) {
-            sd_particle_state p;
-            sd_world_get_particle(w, k, &p);
-            rmin = p.radius < rmin ? p.radius : rmin;
-            rmax = p.radius > rmax ? p.radius : rmax;
-        }
-        printf(", radius %.4g .. %.4g m", rmin, rmax);
+    size_t nshape = 0;
+    double rmin = 1e300, rmax = 0;
+    for (size_t k = 0; k < n; ++k) {
+        sd_particle_state p;
+        sd_world_get_particle(w, k, &p);
+        nshape += p.shape >= 0;
+        rmin = p.radius < rmin ? p.radius : rmin;
+        rmax = p.radius > rmax ? p.radius : rmax;
     }
+    printf("particles    %zu: %zu spheres, %zu bodies of %zu shapes", n, n - nshape, nshape,
+           sd_world_shape_count(w));
+    if (n)
+        printf("; radius (bounding radius for shapes) %.4g .. %.4g m", rmin, rmax);
+    printf("\nsolver       %s", scene->world.solver == SD_SOLVER_GRID ? "grid (dense grid stencil, seed 001)"
+                                                                     : "cells (cell binning + pair lists)");
     printf("\nmaterials    %zu:", scene->material_count);
     for (size_t k = 0; k < scene->material_count; ++k)
         printf(" %s", scene->materials[k].name);
