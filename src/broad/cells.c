@@ -10,7 +10,6 @@
  */
 #include "broad/cells.h"
 
-#include <stdlib.h>
 #include <string.h>
 
 #include "core/alloc.h"

@@ -59,11 +59,11 @@ SD_HD static SD_HOT sd_pair_result sd_pair_apply(const sd_pair_params *prm, cons
     return r;
 }
 
-SD_HD static SD_HOT sd_pair_result sd_pair_none(sd_real gap, sd_vec3 *ds)
+SD_HD static SD_HOT sd_pair_result sd_pair_none(sd_vec3 *ds)
 {
     sd_pair_result r;
     r.f = r.ti = r.tj = sd_v3_zero();
-    r.delta = -gap;
+    r.delta = SD_R(0.0); /* apart: stats count only delta > 0 */
     r.energy = SD_R(0.0);
     *ds = sd_v3_zero(); /* a broken contact forgets its spring */
     return r;
@@ -75,7 +75,7 @@ SD_HD static SD_HOT sd_pair_result sd_pair_spheres(const sd_pair_params *prm, co
 {
     sd_contact_geom g;
     if (!sd_sphere_sphere(a->x, a->radius, b->x, b->radius, &g))
-        return sd_pair_none(SD_R(0.0), ds);
+        return sd_pair_none(ds);
     sd_real r_star = a->radius * b->radius / (a->radius + b->radius);
     return sd_pair_apply(prm, a, b, &g, r_star, ds, dt);
 }
@@ -88,7 +88,7 @@ SD_HD static SD_HOT sd_pair_result sd_pair_wall(const sd_pair_params *prm, const
                                                    sd_vec3 *ds, sd_real dt)
 {
     if (!touching)
-        return sd_pair_none(SD_R(0.0), ds);
+        return sd_pair_none(ds);
     sd_body wall;
     wall.x = g->point;
     wall.v = sd_v3_zero();

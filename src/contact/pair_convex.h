@@ -24,13 +24,13 @@ SD_HD static SD_INLINE sd_pair_result sd_pair_convex(const sd_pair_params *prm, 
     if (sd_v3_norm2(sd_v3_sub(ca->x, cb->x)) >= reach * reach) {
         ns->iterations = 0;
         ns->supports = 0;
-        return sd_pair_none(SD_R(0.0), ds);
+        return sd_pair_none(ds);
     }
     sd_convex_contact c = sd_convex_collide(ca, cb, warm);
     ns->iterations = c.iterations;
     ns->supports = c.support_calls;
     if (!c.touching)
-        return sd_pair_none(SD_R(0.0), ds);
+        return sd_pair_none(ds);
     sd_contact_geom g;
     g.n = c.n;
     g.point = c.point;

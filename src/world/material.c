@@ -137,7 +137,7 @@ double sd_world_recommended_dt(const sd_world *w, double *contact_duration)
     double rmin[256], mmin[256];
     for (size_t a = 0; a < 256; ++a)
         rmin[a] = mmin[a] = INFINITY;
-    double vmax = 0, zlo = INFINITY, zhi = -INFINITY;
+    double vmax = 0, zlo = INFINITY, zhi = -INFINITY, rsmall = INFINITY;
     double g = sqrt((double)sd_v3_norm2(w->gravity));
     sd_vec3 gdir = g > 0 ? sd_v3_scale(w->gravity, (sd_real)(-1.0 / g)) : sd_v3(0, 0, 1);
     for (size_t k = 0; k < p->n; ++k) {
@@ -148,6 +148,7 @@ double sd_world_recommended_dt(const sd_world *w, double *contact_duration)
         double mass = p->inv_mass[k] > 0 ? 1.0 / (double)p->inv_mass[k] : (double)INFINITY;
         if (r < rmin[m])
             rmin[m] = r;
+        rsmall = fmin(rsmall, r);
         if (mass < mmin[m])
             mmin[m] = mass;
         vmax = fmax(vmax, (double)sd_v3_norm(p->v[k]));
@@ -155,7 +156,7 @@ double sd_world_recommended_dt(const sd_world *w, double *contact_duration)
         zlo = fmin(zlo, h);
         zhi = fmax(zhi, h);
     }
-    double v = fmax(vmax, fmax(sqrt(2 * g * (zhi - zlo + 2 * rmin[p->material[0]])), 1e-3));
+    double v = fmax(vmax, fmax(sqrt(2 * g * (zhi - zlo + 2 * rsmall)), 1e-3));
     for (size_t a = 0; a < nm && a < 256; ++a) {
         if (!isfinite(rmin[a]))
             continue;

@@ -48,6 +48,20 @@ static int sd_wall_feature_plane(const sd_wall *wl, int face, sd_vec3 x, sd_vec3
     return 1;
 }
 
+/* Half kick of particle k with its current force and torque. */
+static SD_HOT void sd_kick_one(sd_particles *p, size_t k, sd_vec3 g, sd_real h)
+{
+    sd_integrate_kick(&p->v[k], &p->w[k], p->q[k], p->f[k], p->t[k], p->inv_mass[k], p->inv_inertia[k], g, h);
+}
+
+/* Half kick then drift of particle k (a fixed body does not move). */
+static SD_HOT void sd_kick_drift_one(sd_particles *p, size_t k, sd_vec3 g, sd_real h, sd_real dt)
+{
+    sd_kick_one(p, k, g, h);
+    if (p->inv_mass[k] > 0)
+        sd_integrate_drift(&p->x[k], &p->q[k], p->v[k], p->w[k], dt);
+}
+
 void sd_cpu_kick_drift(sd_world *w)
 {
     sd_particles *p = &w->p;
@@ -55,11 +69,8 @@ void sd_cpu_kick_drift(sd_world *w)
     sd_real h = SD_R(0.5) * w->dt, dt = w->dt;
     sd_vec3 g = w->gravity;
 SD_PARALLEL_FOR
-    for (size_t k = 0; k < n; ++k) {
-        sd_integrate_kick(&p->v[k], &p->w[k], p->q[k], p->f[k], p->t[k], p->inv_mass[k], p->inv_inertia[k], g, h);
-        if (p->inv_mass[k] > 0)
-            sd_integrate_drift(&p->x[k], &p->q[k], p->v[k], p->w[k], dt);
-    }
+    for (size_t k = 0; k < n; ++k)
+        sd_kick_drift_one(p, k, g, h, dt);
 }
 
 void sd_cpu_kick(sd_world *w)
@@ -70,7 +81,7 @@ void sd_cpu_kick(sd_world *w)
     sd_vec3 g = w->gravity;
 SD_PARALLEL_FOR
     for (size_t k = 0; k < n; ++k)
-        sd_integrate_kick(&p->v[k], &p->w[k], p->q[k], p->f[k], p->t[k], p->inv_mass[k], p->inv_inertia[k], g, h);
+        sd_kick_one(p, k, g, h);
 }
 
 void sd_cpu_pair_forces(sd_world *w)
@@ -190,14 +201,11 @@ void sd_cpu_gather_kick_drift(sd_world *w)
 SD_PARALLEL_FOR
     for (size_t k = 0; k < n; ++k) {
         sd_gather_one(w, k, &p->f[k], &p->t[k]);
-        /* end of this step: v(t + dt) */
-        sd_integrate_kick(&p->v[k], &p->w[k], p->q[k], p->f[k], p->t[k], p->inv_mass[k], p->inv_inertia[k], g, h);
+        sd_kick_one(p, k, g, h); /* end of this step: v(t + dt) */
         /* start of the next: the same kick again, then the drift (a particle
          * may move before the others are gathered: gathering reads only the
          * pair forces, never another particle's state) */
-        sd_integrate_kick(&p->v[k], &p->w[k], p->q[k], p->f[k], p->t[k], p->inv_mass[k], p->inv_inertia[k], g, h);
-        if (p->inv_mass[k] > 0)
-            sd_integrate_drift(&p->x[k], &p->q[k], p->v[k], p->w[k], dt);
+        sd_kick_drift_one(p, k, g, h, dt);
     }
 }
 
@@ -210,7 +218,7 @@ void sd_cpu_gather_kick(sd_world *w)
 SD_PARALLEL_FOR
     for (size_t k = 0; k < n; ++k) {
         sd_gather_one(w, k, &p->f[k], &p->t[k]);
-        sd_integrate_kick(&p->v[k], &p->w[k], p->q[k], p->f[k], p->t[k], p->inv_mass[k], p->inv_inertia[k], g, h);
+        sd_kick_one(p, k, g, h);
     }
 }
 
