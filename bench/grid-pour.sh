@@ -7,9 +7,9 @@
 # (seed 001 §4.1, Set I: R = 0.05 m, rho = 2700 kg/m^3, k = 50,000 N/m,
 # eta = 0.5 N s/m, mu = 0.5, dt = 1e-3 s): a dense bed, 10 layers of
 # touching spheres (simple cubic lattice of spacing 2R, velocities jittered
-# by 0.05 m/s) in a box open at the top, settling under gravity. Pouring
-# itself is not a scene key yet, so the bed starts as a lattice; the two
-# solvers run the identical scene (bench/README.md).
+# by 0.05 m/s) in a box open at the top, settling under gravity. The bed
+# starts as a lattice rather than from the grid solver's pour: section so
+# that the two solvers run the identical scene (bench/README.md).
 set -eu
 solver=$1 n=$2 file=$3
 case "$solver" in grid | cells) ;; *) echo "grid-pour.sh: solver must be grid or cells" >&2; exit 2 ;; esac

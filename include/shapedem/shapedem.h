@@ -60,7 +60,9 @@ typedef struct sd_v3d {
  * enum, the scene-file names and the help text (STYLE.md convention 4). */
 #define SD_CONTACT_LAWS(X)                                                                       \
     X(SD_LAW_HERTZ_MINDLIN, "hertz_mindlin", "Hertz normal, Mindlin tangential with history (LIGGGHTS form)") \
-    X(SD_LAW_LINEAR, "linear", "linear spring-dashpot-Coulomb, damping from restitution (seed 004 eqs. 10, 16)")
+    X(SD_LAW_LINEAR, "linear", "linear spring-dashpot-Coulomb, damping from restitution (seed 004 eqs. 10, 16)") \
+    X(SD_LAW_VOLUME, "volume", "polyhedra: energy-conserving overlap-volume law, F = (E1/R1 + E2/R2) A_n V^(1/3) (seed 000 eqs. 12-22)") \
+    X(SD_LAW_VOLUME_LINEAR, "volume_linear", "polyhedra: linear overlap-volume law F = k_V V with volume_stiffness k_V (N/m^3)")
 
 typedef enum sd_contact_law {
 #define SD_X_ENUM(e, name, doc) e,
@@ -87,6 +89,7 @@ typedef struct sd_material_def {
     double tangential_stiffness_ratio; /* -, k_t / k_n for the linear law */
     double damping;           /* N s/m, linear law: viscous coefficient eta used instead of the
                                  restitution (seed 001 eqs. 6, 8); 0 = from restitution */
+    double volume_stiffness;  /* N/m^3, k_V of the volume_linear law (0: unset) */
     int cookie;               /* set by sd_material_def_default */
 } sd_material_def;
 
@@ -100,6 +103,7 @@ typedef struct sd_interaction_def {
     double rolling_friction;
     double stiffness;             /* linear law k_n, N/m */
     double damping;               /* linear law eta, N s/m */
+    double volume_stiffness;      /* volume_linear law k_V, N/m^3 */
     int law;                      /* sd_contact_law, or -1 to keep the world's */
     int cookie;
 } sd_interaction_def;
@@ -118,7 +122,8 @@ typedef enum sd_solver {
 } sd_solver;
 
 typedef struct sd_world_def {
-    int dimension;          /* 3 (2 is reserved for the planar mode) */
+    int dimension;          /* 3, or 2: the planar mode (z = 0, rotation about z only,
+                               masses per unit thickness of 1 m; docs/physics.md) */
     double dt;              /* s, time step */
     sd_v3d gravity;         /* m/s^2 */
     uint64_t seed;          /* random seed for generators */
@@ -126,6 +131,9 @@ typedef struct sd_world_def {
     sd_contact_law law;     /* default contact law */
     double skin;            /* m, Verlet skin; 0 = 0.2 x smallest radius */
     sd_solver solver;       /* SD_SOLVER_CELLS by default */
+    double local_damping;   /* -, in [0, 1): velocity-based local (non-viscous) damping of
+                               seed 002 §3.2: each force and torque component gets
+                               -alpha |unbalanced| sign(velocity); 0 = off */
     int cookie;
 } sd_world_def;
 
@@ -195,11 +203,45 @@ typedef struct sd_shape_info {
     sd_v3d center_of_mass;     /* m, in the frame the shape was given in */
     double rounding;           /* m, radius swept over the core */
     size_t vertex_count;       /* polyhedron hull vertices */
+    size_t face_count;         /* polyhedron welded faces (coplanar triangles merged, seed 000 §2.1) */
+    size_t overlap_face_limit; /* most faces the exact overlap volume takes (SD_OVERLAP_MAX_PLANES) */
+    /* dimension 2: volume is the area (m^2, times the 1 m thickness),
+     * inertia the polar moment about z (m^4, in all three components),
+     * vertex_count the pool values (vertices, control points, coefficients) */
 } sd_shape_info;
 
 sd_status sd_world_get_shape(const sd_world *w, size_t index, sd_shape_info *out);
 
-/* A rigid body of a shape template. */
+/* A planar shape template (dimension 2 only; its index is used by
+ * sd_body_def.shape like a 3D template's). Kinds (seed 002):
+ *   "circle"      radius
+ *   "ellipse"     semi_axes (along x, y), optionally rounded by radius
+ *   "polygon"     the convex hull of points (x0, y0, x1, y1, ...), optionally rounded
+ *   "polybezier"  3m control points of m cubic Bezier segments closing on the
+ *                 first point, a convex curve, optionally rounded
+ *   "fourier"     support function p(theta) = a0/2 + sum a_k cos k theta + b_k sin k theta
+ *                 (seed 002 eq. 2): fourier_a = a_0..a_N, fourier_b = b_1..b_N; must be
+ *                 convex (p + p'' >= 0, eq. 5: reduce it with `shapedem shape fit-fourier`)
+ * Templates are moved to their centroid; masses are per unit thickness (1 m). */
+typedef struct sd_shape2d_def {
+    const char *kind;
+    double radius;              /* m: circle radius; other kinds: rounding (>= 0) */
+    double semi_axes[2];        /* m, ellipse */
+    const double *points;       /* m, x0, y0, x1, y1, ... (polygon, polybezier) */
+    size_t point_count;         /* points, not doubles */
+    const double *fourier_a;    /* m, a_0 .. a_N */
+    const double *fourier_b;    /* m, b_1 .. b_N */
+    int order;                  /* N */
+    int cookie;
+} sd_shape2d_def;
+
+sd_shape2d_def sd_shape2d_def_default(void);
+/* Returns the shape's index (>= 0) or -1 with err filled; dimension 2 only. */
+int sd_world_add_shape2d(sd_world *w, const char *name, const sd_shape2d_def *def, sd_error *err);
+
+/* A rigid body of a shape template. In dimension 2 the position has z = 0
+ * and the orientation is a rotation about z, (cos(a/2), 0, 0, sin(a/2));
+ * bodies of a circle template are plain circles (shape -1 in queries). */
 typedef struct sd_body_def {
     sd_v3d position;           /* m, centre of mass */
     sd_v3d velocity;           /* m/s */
@@ -227,6 +269,48 @@ enum {
 /* A container: particles stay inside [lo, hi]; faces in open_faces are absent. */
 int sd_world_add_box(sd_world *w, const char *name, sd_v3d lo, sd_v3d hi, unsigned open_faces,
                      int material, sd_error *err);
+
+/* Moving walls (plane walls). Within [move_start, move_end) the wall moves
+ * at the prescribed velocity (loading); within [servo_start, servo_end) a
+ * servo sets its velocity along its normal each step so the normal stress
+ * it carries tracks servo_stress (confining pressure). The servo wins where
+ * both windows are open; outside both the wall rests. The stress is the
+ * normal force over the wall's contact length (2D: times 1 m) or area (3D),
+ * measured between the two pairs of opposite plane walls perpendicular to
+ * it (one pair in 2D, two in 3D). An end <= start means "never ends". */
+typedef struct sd_wall_motion_def {
+    sd_v3d velocity;          /* m/s, prescribed velocity */
+    double move_start, move_end;   /* s */
+    double servo_stress;      /* Pa, > 0 enables the servo (compression positive) */
+    double servo_start, servo_end; /* s */
+    double servo_gain;        /* (m/s)/Pa; 0 = automatic: half the stable gain from the
+                                 contact stiffness on the wall (see docs/physics.md) */
+    double servo_max_speed;   /* m/s, cap of the servo velocity; 0 = no cap */
+    int cookie;
+} sd_wall_motion_def;
+
+sd_wall_motion_def sd_wall_motion_def_default(void);
+sd_status sd_world_set_wall_motion(sd_world *w, int wall, const sd_wall_motion_def *def, sd_error *err);
+
+/* Biaxial (2D) or box state from the four plane walls with normals +-x and
+ * +-y (seed 002 §3.2). Stresses are compression positive; strains are
+ * compression positive and measured from the reference size, set when the
+ * first prescribed wall motion starts (or by sd_world_biaxial_reference). */
+typedef struct sd_biaxial {
+    double width, height;     /* m, current distance between the x walls and the y walls */
+    double width0, height0;   /* m, reference size */
+    double sigma_xx, sigma_yy;/* Pa, mean normal stress on the x walls and on the y walls */
+    double strain_axial;      /* -, (height0 - height) / height0 */
+    double strain_lateral;    /* -, (width0 - width) / width0 */
+    double strain_volumetric; /* -, 1 - width height / (width0 height0) */
+    double stress_ratio;      /* -, q/p = (sigma_yy - sigma_xx) / (sigma_yy + sigma_xx) */
+    int has_reference;        /* 0 until the reference size is set */
+} sd_biaxial;
+
+/* SD_ERR_INPUT when the world lacks the four walls (or is not 2D). */
+sd_status sd_world_biaxial(const sd_world *w, sd_biaxial *out);
+/* Takes the current size as the reference for the strains. */
+sd_status sd_world_biaxial_reference(sd_world *w);
 
 /* Computes the initial forces; called by the first sd_world_step when not
  * called before. Fails on bad parameters (e.g. a linear law with no stiffness). */
@@ -283,6 +367,11 @@ typedef struct sd_narrow_stats {
     long long evaluations;
     long long iterations;
     long long support_calls;
+    /* planar mode (2D GJK/EPA, seed 002 Table 1 splits contact from no
+     * contact): evaluations that found the bodies overlapping, and their
+     * support calls; iterations is 0 there (2D counts support calls only) */
+    long long contacts;
+    long long contact_support_calls;
 } sd_narrow_stats;
 
 /* Fills up to max entries (pair types with at least one evaluation) and

@@ -14,6 +14,8 @@
 static double sd_half_size(const sd_world *w, size_t k)
 {
     int s = w->p.shape[k];
+    if (s >= 0 && w->dim2) /* the planar mode's templates (shape/shape2d.h) */
+        return 0.5 * (double)w->shapes2d[s].min_size;
     return s >= 0 ? 0.5 * (double)w->shapes[s].min_size : (double)w->p.radius[k];
 }
 
@@ -38,6 +40,7 @@ void sd_world_stats(const sd_world *w, sd_stats *out)
         if (v2 > vmax2)
             vmax2 = v2;
     }
+    sd_grid_particle_stats(w, &ekt, &ekr, &epg, &vmax2); /* solver grid: its own state (src/grid) */
     double epe = 0, ovl = 0;
     long contacts = 0, wcontacts = 0;
     const sd_pair_list *l = &w->pairs;

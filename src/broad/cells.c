@@ -41,7 +41,8 @@ static sd_status sd_pairs_reserve(sd_pair_list *l, size_t cap)
         sd_grow((void **)&l->f, cap, sizeof *l->f) || sd_grow((void **)&l->t, 2 * cap, sizeof *l->t) || sd_grow((void **)&l->delta, cap, sizeof *l->delta) ||
         sd_grow((void **)&l->energy, cap, sizeof *l->energy) || sd_grow((void **)&l->gidx, 2 * cap, sizeof *l->gidx) ||
         sd_grow((void **)&l->warm, cap, sizeof *l->warm) || sd_grow((void **)&l->flip, cap, sizeof *l->flip) || sd_grow((void **)&l->iters, cap, sizeof *l->iters) ||
-        sd_grow((void **)&l->supports, cap, sizeof *l->supports))
+        sd_grow((void **)&l->supports, cap, sizeof *l->supports) || sd_grow((void **)&l->x0, cap, sizeof *l->x0) ||
+        sd_grow((void **)&l->x0_ok, cap, sizeof *l->x0_ok))
         return SD_ERR_MEMORY;
     l->cap = cap;
     l->gidx_cap = 2 * cap;
@@ -66,7 +67,7 @@ static sd_status sd_wpairs_reserve(sd_wall_pair_list *l, size_t cap)
 void sd_broad_free(sd_pair_list *l, sd_wall_pair_list *wl, sd_grid *g)
 {
     void *ptrs[] = {l->i, l->j, l->key, l->ds, l->f, l->t, l->delta, l->energy, l->gstart, l->gidx,
-                    l->warm, l->iters, l->supports, l->flip,
+                    l->warm, l->iters, l->supports, l->flip, l->x0, l->x0_ok,
                     wl->i, wl->wall, wl->sub, wl->key, wl->ds, wl->f, wl->t, wl->delta, wl->energy, wl->start, wl->c,
                     g->cell_start, g->cell, g->perm, g->count, g->scratch};
     for (size_t k = 0; k < sizeof ptrs / sizeof ptrs[0]; ++k)
@@ -113,12 +114,20 @@ static sd_history *sd_history_sort(sd_history *h, sd_history *tmp, size_t m)
     return h;
 }
 
-/* Collects entries whose spring is non-zero, sorted by key. */
-static sd_history *sd_history_collect(size_t n, const uint64_t *key, const sd_vec3 *ds, size_t *count)
+/* An entry worth keeping: a spring, or an overlap hint (x0_ok may be NULL). */
+static int sd_history_live(const sd_vec3 *ds, const uint8_t *x0_ok, size_t k)
+{
+    return ds[k].x != 0 || ds[k].y != 0 || ds[k].z != 0 || (x0_ok && x0_ok[k]);
+}
+
+/* Collects entries with a spring or a hint, sorted by key (x0 and x0_ok may
+ * be NULL: wall pairs keep no hint). */
+static sd_history *sd_history_collect(size_t n, const uint64_t *key, const sd_vec3 *ds, const sd_vec3 *x0,
+                                      const uint8_t *x0_ok, size_t *count)
 {
     size_t m = 0;
     for (size_t k = 0; k < n; ++k)
-        if (ds[k].x != 0 || ds[k].y != 0 || ds[k].z != 0)
+        if (sd_history_live(ds, x0_ok, k))
             ++m;
     *count = m;
     /* one block: the entries, then the radix sort's scratch */
@@ -127,15 +136,30 @@ static sd_history *sd_history_collect(size_t n, const uint64_t *key, const sd_ve
         return NULL;
     m = 0;
     for (size_t k = 0; k < n; ++k)
-        if (ds[k].x != 0 || ds[k].y != 0 || ds[k].z != 0) {
+        if (sd_history_live(ds, x0_ok, k)) {
             h[m].key = key[k];
             h[m].ds = ds[k];
+            h[m].x0_ok = x0_ok ? x0_ok[k] : 0;
+            h[m].x0 = h[m].x0_ok ? x0[k] : sd_v3_zero();
             ++m;
         }
     sd_history *sorted = sd_history_sort(h, h + m, m);
     if (sorted != h)
         memcpy(h, sorted, m * sizeof *h);
     return h;
+}
+
+static const sd_history *sd_history_lookup(const sd_history *h, size_t n, uint64_t key)
+{
+    size_t lo = 0, hi = n;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (h[mid].key < key)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return (lo < n && h[lo].key == key) ? &h[lo] : NULL;
 }
 
 static sd_vec3 sd_history_find(const sd_history *h, size_t n, uint64_t key)
@@ -291,12 +315,15 @@ static sd_status sd_pairs_partition(sd_world *w)
         return SD_OK;
     uint32_t *ti = sd_malloc(n * sizeof *ti), *tj = sd_malloc(n * sizeof *tj);
     uint64_t *tk = sd_malloc(n * sizeof *tk);
-    sd_vec3 *td = sd_malloc(n * sizeof *td);
-    if (!ti || !tj || !tk || !td) {
+    sd_vec3 *td = sd_malloc(n * sizeof *td), *tx = sd_malloc(n * sizeof *tx);
+    uint8_t *to_ = sd_malloc(n * sizeof *to_);
+    if (!ti || !tj || !tk || !td || !tx || !to_) {
         sd_free(ti);
         sd_free(tj);
         sd_free(tk);
         sd_free(td);
+        sd_free(tx);
+        sd_free(to_);
         return SD_ERR_MEMORY;
     }
     size_t a = 0, b = l->n_sphere;
@@ -306,15 +333,21 @@ static sd_status sd_pairs_partition(sd_world *w)
         tj[to] = l->j[e];
         tk[to] = l->key[e];
         td[to] = l->ds[e];
+        tx[to] = l->x0[e];
+        to_[to] = l->x0_ok[e];
     }
     memcpy(l->i, ti, n * sizeof *ti);
     memcpy(l->j, tj, n * sizeof *tj);
     memcpy(l->key, tk, n * sizeof *tk);
     memcpy(l->ds, td, n * sizeof *td);
+    memcpy(l->x0, tx, n * sizeof *tx);
+    memcpy(l->x0_ok, to_, n * sizeof *to_);
     sd_free(ti);
     sd_free(tj);
     sd_free(tk);
     sd_free(td);
+    sd_free(tx);
+    sd_free(to_);
     return SD_OK;
 }
 
@@ -326,7 +359,7 @@ static sd_status sd_pairs_build(sd_world *w)
     uint32_t *cnt = w->grid.count;
 
     size_t nhist = 0;
-    sd_history *hist = sd_history_collect(l->n, l->key, l->ds, &nhist);
+    sd_history *hist = sd_history_collect(l->n, l->key, l->ds, l->x0, l->x0_ok, &nhist);
     if (!hist)
         return SD_ERR_MEMORY;
 
@@ -361,7 +394,10 @@ static sd_status sd_pairs_build(sd_world *w)
             l->i[e] = (uint32_t)i;
             uint64_t a = p->id[i], b = p->id[l->j[e]];
             l->key[e] = a < b ? (a << 32 | b) : (b << 32 | a);
-            l->ds[e] = sd_history_find(hist, nhist, l->key[e]);
+            const sd_history *hh = sd_history_lookup(hist, nhist, l->key[e]);
+            l->ds[e] = hh ? hh->ds : sd_v3_zero();
+            l->x0[e] = hh ? hh->x0 : sd_v3_zero();
+            l->x0_ok[e] = hh ? (uint8_t)hh->x0_ok : 0;
             l->f[e] = sd_v3_zero();
             l->t[2 * e] = sd_v3_zero();
             l->t[2 * e + 1] = sd_v3_zero();
@@ -460,7 +496,7 @@ static sd_status sd_wall_pairs_build(sd_world *w)
         l->start_cap = n + 1;
     }
     size_t nhist = 0;
-    sd_history *hist = sd_history_collect(l->n, l->key, l->ds, &nhist);
+    sd_history *hist = sd_history_collect(l->n, l->key, l->ds, NULL, NULL, &nhist);
     if (!hist)
         return SD_ERR_MEMORY;
     SD_PARALLEL_FOR
@@ -525,6 +561,7 @@ sd_status sd_broad_rebuild(sd_world *w, sd_error *err)
         p->x_ref[k] = p->x[k];
         p->q_ref[k] = p->q[k];
     }
+    sd_world_walls_mark(w);
     w->rebuilds++;
     w->dirty = 0;
     return SD_OK;
@@ -532,7 +569,7 @@ sd_status sd_broad_rebuild(sd_world *w, sd_error *err)
 
 int sd_broad_needs_rebuild(const sd_world *w)
 {
-    if (w->dirty)
+    if (w->dirty || sd_world_walls_moved(w)) /* a wall and a particle may each use half the skin */
         return 1;
     const sd_particles *p = &w->p;
     size_t n = p->n;

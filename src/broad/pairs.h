@@ -20,7 +20,8 @@ typedef struct sd_pair_list {
                               each loop then runs one homogeneous kind */
     uint32_t *i, *j;       /* storage indices, i < j */
     uint64_t *key;         /* (min id << 32) | max id */
-    sd_vec3 *ds;           /* m, tangential spring (history), global frame, as
+    sd_vec3 *ds;           /* m, tangential spring (history; N, the spring force, for
+                              the volume laws: contact/law_volume.h), global frame, as
                               seen from the body with the lower stable id:
                               storage order (which body is i) may flip at a
                               rebuild, the key does not */
@@ -33,6 +34,11 @@ typedef struct sd_pair_list {
     sd_vec3 *warm;         /* convex pairs: GJK warm-start direction */
     int32_t *iters;        /* convex pairs: GJK + EPA iterations at the last evaluation */
     int32_t *supports;     /* convex pairs: support calls at the last evaluation */
+    sd_vec3 *x0;           /* m, world: polyhedron pairs under a volume law, the
+                              interior point of the overlap at the last
+                              evaluation (the next one's hint, geom/overlap.h);
+                              history, carried across rebuilds like ds */
+    uint8_t *x0_ok;        /* 1 when x0 holds a point of the last overlap */
     /* gather lists: particle k owns entries gstart[k] .. gstart[k+1]-1 of
      * gidx; an entry is 2 * pair + (0 if k is the pair's i, 1 if j) */
     uint32_t *gstart, *gidx;
@@ -68,6 +74,8 @@ typedef struct sd_grid {
 typedef struct sd_history {
     uint64_t key;
     sd_vec3 ds;
+    sd_vec3 x0;  /* overlap hint (pair lists only) */
+    int x0_ok;   /* 0 when there is none */
 } sd_history;
 
 #endif

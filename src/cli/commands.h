@@ -7,5 +7,7 @@
 /* Prints "shapedem: file:line: key: message" and returns exit status 2. */
 int sd_cli_fail_input(const sd_error *err);
 int sd_cmd_shape(int argc, char **argv);
+/* `shapedem shape fit-fourier` (cli/fit_fourier.c) */
+int sd_cmd_fit_fourier(int argc, char **argv);
 
 #endif

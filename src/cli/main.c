@@ -52,12 +52,15 @@ static void sd_usage(FILE *f)
             "       shapedem check SCENE.yaml [--threads N]\n"
             "       shapedem shape info KIND --size X[,Y,Z] [--rounding R] [--margin M] [--density RHO]\n"
             "       shapedem shape info SCENE.yaml\n"
+            "       shapedem shape fit-fourier OUTLINE.csv [--order N] [--directions M] [--beta B]\n"
             "       shapedem help [scene [--markdown]]\n"
             "       shapedem --version\n"
             "\n"
             "  run     simulate the scene; writes frames.pvd (VTK), stats.csv and summary.txt\n"
             "          to DIR (default: output.directory of the scene, else out/<scene name>)\n"
             "  check   validate the scene and print what it would simulate\n"
+            "  shape fit-fourier  fit a convex Fourier-series support function (seed 002) to a\n"
+            "          closed outline; prints coefficients, convexity, reduction, coverage\n"
             "  help    this text; 'help scene' lists every scene key with unit and default\n"
             "\n"
             "  -o DIR       output directory\n"
@@ -225,7 +228,7 @@ static int sd_cmd_run(const sd_cli *c)
 
     int tty = !c->quiet && !c->bench && isatty(STDERR_FILENO);
     size_t n = sd_world_particle_count(w);
-    double stepping = 0, last_print = 0;
+    double stepping = 0, last_print = 0, psteps = 0;
     int failed = 0;
     if (out && (sd_output_frame(out, w, &err) != SD_OK || sd_output_stats(out, w, &err) != SD_OK))
         failed = 1;
@@ -241,11 +244,14 @@ static int sd_cmd_run(const sd_cli *c)
         if (tty && next - done > 200)
             next = done + 200; /* keep the progress line alive */
         double t0 = sd_now();
+        size_t n_before = sd_world_particle_count(w);
         if (sd_world_step(w, next - done, &err) != SD_OK) {
             failed = 1;
             break;
         }
         stepping += sd_now() - t0;
+        /* the count changes when spheres are poured or leave (solver grid) */
+        psteps += 0.5 * (double)(n_before + sd_world_particle_count(w)) * (double)(next - done);
         done = next;
         if (out && done % stats_every == 0 && sd_output_stats(out, w, &err) != SD_OK)
             failed = 1;
@@ -253,9 +259,10 @@ static int sd_cmd_run(const sd_cli *c)
             failed = 1;
         if (tty && (stepping - last_print > 0.5 || done == steps)) {
             last_print = stepping;
-            double rate = stepping > 0 ? (double)n * (double)done / stepping : 0;
+            double rate = stepping > 0 ? psteps / stepping : 0;
             char left[32];
-            sd_format_duration(rate > 0 ? (double)n * (double)(steps - done) / rate : -1, left, sizeof left);
+            double left_ps = (double)sd_world_particle_count(w) * (double)(steps - done);
+            sd_format_duration(rate > 0 ? left_ps / rate : -1, left, sizeof left);
             fprintf(stderr, "\rstep %ld/%ld  t = %.6g s  %5.1f%%  %.3g particle-steps/s  %s left   ", done, steps,
                     sd_world_time(w), steps ? 100.0 * (double)done / (double)steps : 100.0, rate, left);
             fflush(stderr);
@@ -268,7 +275,7 @@ static int sd_cmd_run(const sd_cli *c)
     memset(&sum, 0, sizeof sum);
     sum.steps = done;
     sum.wall_seconds = stepping;
-    sum.particle_steps_per_second = stepping > 0 ? (double)n * (double)done / stepping : 0;
+    sum.particle_steps_per_second = stepping > 0 ? psteps / stepping : 0;
     sum.threads = sd_world_threads(w);
     sum.peak_memory = sd_memory_peak();
     sum.peak_rss = sd_peak_rss();
@@ -343,6 +350,16 @@ static int sd_cmd_check(const sd_cli *c)
         printf(" %s", scene->materials[k].name);
     printf("\ncontact law  %s (default)\n", sd_contact_law_name(scene->world.law));
     printf("walls        %zu\n", sd_world_wall_count(w));
+    if (scene->pour.given) /* solver grid: pouring and outlet (docs/grid-solver.md) */
+        printf("pour         %ld spheres of radius %.4g m (material %s), sheets at z = %.4g m, %.4g per s from "
+               "t = %.4g s, speeds vz in +-%.3g m/s, vx, vy in +-%.3g m/s\n",
+               scene->pour.count, scene->pour.radius, scene->materials[scene->pour.material].name,
+               scene->pour.height, scene->pour.rate, scene->pour.start, scene->pour.vertical_speed,
+               scene->pour.horizontal_speed);
+    if (scene->outlet.given)
+        printf("outlet       hole x in [%.4g, %.4g] m, y in [%.4g, %.4g] m in the box floor, opens at t = %.4g s\n",
+               scene->outlet.lo[0], scene->outlet.hi[0], scene->outlet.lo[1], scene->outlet.hi[1],
+               scene->outlet.open_at);
     printf("steps        %ld x dt %.4g s = %.6g s simulated\n", scene->steps, dt, (double)scene->steps * dt);
     printf("contact      shortest estimated contact duration %.4g s (%.1f steps)\n", tc, tc / dt);
     printf("time step    %.4g s recommended; stability limit %.4g s\n", rec, tc / 5);

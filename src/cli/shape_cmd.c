@@ -11,6 +11,8 @@
 
 #include "cli/commands.h"
 #include "io/scene.h"
+#include "shape/polylib.h"
+#include "shape/shape.h"
 
 static void sd_print_shape(const sd_world *w, size_t k, double density)
 {
@@ -31,6 +33,64 @@ static void sd_print_shape(const sd_world *w, size_t k, double density)
         printf("rounding           %.10g m swept over the core\n", si.rounding);
     if (si.vertex_count)
         printf("hull vertices      %zu\n", si.vertex_count);
+    if (si.face_count)
+        printf("welded faces       %zu (exact overlap volume: %s)\n", si.face_count,
+               si.face_count <= si.overlap_face_limit ? "yes" : "no, more than the workspace's faces");
+}
+
+static int sd_parse_v3(const char *s, sd_v3d *out);
+
+/* A built-in polyhedron from the command line (shape/polylib.h):
+ * --size D (circumscribed diameter; prism, cylinder: D,-,L), --edge A,
+ * --sides N, --faces N, --vertex-count N, --seed S. Returns 0, or 2 after
+ * printing why. */
+static int sd_preset_desc(int preset, int argc, char **argv, sd_shape_desc *d, sd_v3d *buf, size_t cap,
+                          double *density)
+{
+    sd_poly_def pd;
+    memset(&pd, 0, sizeof pd);
+    pd.preset = preset;
+    pd.seed = 1;
+    for (int k = 4; k < argc; k += 2) {
+        const char *a = argv[k], *v = k + 1 < argc ? argv[k + 1] : NULL;
+        sd_v3d x;
+        if (!v || sd_parse_v3(v, &x)) {
+            fprintf(stderr, "shapedem: bad option or value '%s %s' (see 'shapedem shape info')\n", a, v ? v : "");
+            return 2;
+        }
+        if (!strcmp(a, "--size")) {
+            pd.diameter = x.x;
+            pd.length = x.z;
+        } else if (!strcmp(a, "--edge"))
+            pd.diameter = sd_polylib_edge_to_diameter(preset, x.x);
+        else if (!strcmp(a, "--sides"))
+            pd.sides = (int)x.x;
+        else if (!strcmp(a, "--faces"))
+            pd.faces = (int)x.x;
+        else if (!strcmp(a, "--vertex-count"))
+            pd.points = (int)x.x;
+        else if (!strcmp(a, "--seed"))
+            pd.seed = (uint64_t)x.x;
+        else if (!strcmp(a, "--density"))
+            *density = x.x;
+        else if (!strcmp(a, "--scale"))
+            d->scale = x.x;
+        else {
+            fprintf(stderr, "shapedem: bad option '%s' for a %s (--size, --edge, --sides, --faces, --vertex-count, "
+                            "--seed, --scale, --density)\n", a, sd_polylib_name(preset));
+            return 2;
+        }
+    }
+    size_t n = 0;
+    sd_error err;
+    if (sd_polylib_vertices(&pd, buf, cap, &n, &err) != SD_OK) {
+        fprintf(stderr, "shapedem: %s: --%s: %s\n", sd_polylib_name(preset), err.key, err.msg);
+        return 2;
+    }
+    d->kind = "polyhedron";
+    d->vertices = buf;
+    d->vertex_count = n;
+    return 0;
 }
 
 static int sd_parse_v3(const char *s, sd_v3d *out)
@@ -59,9 +119,14 @@ static int sd_parse_v3(const char *s, sd_v3d *out)
 
 int sd_cmd_shape(int argc, char **argv)
 {
+    if (argc >= 3 && !strcmp(argv[2], "fit-fourier"))
+        return sd_cmd_fit_fourier(argc, argv);
     if (argc < 4 || strcmp(argv[2], "info") != 0) {
         fprintf(stderr, "usage: shapedem shape info KIND --size X[,Y,Z] [--rounding R] [--margin M] [--scale S] "
-                        "[--density RHO]\n       shapedem shape info SCENE.yaml\n");
+                        "[--density RHO]\n       shapedem shape info PRESET --size D|--edge A [--sides N] "
+                        "[--faces N|--vertex-count N] [--seed S]\n         (PRESET: tetrahedron, cube, octahedron, "
+                        "dodecahedron, icosahedron, prism, polycylinder, random)\n"
+                        "       shapedem shape info SCENE.yaml\n");
         return 2;
     }
     const char *what = argv[3];
@@ -81,6 +146,8 @@ int sd_cmd_shape(int argc, char **argv)
                 printf("\n");
             double rho = scene->material_count ? scene->materials[0].def.density : 1000.0;
             sd_print_shape(w, k, rho);
+            if (k < scene->shape_count && scene->shapes[k].warning[0])
+                printf("warning            %s\n", scene->shapes[k].warning);
         }
         sd_world_destroy(w);
         sd_scene_free(scene);
@@ -89,7 +156,18 @@ int sd_cmd_shape(int argc, char **argv)
     sd_shape_desc d = sd_shape_desc_default();
     d.kind = what;
     double density = 1000.0;
-    for (int k = 4; k < argc; ++k) {
+    static sd_v3d preset_vertices[SD_SHAPE_MAX_VERTICES];
+    int preset = sd_polylib_from_name(what);
+    if (preset >= 0 && strcmp(what, "cylinder") == 0)
+        preset = -1; /* "cylinder" is the smooth kind; the polyhedral one is "polycylinder" */
+    if (strcmp(what, "polycylinder") == 0)
+        preset = SD_POLY_CYLINDER;
+    if (preset >= 0) {
+        int rc = sd_preset_desc(preset, argc, argv, &d, preset_vertices, SD_SHAPE_MAX_VERTICES, &density);
+        if (rc)
+            return rc;
+    }
+    for (int k = 4; k < argc && preset < 0; ++k) {
         const char *a = argv[k], *v = k + 1 < argc ? argv[k + 1] : NULL;
         sd_v3d x;
         if (!v) {

@@ -5,8 +5,17 @@
  * The domain (the union of the world's box walls) is a uniform grid of cubic
  * cells of edge R_min plus a halo of reach + 1 cells; each cell holds at most
  * one particle; contacts come from a fixed stencil around each particle's
- * cell (stencil.h). Particles keep the world's SoA state in storage order =
- * stable-id order (this solver never re-sorts them).
+ * cell (stencil.h).
+ *
+ * The solver keeps its own compact particle state (docs/grid-solver.md,
+ * "Memory"): an 80-byte record per particle (position, velocity, spin,
+ * stable id, kind), force and torque, the cell, and history slots; radius,
+ * mass, inertia and material live once per kind of particle. At prepare it
+ * takes over the spheres the world holds (sd_grid_absorb), array by array,
+ * and the world's particle arrays are freed; the world's queries
+ * (sd_world_particle_count, sd_world_get_particle, sd_world_find_particle,
+ * sd_world_stats) read this state. Storage order is stable-id order (this
+ * solver never re-sorts).
  *
  * Invariants kept between steps:
  *  - cell[c] is -1 or the storage index k of a particle with where[k] == c
@@ -17,7 +26,11 @@
  *    that leave it are removed and counted (outlets, open faces);
  *  - slot s of particle k holds the tangential spring of one touching
  *    contact (tag[k * SLOTS + s] != 0), keyed by the partner's stable id or
- *    the wall face, never by storage index.
+ *    the wall face, never by storage index; a particle pair's spring is in
+ *    one slot of one of its two particles (stencil.h);
+ *  - rowocc[z ny + y] is 1 when some particle holds a cell of that row
+ *    (set when a cell is taken; cleared only when all cells are rebuilt,
+ *    so a 1 may mark a row that has emptied since: a hint that skips rows).
  * See docs/grid-solver.md for the choices and their reasons.
  */
 #ifndef SD_GRID_GRID_H
@@ -68,12 +81,29 @@ typedef struct sd_grid_info {
     size_t removed_outlet;    /* of which through the outlet hole */
     double removed_mass;      /* kg */
     size_t poured, pour_layers, pour_skipped;
+    int outlet_open;          /* the outlet hole is open */
+    double outlet_time;       /* s, when it opened (or will open) */
+    double outlet_x0, outlet_x1, outlet_y0, outlet_y1; /* m, the hole */
+    double domain_lo[3], domain_hi[3];                 /* m, the box walls' union */
     double dt_contact_limit;  /* s, pi/5 sqrt(m/k) (seed 001 eq. 11) */
     double max_speed;         /* m/s, at the last step */
-    size_t bytes;             /* bytes held by the grid solver (cells, slots, lists) */
+    int slots_used_max;       /* the most history slots one particle held at any step */
+    size_t bytes;             /* bytes held by the grid solver (particles, kinds, cells, slots, lists) */
 } sd_grid_info;
 
 struct sd_grid_state {
+    /* particles (storage order = stable-id order) */
+    size_t n, pcap;
+    sd_grid_part *part;       /* hot record: x, v, w, id, kind */
+    sd_vec3 *ft;              /* force 2k, torque 2k + 1 of the last step */
+    uint32_t *where, *home;
+    uint32_t *tag;            /* SD_GRID_SLOTS per particle */
+    sd_vec3 *ds;
+    /* kinds: distinct (radius, inverse mass, inverse inertia, material) */
+    sd_grid_kind *kinds;
+    size_t nkinds, kcap;
+    uint32_t *khash;          /* open addressing, kind index + 1, 0 = empty */
+    size_t khcap;
     /* geometry */
     sd_vec3 lo;               /* m, corner of cell (0, 0, 0) */
     sd_real h;                /* m, cell edge = smallest radius */
@@ -83,22 +113,28 @@ struct sd_grid_state {
     size_t ncell;
     sd_vec3 dom_lo, dom_hi;   /* m, the box walls' union */
     int32_t *cell;
-    /* per particle */
-    size_t pcap;
-    uint32_t *where, *home;
-    uint32_t *tag;            /* SD_GRID_SLOTS per particle */
-    sd_vec3 *ds;
     /* conflicts */
     uint32_t *over;
     size_t nover, over_cap;
+    /* the force pass: blocks of `slab` cells (= reach) in z and in y
+     * (nslab x nband), a flag per row of cells that may hold a particle,
+     * wall totals per block (+1 for the particles without a cell), and the
+     * stamp of the current step */
+    long slab, nslab, nband;
+    uint8_t *rowocc;
+    sd_vec3 *slab_wall;
+    uint32_t epoch;
     /* walls as the kernel sees them */
     sd_grid_wall *walls;
     int nwalls;
-    /* outlet: a hole in the zmin face of the domain box */
-    int outlet;
+    /* outlet: a hole in the zmin face of the domain box, open when
+     * `outlet`, waiting for outlet_time when `outlet_pending` */
+    int outlet, outlet_pending;
+    double outlet_time;       /* s */
     sd_real hx0, hx1, hy0, hy1;
     sd_grid_pour pour;
     sd_grid_info info;
+    size_t par_min;           /* fewest particles for threaded loops (0: SD_GRID_PARALLEL_MIN) */
 };
 
 typedef struct sd_grid_state sd_grid_state;
@@ -114,6 +150,10 @@ sd_status sd_grid_set_pour(sd_world *w, const sd_grid_pour_def *def, sd_error *e
  * their centre is one radius below the floor. May be called between steps
  * of a run (the orifice opens; nothing else changes). */
 sd_status sd_grid_set_outlet(sd_world *w, double x0, double x1, double y0, double y1, sd_error *err);
+/* The same hole, opened at simulated time t_open (s): the first step that
+ * starts at or after it runs with the hole (scene key outlet.open_at). */
+sd_status sd_grid_set_outlet_at(sd_world *w, double x0, double x1, double y0, double y1, double t_open,
+                                sd_error *err);
 /* Counters and sizes; info->active is 0 for a world on another solver. */
 void sd_grid_get_info(const sd_world *w, sd_grid_info *info);
 
@@ -121,8 +161,30 @@ void sd_grid_get_info(const sd_world *w, sd_grid_info *info);
 sd_status sd_grid_prepare(sd_world *w, sd_error *err);
 sd_status sd_grid_step(sd_world *w, long nsteps, sd_error *err);
 
+/* The world's particle queries on a grid world (world.c, stats.c): the
+ * solver's particles come first (storage order), the world's own arrays
+ * hold only spheres added since the last prepare. */
+size_t sd_grid_particle_count(const sd_world *w);
+sd_status sd_grid_get_particle(const sd_world *w, size_t k, sd_particle_state *out);
+size_t sd_grid_find_particle(const sd_world *w, uint64_t id);
+/* Kinetic energies, gravity potential and the largest squared speed of the
+ * solver's particles, summed in storage order. */
+void sd_grid_particle_stats(const sd_world *w, double *ekt, double *ekr, double *epg, double *vmax2);
+
+/* For sd_world_recommended_dt (material.c): 1 when the solver holds or
+ * will pour particles; and the smallest radius and mass per material (256
+ * entries), the fastest speed and the extent along gdir of those particles
+ * (the poured ones at the pour height, at the largest pour speed). */
+int sd_grid_has_particles(const sd_world *w);
+void sd_grid_dt_inputs(const sd_world *w, sd_vec3 gdir, double *rmin, double *mmin, double *vmax, double *zlo,
+                       double *zhi, double *rsmall);
+
 /* grid.c, internal to the module */
 sd_status sd_grid_setup(sd_world *w, sd_error *err);
+/* Moves the world's spheres into the solver's state (world arrays freed). */
+sd_status sd_grid_absorb(sd_world *w, sd_error *err);
+/* Appends one particle (capacity reserved by the caller). */
+sd_status sd_grid_append(sd_grid_state *g, sd_vec3 x, sd_vec3 v, sd_vec3 wv, uint64_t id, const sd_grid_kind *kind);
 sd_status sd_grid_reserve(sd_grid_state *g, size_t n);
 /* Puts every particle in its cell (after set-up or removals). */
 sd_status sd_grid_place_all(sd_world *w, sd_error *err);
@@ -132,6 +194,19 @@ sd_status sd_grid_rebin(sd_world *w, sd_error *err);
 uint32_t sd_grid_cell_of(const sd_grid_state *g, sd_vec3 x);
 /* Removes the particles flagged where[k] == SD_GRID_OUTSIDE, keeping order. */
 void sd_grid_remove_outside(sd_world *w);
+/* Below this many particles the grid solver's loops run serially: a step
+ * of a few thousand spheres takes well under a millisecond, less than the
+ * seven fork-join points of a threaded step cost on a busy machine. */
+#define SD_GRID_PARALLEL_MIN 4096
+/* Decides w->parallel for the solver's particle count. */
+void sd_grid_set_parallel(sd_world *w);
+/* Tests: run the loops threaded from n particles on (0: the default). */
+sd_status sd_grid_set_parallel_min(sd_world *w, size_t n);
+/* Recomputes the row flags from the particles' cells. */
+void sd_grid_mark_rows(sd_grid_state *g, size_t n);
+
+/* outlet.c: opens a scheduled outlet when its time has come (each step). */
+void sd_grid_outlet_step(sd_world *w);
 
 /* pour.c */
 sd_status sd_grid_pour_step(sd_world *w, sd_error *err);

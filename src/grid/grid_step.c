@@ -3,37 +3,31 @@
  *   pour a sheet when due ─► kick + drift ─► move particles to their new
  *   cells (conflicts, removals, eq. 11 check) ─► stencil forces ─► kick
  *
- * The same velocity Verlet as the general solver (world/step.c), calling the
- * same CPU loops for the kicks and the drift and the same pair physics in
- * the stencil kernel (stencil.h), so a scene run with solver cells and with
- * solver grid follows the same trajectories (tests/validation/grid_vs_cells.c).
- * Each particle computes its own force: no atomics, the same bits for any
- * thread count.
+ * The same velocity Verlet as the general solver (world/step.c), with the
+ * same single-source updates (dynamics/integrate.h) on the solver's own
+ * compact state, and the same pair physics in the stencil kernel
+ * (stencil.h), so a scene run with solver cells and with solver grid
+ * follows the same trajectories (tests/validation/grid_vs_cells.c). Each
+ * touching pair is evaluated once, by its owner; slabs of cells coloured
+ * even/odd keep threads apart: no atomics, the same bits for any thread
+ * count.
  */
 #include <math.h>
 #include <string.h>
 
-#include "backend/cpu/loops.h"
 #include "core/error.h"
+#include "dynamics/integrate.h"
 #include "grid/grid.h"
 #include "world/world.h"
 
 static sd_grid_view sd_grid_view_of(const sd_world *w)
 {
     const sd_grid_state *g = w->grid_state;
-    const sd_particles *p = &w->p;
     sd_grid_view v;
-    v.x = p->x;
-    v.v = p->v;
-    v.w = p->w;
-    v.radius = p->radius;
-    v.inv_mass = p->inv_mass;
-    v.material = p->material;
-    v.id = p->id;
+    v.part = g->part;
+    v.kinds = g->kinds;
     v.cell = g->cell;
     v.where = g->where;
-    v.over = g->over;
-    v.nover = g->nover;
     v.nx = g->nx;
     v.ny = g->ny;
     v.reach = g->reach;
@@ -48,25 +42,146 @@ static sd_grid_view sd_grid_view_of(const sd_world *w)
     return v;
 }
 
-/* Contact forces of every particle (the stencil kernel, one particle per
- * iteration; each writes only its own force, torque and slots). */
+/* Half kick of every particle with its force (v(t + dt) from v(t + dt/2));
+ * with `drift`, the next step's half kick and drift follow in the same pass
+ * (velocity Verlet; the same operations in the same order as separate
+ * passes, as the general solver's sd_cpu_gather_kick_drift). */
+static void sd_grid_kick(sd_world *w, int kicks, int drift)
+{
+    sd_grid_state *g = w->grid_state;
+    sd_grid_part *part = g->part;
+    const sd_grid_kind *kinds = g->kinds;
+    const sd_vec3 *ft = g->ft;
+    size_t n = g->n;
+    sd_real h = SD_R(0.5) * w->dt, dt = w->dt;
+    sd_vec3 grav = w->gravity;
+    sd_quat q = sd_quat_identity(); /* spheres: isotropic inertia, the frame does not matter */
+SD_PARALLEL_FOR
+    for (size_t k = 0; k < n; ++k) {
+        const sd_grid_kind *kd = &kinds[part[k].kind];
+        for (int e = 0; e < kicks; ++e)
+            sd_integrate_kick(&part[k].v, &part[k].w, q, ft[2 * k], ft[2 * k + 1], kd->inv_mass, kd->inv_inertia,
+                              grav, h);
+        if (drift && kd->inv_mass > 0)
+            part[k].x = sd_v3_madd(part[k].x, dt, part[k].v); /* sd_integrate_drift's position update */
+    }
+}
+
+/* The owners of one block of cells (z slab s, y band t), in cell order. */
+static long sd_grid_block(const sd_grid_state *g, const sd_grid_view *v, sd_grid_acc *a, long s, long t)
+{
+    long z0 = g->reach + s * g->slab, z1 = z0 + g->slab;
+    long y0 = g->reach + t * g->slab, y1 = y0 + g->slab;
+    if (z1 > g->nz - g->reach)
+        z1 = g->nz - g->reach;
+    if (y1 > g->ny - g->reach)
+        y1 = g->ny - g->reach;
+    const uint8_t *rowocc = g->rowocc;
+    for (long iz = z0; iz < z1; ++iz)
+        for (long iy = y0; iy < y1; ++iy) {
+            long r = iz * g->ny + iy;
+            if (!rowocc[r])
+                continue; /* an empty row of cells: nothing to read */
+            const int32_t *row = g->cell + r * g->nx;
+            for (long ix = g->reach; ix < g->nx - g->reach; ++ix)
+                if (row[ix] >= 0)
+                    sd_grid_owner_forces(v, a, (size_t)row[ix], ix, iy, iz);
+        }
+    return a->overflows;
+}
+
+/* Contact forces of every particle. Each touching pair is evaluated once, by
+ * its owner (stencil.h), which writes to its own particle and to partners
+ * at most `reach` cells away: up in z (dz >= 0) and either way in y. The
+ * inner grid is cut into blocks `reach` cells thick in z and in y; a block
+ * writes only to itself, the next z slab and the neighbouring y bands, so
+ * blocks of one colour — (z slab mod 2, y band mod 3), six colours — never
+ * touch the same particle and run in parallel, colour after colour. Each
+ * particle receives its contributions in an order fixed by the blocks, not
+ * by the threads: the same bits for any thread count, without atomics.
+ * Particles without a cell follow, serially; then the wall totals are summed
+ * in block order. */
 static void sd_grid_forces(sd_world *w)
 {
     sd_grid_state *g = w->grid_state;
-    sd_particles *p = &w->p;
     sd_grid_view v = sd_grid_view_of(w);
-    size_t n = p->n;
-    long overflows = 0;
-    uint32_t *tag = g->tag;
-    sd_vec3 *ds = g->ds;
-SD_PRAGMA(omp parallel for schedule(static) num_threads(w->threads) if (w->parallel) reduction(+ : overflows))
-    for (size_t k = 0; k < n; ++k) {
-        sd_grid_out o = sd_grid_particle_forces(&v, k, tag + k * SD_GRID_SLOTS, ds + k * SD_GRID_SLOTS);
-        p->f[k] = o.f;
-        p->t[k] = o.t;
-        overflows += o.overflows;
+    size_t n = g->n;
+    int nw = g->nwalls;
+    g->epoch ^= SD_GRID_TAG_EPOCH;
+    uint32_t epoch = g->epoch;
+    sd_vec3 *ft = g->ft;
+SD_PARALLEL_FOR
+    for (size_t k = 0; k < 2 * n; ++k)
+        ft[k] = sd_v3_zero();
+    long nslab = g->nslab, nband = g->nband, nblock = nslab * nband, overflows = 0;
+    for (size_t e = 0; e < (size_t)(nblock + 1) * (size_t)nw * 2; ++e)
+        g->slab_wall[e] = sd_v3_zero();
+    for (long colour = 0; colour < 6; ++colour) {
+        long s0 = colour / 3, t0 = colour % 3;
+        long ns = (nslab - s0 + 1) / 2, nt = (nband - t0 + 2) / 3;
+        if (ns <= 0 || nt <= 0)
+            continue;
+SD_PRAGMA(omp parallel for schedule(dynamic, 1) num_threads(w->threads) if (w->parallel) reduction(+ : overflows))
+        for (long e = 0; e < ns * nt; ++e) {
+            long s = s0 + 2 * (e / nt), t = t0 + 3 * (e % nt);
+            sd_grid_acc a;
+            a.ft = ft;
+            a.tag = g->tag;
+            a.ds = g->ds;
+            a.wall_f = g->slab_wall + (size_t)(s * nband + t) * (size_t)nw * 2;
+            a.wall_t = a.wall_f + nw;
+            a.epoch = epoch;
+            a.overflows = 0;
+            overflows += sd_grid_block(g, &v, &a, s, t);
+        }
+    }
+    if (g->nover) {
+        /* particles that lost a cell conflict: serially, in storage order */
+        sd_grid_acc a;
+        a.ft = ft;
+        a.tag = g->tag;
+        a.ds = g->ds;
+        a.wall_f = g->slab_wall + (size_t)nblock * (size_t)nw * 2;
+        a.wall_t = a.wall_f + nw;
+        a.epoch = epoch;
+        a.overflows = 0;
+        for (size_t e = 0; e < g->nover; ++e) {
+            sd_grid_homeless_forces(&v, &a, g->over[e]);
+            for (size_t e2 = e + 1; e2 < g->nover; ++e2)
+                sd_grid_add_pair(&v, &a, g->over[e], g->over[e2]);
+        }
+        overflows += a.overflows;
     }
     g->info.slot_overflows += overflows;
+    /* springs of contacts that ended (not stamped this step) are forgotten,
+     * as in the general engine */
+    uint32_t *tag = g->tag;
+    int used_max = g->info.slots_used_max;
+SD_PRAGMA(omp parallel for schedule(static) num_threads(w->threads) if (w->parallel) reduction(max : used_max))
+    for (size_t k = 0; k < n; ++k) {
+        int used = 0;
+        for (int s = 0; s < SD_GRID_SLOTS; ++s) {
+            uint32_t tg = tag[k * SD_GRID_SLOTS + (size_t)s];
+            if (tg && (tg & SD_GRID_TAG_EPOCH) != epoch)
+                tag[k * SD_GRID_SLOTS + (size_t)s] = 0u;
+            else
+                used += tg != 0u;
+        }
+        if (used > used_max)
+            used_max = used;
+    }
+    g->info.slots_used_max = used_max;
+    /* wall totals (the world's wall info, stats.csv, summary.txt): only the
+     * grid's own copies of the world's walls, in world order */
+    for (int k = 0; k < nw; ++k) {
+        sd_vec3 fs = sd_v3_zero(), ts = sd_v3_zero();
+        for (long s = 0; s <= nblock; ++s) {
+            fs = sd_v3_add(fs, g->slab_wall[((size_t)s * (size_t)nw * 2) + (size_t)k]);
+            ts = sd_v3_add(ts, g->slab_wall[((size_t)s * (size_t)nw * 2) + (size_t)nw + (size_t)k]);
+        }
+        w->walls[k].force = fs;
+        w->walls[k].torque = ts;
+    }
 }
 
 /* Seed 001 eq. 11, first term: dt <= pi/5 sqrt(m/k) for the lightest
@@ -76,9 +191,9 @@ static double sd_grid_dt_limit(const sd_world *w)
 {
     const sd_grid_state *g = w->grid_state;
     double mmin = INFINITY, kmax = 0;
-    for (size_t k = 0; k < w->p.n; ++k)
-        if (w->p.inv_mass[k] > 0)
-            mmin = fmin(mmin, 1.0 / (double)w->p.inv_mass[k]);
+    for (size_t k = 0; k < g->nkinds; ++k)
+        if (g->kinds[k].inv_mass > 0)
+            mmin = fmin(mmin, 1.0 / (double)g->kinds[k].inv_mass);
     if (g->pour.active) {
         double r = g->pour.def.radius;
         mmin = fmin(mmin, w->materials[g->pour.def.material].def.density * 4.0 / 3.0 * SD_PI_D * r * r * r);
@@ -100,8 +215,14 @@ sd_status sd_grid_prepare(sd_world *w, sd_error *err)
     st = sd_world_check_params(w, err);
     if (st != SD_OK)
         return st;
+    if (w->dim2)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.solver",
+                            "solver grid is three-dimensional (seed 001); use solver cells in dimension 2");
     if (!sd_grid_state_get(w))
         return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory");
+    st = sd_grid_absorb(w, err); /* the world's spheres become the solver's */
+    if (st != SD_OK)
+        return st;
     st = sd_grid_setup(w, err);
     if (st != SD_OK)
         return st;
@@ -135,13 +256,22 @@ sd_status sd_grid_step(sd_world *w, long nsteps, sd_error *err)
         return st;
     sd_grid_state *g = w->grid_state;
     for (long s = 0; s < nsteps; ++s) {
+        /* without pouring, this step's last kick and the next step's kick
+         * and drift run as one pass (the same bits as separate passes) */
+        int fused = !g->pour.active;
+        if (g->outlet_pending)
+            sd_grid_outlet_step(w);
         if (g->pour.active && (st = sd_grid_pour_step(w, err)) != SD_OK)
             return st;
-        sd_cpu_kick_drift(w);                 /* v(t + dt/2), x(t + dt) */
+        if (!fused || s == 0)
+            sd_grid_kick(w, 1, 1);                 /* v(t + dt/2), x(t + dt) */
         if ((st = sd_grid_rebin(w, err)) != SD_OK) /* cells at t + dt */
             return st;
-        sd_grid_forces(w);                    /* F(t + dt) */
-        sd_cpu_kick(w);                       /* v(t + dt) */
+        sd_grid_forces(w);                         /* F(t + dt) */
+        if (fused && s + 1 < nsteps)
+            sd_grid_kick(w, 2, 1);                 /* v(t + dt); v(t + 3dt/2), x(t + 2dt) */
+        else
+            sd_grid_kick(w, 1, 0);                 /* v(t + dt) */
         w->step++;
         w->time = (double)w->step * (double)w->dt;
     }
@@ -154,37 +284,38 @@ void sd_grid_contact_stats(const sd_world *w, long *contacts, long *wall_contact
                            double *max_overlap_ratio)
 {
     const sd_grid_state *g = w->grid_state;
-    const sd_particles *p = &w->p;
     *contacts = 0;
     *wall_contacts = 0;
     *energy = 0;
     *max_overlap_ratio = 0;
-    if (!g || !g->ncell)
+    if (!g || !g->ncell || !w->prepared)
         return;
     long nxy = g->nx * g->ny;
-    for (size_t k = 0; k < p->n; ++k) {
+    const sd_grid_part *part = g->part;
+    for (size_t k = 0; k < g->n; ++k) {
         const uint32_t *tag = g->tag + k * SD_GRID_SLOTS;
-        const sd_vec3 *ds = g->ds + k * SD_GRID_SLOTS;
+        const sd_grid_kind *kk = &g->kinds[part[k].kind];
         /* particle pairs, each once (from its lower stable id) */
         long c = (long)g->where[k];
         for (int dz = -g->reach; dz <= g->reach; ++dz)
             for (int dy = -g->reach; dy <= g->reach; ++dy)
                 for (int dx = -g->reach; dx <= g->reach; ++dx) {
                     int32_t j = g->cell[c + dz * nxy + dy * g->nx + dx];
-                    if (j < 0 || p->id[j] <= p->id[k])
+                    if (j < 0 || part[j].id <= part[k].id)
                         continue;
-                    sd_real d = sd_v3_norm(sd_v3_sub(p->x[k], p->x[j]));
-                    sd_real delta = p->radius[k] + p->radius[j] - d;
+                    const sd_grid_kind *kj = &g->kinds[part[j].kind];
+                    sd_real d = sd_v3_norm(sd_v3_sub(part[k].x, part[j].x));
+                    sd_real delta = kk->radius + kj->radius - d;
                     if (delta <= 0)
                         continue;
                     (*contacts)++;
                     const sd_pair_params *prm =
-                        &w->mix[(size_t)p->material[k] * w->material_count + (size_t)p->material[j]];
-                    sd_vec3 s = sd_grid_find_spring(tag, ds, (uint32_t)(p->id[j] + 1u));
+                        &w->mix[(size_t)kk->material * w->material_count + (size_t)kj->material];
+                    sd_vec3 s = sd_grid_pair_spring(g->tag, g->ds, k, (size_t)j, part);
                     double kn = (double)prm->kn, kt = (double)(prm->kt_ratio * prm->kn);
                     if (prm->law == SD_LAW_LINEAR)
                         *energy += 0.5 * kn * (double)(delta * delta) + 0.5 * kt * (double)sd_v3_norm2(s);
-                    double ratio = (double)(delta / sd_min(p->radius[k], p->radius[j]));
+                    double ratio = (double)(delta / sd_min(kk->radius, kj->radius));
                     if (ratio > *max_overlap_ratio)
                         *max_overlap_ratio = ratio;
                 }

@@ -12,18 +12,16 @@
  */
 #include <string.h>
 
-#include "core/alloc.h"
 #include "core/error.h"
 #include "grid/grid.h"
 #include "world/world.h"
 
 /* 1 when a sphere of radius r at x touches no particle (grid stencil). */
-static int sd_pour_free(const sd_world *w, const sd_grid_state *g, sd_vec3 x, sd_real r)
+static int sd_pour_free(const sd_grid_state *g, sd_vec3 x, sd_real r)
 {
     uint32_t c = sd_grid_cell_of(g, x);
     if (c == SD_GRID_OUTSIDE || g->cell[c] >= 0)
         return 0;
-    const sd_particles *p = &w->p;
     long nxy = g->nx * g->ny;
     for (int dz = -g->reach; dz <= g->reach; ++dz)
         for (int dy = -g->reach; dy <= g->reach; ++dy)
@@ -31,13 +29,14 @@ static int sd_pour_free(const sd_world *w, const sd_grid_state *g, sd_vec3 x, sd
                 int32_t j = g->cell[(long)c + dz * nxy + dy * g->nx + dx];
                 if (j < 0)
                     continue;
-                sd_real rs = r + p->radius[j];
-                if (sd_v3_norm2(sd_v3_sub(x, p->x[j])) < rs * rs)
+                sd_real rs = r + g->kinds[g->part[j].kind].radius;
+                if (sd_v3_norm2(sd_v3_sub(x, g->part[j].x)) < rs * rs)
                     return 0;
             }
     for (size_t e = 0; e < g->nover; ++e) {
-        sd_real rs = r + p->radius[g->over[e]];
-        if (sd_v3_norm2(sd_v3_sub(x, p->x[g->over[e]])) < rs * rs)
+        size_t j = g->over[e];
+        sd_real rs = r + g->kinds[g->part[j].kind].radius;
+        if (sd_v3_norm2(sd_v3_sub(x, g->part[j].x)) < rs * rs)
             return 0;
     }
     return 1;
@@ -63,9 +62,23 @@ sd_status sd_grid_pour_step(sd_world *w, sd_error *err)
     size_t cap = (size_t)nx * (size_t)ny;
     if (cap > want)
         cap = want;
-    sd_sphere_def *defs = sd_malloc(cap * sizeof *defs);
-    if (!defs)
-        return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory");
+    if (w->next_id + cap > SD_GRID_MAX_ID)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "pour",
+                            "solver grid keys contacts by 30-bit stable ids (at most %u particles ever added)",
+                            (unsigned)SD_GRID_MAX_ID);
+    if (sd_grid_reserve(g, g->n + cap + 1))
+        return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory pouring %zu particles", cap);
+    /* the kind of a poured sphere: mass and inertia as sd_world_add_spheres
+     * computes them */
+    sd_grid_kind kd;
+    memset(&kd, 0, sizeof kd);
+    sd_real rho = (sd_real)w->materials[d->material].def.density;
+    sd_real mass = rho * SD_R(4.0) / SD_R(3.0) * SD_PI * r * r * r;
+    sd_real inertia = SD_R(0.4) * mass * r * r;
+    kd.radius = r;
+    kd.inv_mass = SD_R(1.0) / mass;
+    kd.inv_inertia = sd_v3(SD_R(1.0) / inertia, SD_R(1.0) / inertia, SD_R(1.0) / inertia);
+    kd.material = d->material;
     size_t m = 0;
     for (long iy = 0; iy < ny && m < cap; ++iy)
         for (long ix = 0; ix < nx && m < cap; ++ix) {
@@ -76,37 +89,26 @@ sd_status sd_grid_pour_step(sd_world *w, sd_error *err)
             double vx = sd_rng_range(&pr->rng, -d->vh_range, d->vh_range);
             double vy = sd_rng_range(&pr->rng, -d->vh_range, d->vh_range);
             double vz = sd_rng_range(&pr->rng, -d->vz_range, d->vz_range);
-            if (!sd_pour_free(w, g, x, r)) {
+            if (!sd_pour_free(g, x, r)) {
                 pr->skipped++;
                 continue;
             }
-            memset(&defs[m], 0, sizeof defs[m]);
-            defs[m].position.x = (double)x.x;
-            defs[m].position.y = (double)x.y;
-            defs[m].position.z = (double)x.z;
-            defs[m].velocity.x = vx;
-            defs[m].velocity.y = vy;
-            defs[m].velocity.z = vz;
-            defs[m].radius = d->radius;
-            defs[m].material = d->material;
+            if (sd_grid_append(g, x, sd_v3((sd_real)vx, (sd_real)vy, (sd_real)vz), sd_v3_zero(), w->next_id, &kd))
+                return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory (particle kinds)");
+            w->next_id++;
             ++m;
         }
-    size_t n0 = w->p.n;
-    sd_status st = m ? sd_world_add_spheres(w, m, defs, err) : SD_OK;
-    sd_free(defs);
-    if (st != SD_OK)
-        return st;
-    w->prepared = 1; /* the solver places the new particles itself */
-    w->dirty = 0;
-    if (sd_grid_reserve(g, w->p.n + 1))
-        return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory");
-    for (size_t k = n0; k < w->p.n; ++k) {
-        g->where[k] = sd_grid_cell_of(g, w->p.x[k]);
-        g->cell[g->where[k]] = (int32_t)k; /* free: checked above */
+    /* the spots were free (checked above, against the particles before this
+     * sheet: the sheet's own spheres are 2 R apart and just touch): each new
+     * particle takes its cell */
+    for (size_t k = g->n - m; k < g->n; ++k) {
+        g->where[k] = sd_grid_cell_of(g, g->part[k].x);
+        g->cell[g->where[k]] = (int32_t)k;
         g->home[k] = g->where[k];
     }
+    sd_grid_mark_rows(g, g->n);
     pr->poured += m;
     pr->layers++;
-    w->parallel = w->threads > 1 && w->p.n >= SD_PARALLEL_MIN_PARTICLES;
+    sd_grid_set_parallel(w);
     return SD_OK;
 }

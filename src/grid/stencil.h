@@ -1,22 +1,26 @@
 /* stencil.h — the per-particle kernel of the dense grid-stencil solver
- * (seed 001 §3.1–3.2): contact detection and contact forces of one particle
- * from a fixed stencil of (2 reach + 1)^3 cells around its own cell (5x5x5
- * for equal spheres), plus its walls. Single source (SD_HD): the CPU loop in
- * grid_step.c calls it once per particle; a CUDA kernel will call it once per
- * thread.
+ * (seed 001 §3.1–3.2): contact detection and contact forces from a fixed
+ * stencil of cells around each particle's cell (the 5x5x5 filter of §3.2.1
+ * for equal spheres), plus the walls. Single source (SD_HD): the CPU loop in
+ * grid_step.c calls it once per particle; a CUDA kernel will call it once
+ * per thread of one colour.
  *
  * Invariants:
- *  - every particle evaluates each of its contacts itself (the seed's
- *    "output is the force on the central cell"), so no two threads ever write
- *    the same memory and nothing is summed with atomics; a pair is always
- *    evaluated with the lower stable id as body i, so both particles of a
- *    pair compute the same bits and keep identical copies of the pair's
- *    tangential spring;
+ *  - each touching pair is evaluated exactly once per step, by its "owner":
+ *    the particle whose forward half stencil holds the other (cells with a
+ *    larger linear index within reach). The owner adds the force and torque
+ *    to both particles. The caller must guarantee that no other thread
+ *    touches either particle meanwhile (grid_step.c: blocks reach cells
+ *    thick in z and y, run by colours), so there are no atomics and the
+ *    sums come in a fixed order: the same bits for any thread count;
+ *  - a pair is evaluated with the lower stable id as body i, and its
+ *    tangential spring is kept as seen from that id, in one history slot of
+ *    either particle (the lower id's when free), keyed by the partner's
+ *    stable id and stamped with the step's epoch; slots not stamped in a
+ *    step belong to contacts that ended and are freed after the pass;
  *  - the pair physics is the engine's own: sd_pair_spheres and
  *    sd_pair_wall (contact/pair.h), i.e. seed 001 eqs. 6–10 with the
- *    linear law, the same code the general solver runs;
- *  - contacts are summed in a fixed order: stencil cells (z, then y, then x),
- *    then the overflow list, then walls in world order (box faces 0..5).
+ *    linear law, the same code the general solver runs.
  *
  * No allocation, no printing, fixed-size workspaces (DESIGN.md rule 1).
  */
@@ -25,20 +29,33 @@
 
 #include "contact/pair.h"
 
-/* History slots per particle: touching neighbours plus touching walls. Equal
- * spheres at small overlap touch at most 12 others (the kissing number);
- * more contacts than slots are still computed, but without a stored spring
- * (counted and reported as slot overflows). */
+/* History slots per particle. Each touching pair keeps its spring in one
+ * slot of either particle, so a particle needs slots for about half its
+ * contacts plus its walls: 3-4 in a dense bed (coordination 6-7), never
+ * more than 8 in the tests. A pair that finds no free slot in either
+ * particle is still computed, without a stored spring, and counted as a
+ * slot overflow (reported; zero in every test). */
 #ifndef SD_GRID_SLOTS
-#define SD_GRID_SLOTS 12
+#define SD_GRID_SLOTS 8
+#endif
+
+/* A cache hint for the CPU loops (no effect on results). */
+#if defined(__GNUC__) && !defined(__CUDACC__)
+#define SD_GRID_PREFETCH(p) __builtin_prefetch((const void *)(p))
+#else
+#define SD_GRID_PREFETCH(p) ((void)(p))
 #endif
 
 /* Largest stencil half width (radius ratio 2: ceil(2 * 2) = 4, 9x9x9). */
 #define SD_GRID_MAX_REACH 4
 
-/* Slot tags: 0 = empty, 1 + stable id for a particle, SD_GRID_TAG_WALL |
- * (wall << 3) | face for a wall (face 0..5 of a box, 0 for a plane). */
+/* Slot tags: 0 = empty; a particle partner: 1 + its stable id (ids stay
+ * below 2^30); a wall: SD_GRID_TAG_WALL | (wall << 3) | face (face 0..5 of
+ * a box, 0 for a plane). SD_GRID_TAG_EPOCH holds the parity of the step
+ * that last used the slot. */
 #define SD_GRID_TAG_WALL 0x80000000u
+#define SD_GRID_TAG_EPOCH 0x40000000u
+#define SD_GRID_MAX_ID 0x3ffffffeu
 
 enum { SD_GRID_WALL_PLANE = 0, SD_GRID_WALL_BOX = 1 };
 
@@ -53,16 +70,28 @@ typedef struct sd_grid_wall {
     sd_real hx0, hx1, hy0, hy1; /* m, the hole in the zmin face */
 } sd_grid_wall;
 
+/* The grid solver's own compact particle state (grid.h): the hot record of
+ * one particle, and the table of particle kinds (distinct radius, mass,
+ * inertia and material) it points into, so equal spheres share one entry. */
+typedef struct sd_grid_part {
+    sd_vec3 x, v, w;          /* m, m/s, rad/s */
+    uint32_t id;              /* stable id (below 2^30) */
+    uint32_t kind;            /* index into the kind table */
+} sd_grid_part;
+
+typedef struct sd_grid_kind {
+    sd_real radius, inv_mass; /* m, 1/kg (0: a fixed body) */
+    sd_vec3 inv_inertia;      /* 1/(kg m^2), principal (isotropic for a sphere) */
+    int32_t material;
+    int32_t unused;
+} sd_grid_kind;
+
 /* Read-only view of everything the kernel needs. */
 typedef struct sd_grid_view {
-    const sd_vec3 *x, *v, *w;
-    const sd_real *radius, *inv_mass;
-    const int32_t *material;
-    const uint64_t *id;
+    const sd_grid_part *part;
+    const sd_grid_kind *kinds;
     const int32_t *cell;      /* per cell: storage index of its particle, or -1 */
     const uint32_t *where;    /* per particle: the cell its centre lies in */
-    const uint32_t *over;     /* particles that lost a cell conflict */
-    size_t nover;
     long nx, ny;              /* cells along x and y (cell = (z ny + y) nx + x) */
     int reach;                /* stencil half width in cells */
     sd_vec3 lo;               /* m, corner of cell (0, 0, 0) */
@@ -75,30 +104,66 @@ typedef struct sd_grid_view {
     sd_real dt;
 } sd_grid_view;
 
-typedef struct sd_grid_out {
-    sd_vec3 f, t;             /* N, N m: total contact force and torque */
-    int overflows;            /* contacts that found no free history slot */
-} sd_grid_out;
+/* What the kernel writes: forces and torques of both particles of a pair,
+ * the slots of both, and the totals on the walls of the caller's slab. */
+typedef struct sd_grid_acc {
+    sd_vec3 *ft;              /* N, N m: force 2k and torque 2k + 1 of particle k, zeroed before the pass */
+    uint32_t *tag;            /* SD_GRID_SLOTS per particle */
+    sd_vec3 *ds;              /* m, the springs of those slots */
+    sd_vec3 *wall_f, *wall_t; /* N, N m: on each wall (nwalls), summed by this caller */
+    uint32_t epoch;           /* 0 or SD_GRID_TAG_EPOCH: this step's stamp */
+    long overflows;           /* contacts that found no free slot */
+} sd_grid_acc;
 
 SD_HD static SD_INLINE sd_body sd_grid_body(const sd_grid_view *g, size_t k)
 {
+    const sd_grid_part *p = &g->part[k];
+    const sd_grid_kind *kd = &g->kinds[p->kind];
     sd_body b;
-    b.x = g->x[k];
-    b.v = g->v[k];
-    b.w = g->w[k];
-    b.radius = g->radius[k];
-    b.inv_mass = g->inv_mass[k];
+    b.x = p->x;
+    b.v = p->v;
+    b.w = p->w;
+    b.radius = kd->radius;
+    b.inv_mass = kd->inv_mass;
     b.inv_inertia = sd_v3_zero(); /* spheres: central contacts */
     b.q = sd_quat_identity();
     return b;
 }
 
-/* Finds the spring stored under tag in the old slots (zero when new). */
-SD_HD static SD_INLINE sd_vec3 sd_grid_find_spring(const uint32_t *tag, const sd_vec3 *ds, uint32_t want)
+SD_HD static SD_INLINE sd_real sd_grid_radius(const sd_grid_view *g, size_t k)
+{
+    return g->kinds[g->part[k].kind].radius;
+}
+
+/* Slot of particle k holding key (epoch ignored), or -1. */
+SD_HD static SD_INLINE int sd_grid_slot_find(const uint32_t *tag, uint32_t key)
 {
     for (int s = 0; s < SD_GRID_SLOTS; ++s)
-        if (tag[s] == want)
-            return ds[s];
+        if ((tag[s] & ~SD_GRID_TAG_EPOCH) == key)
+            return s;
+    return -1;
+}
+
+/* First free slot, or -1. */
+SD_HD static SD_INLINE int sd_grid_slot_free(const uint32_t *tag)
+{
+    for (int s = 0; s < SD_GRID_SLOTS; ++s)
+        if (tag[s] == 0u)
+            return s;
+    return -1;
+}
+
+/* The spring of pair (a, b) as seen from the lower stable id, wherever it
+ * is kept (zero when the contact is new). Read-only: statistics use it. */
+SD_HD static SD_INLINE sd_vec3 sd_grid_pair_spring(const uint32_t *tag, const sd_vec3 *ds, size_t a, size_t b,
+                                                   const sd_grid_part *part)
+{
+    int s = sd_grid_slot_find(tag + a * SD_GRID_SLOTS, part[b].id + 1u);
+    if (s >= 0)
+        return ds[a * SD_GRID_SLOTS + (size_t)s];
+    s = sd_grid_slot_find(tag + b * SD_GRID_SLOTS, part[a].id + 1u);
+    if (s >= 0)
+        return ds[b * SD_GRID_SLOTS + (size_t)s];
     return sd_v3_zero();
 }
 
@@ -144,146 +209,103 @@ SD_HD static SD_INLINE int sd_grid_holed_floor(sd_vec3 x, sd_real r, const sd_gr
     return 1;
 }
 
-/* One contact of particle k: evaluates it when touching, keeps its spring in
- * the new slots, adds its force and torque to *o. */
-SD_HD static SD_INLINE void sd_grid_add_pair(const sd_grid_view *g, size_t k, size_t j, const uint32_t *old_tag,
-                                             const sd_vec3 *old_ds, uint32_t *new_tag, sd_vec3 *new_ds, int *m,
-                                             sd_grid_out *o)
+/* One touching particle pair (k, j), evaluated once: the force and torques
+ * go to both particles, the spring to the slot that holds it (or a new
+ * one). */
+SD_HD static SD_HOT void sd_grid_pair_touching(const sd_grid_view *g, sd_grid_acc *a, size_t k, size_t j)
 {
-    sd_vec3 d = sd_v3_sub(g->x[k], g->x[j]);
-    sd_real rs = g->radius[k] + g->radius[j];
-    if (sd_v3_norm2(d) >= rs * rs)
-        return; /* not touching: a contact that ends forgets its spring */
     /* canonical orientation: body i is the lower stable id */
-    int k_is_i = g->id[k] < g->id[j];
-    size_t i = k_is_i ? k : j, jj = k_is_i ? j : k;
-    sd_body a = sd_grid_body(g, i), b = sd_grid_body(g, jj);
-    const sd_pair_params *prm = &g->mix[(size_t)g->material[i] * (size_t)g->nm + (size_t)g->material[jj]];
-    uint32_t tag = (uint32_t)(g->id[j] + 1u);
-    sd_vec3 ds = sd_grid_find_spring(old_tag, old_ds, tag);
-    sd_pair_result r = sd_pair_spheres(prm, &a, &b, &ds, g->dt);
-    if (*m < SD_GRID_SLOTS) {
-        new_tag[*m] = tag;
-        new_ds[*m] = ds;
-        ++*m;
-    } else {
-        o->overflows++;
+    uint32_t idk = g->part[k].id, idj = g->part[j].id;
+    size_t i = idk < idj ? k : j, jj = i == k ? j : k;
+    sd_body bi = sd_grid_body(g, i), bj = sd_grid_body(g, jj);
+    const sd_pair_params *prm = &g->mix[(size_t)g->kinds[g->part[i].kind].material * (size_t)g->nm +
+                                        (size_t)g->kinds[g->part[jj].kind].material];
+    /* the slot: kept by either particle; a new one goes to body i when it
+     * has room, else to body j */
+    uint32_t key_i = g->part[jj].id + 1u, key_j = g->part[i].id + 1u;
+    uint32_t *ti = a->tag + i * SD_GRID_SLOTS, *tj = a->tag + jj * SD_GRID_SLOTS;
+    size_t slot = 0;
+    uint32_t *stag = 0, skey = 0;
+    int s = sd_grid_slot_find(ti, key_i);
+    if (s >= 0) {
+        slot = i * SD_GRID_SLOTS + (size_t)s, stag = ti + s, skey = key_i;
+    } else if ((s = sd_grid_slot_find(tj, key_j)) >= 0) {
+        slot = jj * SD_GRID_SLOTS + (size_t)s, stag = tj + s, skey = key_j;
+    } else if ((s = sd_grid_slot_free(ti)) >= 0) {
+        slot = i * SD_GRID_SLOTS + (size_t)s, stag = ti + s, skey = key_i;
+        a->ds[slot] = sd_v3_zero();
+    } else if ((s = sd_grid_slot_free(tj)) >= 0) {
+        slot = jj * SD_GRID_SLOTS + (size_t)s, stag = tj + s, skey = key_j;
+        a->ds[slot] = sd_v3_zero();
     }
-    if (k_is_i) {
-        o->f = sd_v3_add(o->f, r.f);
-        o->t = sd_v3_add(o->t, r.ti);
+    sd_vec3 ds = stag ? a->ds[slot] : sd_v3_zero();
+    sd_pair_result r = sd_pair_spheres(prm, &bi, &bj, &ds, g->dt);
+    if (stag) {
+        a->ds[slot] = ds;
+        *stag = skey | a->epoch;
     } else {
-        o->f = sd_v3_sub(o->f, r.f);
-        o->t = sd_v3_add(o->t, r.tj);
+        a->overflows++;
     }
+    sd_vec3 *fti = a->ft + 2 * i, *ftj = a->ft + 2 * jj;
+    fti[0] = sd_v3_add(fti[0], r.f);
+    fti[1] = sd_v3_add(fti[1], r.ti);
+    ftj[0] = sd_v3_sub(ftj[0], r.f);
+    ftj[1] = sd_v3_add(ftj[1], r.tj);
+}
+
+/* Any pair (k, j): evaluated when touching; a pair that is not touching
+ * leaves its slot, if any, unstamped, so it is freed after the pass. */
+SD_HD static SD_INLINE void sd_grid_add_pair(const sd_grid_view *g, sd_grid_acc *a, size_t k, size_t j)
+{
+    sd_vec3 d = sd_v3_sub(g->part[k].x, g->part[j].x);
+    sd_real rs = sd_grid_radius(g, k) + sd_grid_radius(g, j);
+    if (sd_v3_norm2(d) < rs * rs)
+        sd_grid_pair_touching(g, a, k, j);
 }
 
 /* One wall feature of particle k (same geometry calls as the general
  * solver's wall loop, so both solvers see the same wall). */
-SD_HD static SD_INLINE void sd_grid_add_wall(const sd_grid_view *g, size_t k, int wi, int face, int touching,
-                                             const sd_contact_geom *geo, const uint32_t *old_tag,
-                                             const sd_vec3 *old_ds, uint32_t *new_tag, sd_vec3 *new_ds, int *m,
-                                             sd_grid_out *o)
+SD_HD static SD_INLINE void sd_grid_add_wall(const sd_grid_view *g, sd_grid_acc *a, size_t k, int wi, int face,
+                                             const sd_contact_geom *geo)
 {
-    if (!touching)
-        return;
-    sd_body a = sd_grid_body(g, k);
-    const sd_pair_params *prm = &g->mix[(size_t)g->material[k] * (size_t)g->nm + (size_t)g->walls[wi].material];
-    uint32_t tag = SD_GRID_TAG_WALL | ((uint32_t)wi << 3) | (uint32_t)face;
-    sd_vec3 ds = sd_grid_find_spring(old_tag, old_ds, tag);
-    sd_pair_result r = sd_pair_wall(prm, &a, geo, touching, a.radius, &ds, g->dt);
-    if (*m < SD_GRID_SLOTS) {
-        new_tag[*m] = tag;
-        new_ds[*m] = ds;
-        ++*m;
+    sd_body b = sd_grid_body(g, k);
+    const sd_pair_params *prm =
+        &g->mix[(size_t)g->kinds[g->part[k].kind].material * (size_t)g->nm + (size_t)g->walls[wi].material];
+    uint32_t key = SD_GRID_TAG_WALL | ((uint32_t)wi << 3) | (uint32_t)face;
+    uint32_t *tk = a->tag + k * SD_GRID_SLOTS;
+    int s = sd_grid_slot_find(tk, key);
+    if (s < 0 && (s = sd_grid_slot_free(tk)) >= 0)
+        a->ds[k * SD_GRID_SLOTS + (size_t)s] = sd_v3_zero();
+    sd_vec3 ds = s >= 0 ? a->ds[k * SD_GRID_SLOTS + (size_t)s] : sd_v3_zero();
+    sd_pair_result r = sd_pair_wall(prm, &b, geo, 1, b.radius, &ds, g->dt);
+    if (s >= 0) {
+        a->ds[k * SD_GRID_SLOTS + (size_t)s] = ds;
+        tk[s] = key | a->epoch;
     } else {
-        o->overflows++;
+        a->overflows++;
     }
-    o->f = sd_v3_add(o->f, r.f);
-    o->t = sd_v3_add(o->t, r.ti);
+    a->ft[2 * k] = sd_v3_add(a->ft[2 * k], r.f);
+    a->ft[2 * k + 1] = sd_v3_add(a->ft[2 * k + 1], r.ti);
+    /* the wall feels the opposite force at the contact point (as the general
+     * solver's sd_cpu_wall_totals; rolling torques left out) */
+    sd_vec3 fw = sd_v3_neg(r.f);
+    a->wall_f[wi] = sd_v3_add(a->wall_f[wi], fw);
+    a->wall_t[wi] = sd_v3_add(a->wall_t[wi], sd_v3_cross(sd_v3_sub(geo->point, g->walls[wi].point), fw));
 }
 
-/* The kernel: force and torque on particle k, and its updated springs
- * (tag, ds: its SD_GRID_SLOTS slots, read and rewritten in place). */
-SD_HD static SD_INLINE sd_grid_out sd_grid_particle_forces(const sd_grid_view *g, size_t k, uint32_t *tag, sd_vec3 *ds)
+/* The walls of particle k: the halo's mirror particle of k across a wall
+ * plane is at distance 2 s; its contact is evaluated as the sphere-plane
+ * contact (overlap R - s), i.e. the wall itself (docs/grid-solver.md). */
+SD_HD static SD_INLINE void sd_grid_walls_of(const sd_grid_view *g, sd_grid_acc *a, size_t k)
 {
-    sd_grid_out o;
-    o.f = sd_v3_zero();
-    o.t = sd_v3_zero();
-    o.overflows = 0;
-    uint32_t new_tag[SD_GRID_SLOTS];
-    sd_vec3 new_ds[SD_GRID_SLOTS];
-    int m = 0;
-
-    /* the stencil: (2 reach + 1)^3 cells around k's cell (seed 001 §3.2.1).
-     * A cell farther from k's centre than r_k + R_max cannot hold a partner:
-     * gap[axis][o] is the distance along the axis from the centre to the
-     * slab of cells at offset o, so such cells (and whole rows) are skipped
-     * before their memory is read. The visiting order stays fixed. */
-    long c = (long)g->where[k];
-    long nxy = g->nx * g->ny;
-    int rch = g->reach;
-    sd_real gap2[3][2 * SD_GRID_MAX_REACH + 1];
-    {
-        long iz = c / nxy, iy = (c / g->nx) % g->ny, ix = c % g->nx;
-        sd_real f[3];
-        f[0] = (g->x[k].x - g->lo.x) / g->h - (sd_real)ix;
-        f[1] = (g->x[k].y - g->lo.y) / g->h - (sd_real)iy;
-        f[2] = (g->x[k].z - g->lo.z) / g->h - (sd_real)iz;
-        for (int a = 0; a < 3; ++a)
-            for (int off = -rch; off <= rch; ++off) {
-                sd_real gp = off > 0 ? ((sd_real)off - f[a]) : (off < 0 ? ((sd_real)(-off - 1) + f[a]) : SD_R(0.0));
-                gp = gp > SD_R(0.0) ? gp * g->h : SD_R(0.0);
-                gap2[a][off + rch] = gp * gp;
-            }
-    }
-    sd_real cut2 = sd_sq(g->radius[k] + g->rmax);
-    /* candidates first (a branch-free gather of the occupied cells), then
-     * the contacts: the scan's branches stay predictable */
-    int32_t cand[(2 * SD_GRID_MAX_REACH + 1) * (2 * SD_GRID_MAX_REACH + 1) * (2 * SD_GRID_MAX_REACH + 1)];
-    int nc = 0;
-    for (int dz = -rch; dz <= rch; ++dz) {
-        sd_real gz = gap2[2][dz + rch];
-        if (gz >= cut2)
-            continue;
-        for (int dy = -rch; dy <= rch; ++dy) {
-            sd_real gyz = gz + gap2[1][dy + rch];
-            if (gyz >= cut2)
-                continue;
-            /* the cells of the row within reach form one run of offsets */
-            int x0 = -rch, x1 = rch;
-            while (gyz + gap2[0][x0 + rch] >= cut2)
-                ++x0;
-            while (gyz + gap2[0][x1 + rch] >= cut2)
-                --x1;
-            const int32_t *row = g->cell + c + (long)dz * nxy + (long)dy * g->nx;
-            for (int dx = x0; dx <= x1; ++dx) {
-                int32_t j = row[dx];
-                cand[nc] = j;
-                nc += (j >= 0) & ((size_t)j != k);
-            }
-        }
-    }
-    for (int e = 0; e < nc; ++e)
-        sd_grid_add_pair(g, k, (size_t)cand[e], tag, ds, new_tag, new_ds, &m, &o);
-    /* particles that lost a cell conflict live outside the cells */
-    for (size_t e = 0; e < g->nover; ++e) {
-        size_t j = g->over[e];
-        if (j != k)
-            sd_grid_add_pair(g, k, j, tag, ds, new_tag, new_ds, &m, &o);
-    }
-
-    /* walls: the halo's mirror particle of k across a wall plane is at
-     * distance 2 s; its contact is evaluated as the sphere-plane contact
-     * (overlap R - s), i.e. the wall itself (docs/grid-solver.md) */
-    sd_vec3 x = g->x[k];
-    sd_real r = g->radius[k];
+    sd_vec3 x = g->part[k].x;
+    sd_real r = sd_grid_radius(g, k);
     for (int wi = 0; wi < g->nwalls; ++wi) {
         const sd_grid_wall *wl = &g->walls[wi];
         sd_contact_geom geo;
         if (wl->kind == SD_GRID_WALL_PLANE) {
-            int touching = sd_sphere_plane(x, r, wl->point, wl->normal, &geo);
-            sd_grid_add_wall(g, k, wi, 0, touching, &geo, tag, ds, new_tag, new_ds, &m, &o);
+            if (sd_sphere_plane(x, r, wl->point, wl->normal, &geo))
+                sd_grid_add_wall(g, a, k, wi, 0, &geo);
             continue;
         }
         const sd_real cx[3] = {x.x, x.y, x.z};
@@ -302,15 +324,83 @@ SD_HD static SD_INLINE sd_grid_out sd_grid_particle_forces(const sd_grid_view *g
             else
                 touching = sd_sphere_box_face(x, r, axis, (face & 1) ? hi[axis] : lo[axis],
                                               (face & 1) ? SD_R(-1.0) : SD_R(1.0), wl->lo, wl->hi, &geo);
-            sd_grid_add_wall(g, k, wi, face, touching, &geo, tag, ds, new_tag, new_ds, &m, &o);
+            if (touching)
+                sd_grid_add_wall(g, a, k, wi, face, &geo);
         }
     }
+}
 
-    for (int s = 0; s < SD_GRID_SLOTS; ++s) {
-        tag[s] = s < m ? new_tag[s] : 0u;
-        ds[s] = s < m ? new_ds[s] : sd_v3_zero();
+/* The kernel: particle k, in its cell (ix, iy, iz), as owner. Visits the
+ * forward half of its (2 reach + 1)^3 stencil (seed 001 §3.2.1): dz > 0, or
+ * dz = 0 and dy > 0, or dz = dy = 0 and dx > 0 — every pair of occupied
+ * cells within reach once — then its walls. Cells z, then y, then x: a
+ * fixed order. The caller passes the cell's coordinates (it walks the
+ * cells), which spares integer divisions per particle. */
+SD_HD static SD_INLINE void sd_grid_owner_forces(const sd_grid_view *g, sd_grid_acc *a, size_t k, long ix, long iy,
+                                                 long iz)
+{
+    long nxy = g->nx * g->ny;
+    long c = (iz * g->ny + iy) * g->nx + ix;
+    int rch = g->reach;
+    sd_real rk = sd_grid_radius(g, k);
+    /* candidates first (a branch-free gather of the occupied cells of the
+     * half stencil: 62 cells for equal spheres, all read — a distance cull
+     * of rows and cells cost more than the reads it saved), then the
+     * distance tests, then the contacts: the branches stay predictable */
+    int32_t cand[(SD_GRID_MAX_REACH + 1) * (2 * SD_GRID_MAX_REACH + 1) * (2 * SD_GRID_MAX_REACH + 1)];
+    int nc = 0;
+    for (int dz = 0; dz <= rch; ++dz) {
+        for (int dy = dz ? -rch : 0; dy <= rch; ++dy) {
+            int x0 = (dz || dy) ? -rch : 1, x1 = rch;
+            const int32_t *row = g->cell + c + (long)dz * nxy + (long)dy * g->nx;
+            for (int dx = x0; dx <= x1; ++dx) {
+                int32_t j = row[dx];
+                cand[nc] = j;
+                nc += j >= 0;
+            }
+        }
     }
-    return o;
+    sd_vec3 xk = g->part[k].x;
+    int nt = 0;
+    for (int e = 0; e < nc; ++e) {
+        size_t j = (size_t)cand[e];
+        sd_vec3 d = sd_v3_sub(xk, g->part[j].x);
+        sd_real rs = rk + sd_grid_radius(g, j);
+        cand[nt] = (int32_t)j;
+        nt += sd_v3_norm2(d) < rs * rs;
+    }
+    /* the touching partners' slots are read next: ask for them now (a
+     * hint only; nothing under nvcc) */
+    for (int e = 0; e < nt; ++e) {
+        SD_GRID_PREFETCH(a->tag + (size_t)cand[e] * SD_GRID_SLOTS);
+        SD_GRID_PREFETCH(a->ds + (size_t)cand[e] * SD_GRID_SLOTS);
+        SD_GRID_PREFETCH(a->ds + (size_t)cand[e] * SD_GRID_SLOTS + 3);
+        SD_GRID_PREFETCH(a->ds + (size_t)cand[e] * SD_GRID_SLOTS + 6);
+    }
+    for (int e = 0; e < nt; ++e)
+        sd_grid_pair_touching(g, a, k, (size_t)cand[e]);
+    sd_grid_walls_of(g, a, k);
+}
+
+/* A particle without a cell (it lost a cell conflict): its pairs with the
+ * particles of its whole stencil, then its walls. The caller runs these
+ * serially, after the slabs, and adds the pairs between two such particles
+ * itself. */
+SD_HD static SD_INLINE void sd_grid_homeless_forces(const sd_grid_view *g, sd_grid_acc *a, size_t k)
+{
+    long c = (long)g->where[k];
+    long nxy = g->nx * g->ny;
+    int rch = g->reach;
+    for (int dz = -rch; dz <= rch; ++dz)
+        for (int dy = -rch; dy <= rch; ++dy) {
+            const int32_t *row = g->cell + c + (long)dz * nxy + (long)dy * g->nx;
+            for (int dx = -rch; dx <= rch; ++dx) {
+                int32_t j = row[dx];
+                if (j >= 0 && (size_t)j != k)
+                    sd_grid_add_pair(g, a, k, (size_t)j);
+            }
+        }
+    sd_grid_walls_of(g, a, k);
 }
 
 #endif

@@ -4,9 +4,10 @@
  * Invariants (see output.h): nothing is written into a non-empty directory
  * that lacks the .shapedem-output marker; a directory with the marker loses
  * only files whose names shapedem itself writes (particles_<digits>.vtu,
- * walls_<digits>.vtp, frames.pvd, stats.csv, summary.txt and their
- * ".<name>.tmp" temporaries); every file except stats.csv is replaced
- * atomically; stats.csv is only ever appended to, one flushed row per call,
+ * walls_<digits>.vtp, frames.pvd, stats.csv, biaxial.csv, summary.txt and
+ * their ".<name>.tmp" temporaries); every file except the CSVs is replaced
+ * atomically; stats.csv (and biaxial.csv, 2D boxes) are only ever appended
+ * to, one flushed row per call,
  * so a crash loses at most the row being written.
  *
  * The world is read only through the public API in shapedem.h.
@@ -17,6 +18,7 @@
 
 #include "core/alloc.h"
 #include "core/error.h"
+#include "grid/grid.h"
 #include "io/fsutil.h"
 #include "io/vtk.h"
 
@@ -37,7 +39,9 @@ struct sd_output {
     size_t frame_cap;
     FILE *stats;          /* stats.csv, opened at the first row */
     size_t stats_walls;   /* walls in the header */
+    int stats_grid;       /* the header has the grid solver's columns */
     long stats_rows;
+    FILE *biaxial;        /* biaxial.csv (2D worlds with four walls), opened at the first row */
 };
 
 static char *sd_output_strdup(const char *s)
@@ -77,7 +81,7 @@ static int sd_output_is_ours(const char *name)
         s = name + 1; /* a temporary left by an interrupted run */
         n -= 5;
     }
-    static const char *fixed[] = {"frames.pvd", "stats.csv", "summary.txt"};
+    static const char *fixed[] = {"frames.pvd", "stats.csv", "summary.txt", "biaxial.csv"};
     for (size_t k = 0; k < sizeof fixed / sizeof fixed[0]; ++k)
         if (n == strlen(fixed[k]) && memcmp(s, fixed[k], n) == 0)
             return 1;
@@ -170,7 +174,7 @@ static sd_status sd_output_prepare_dir(const char *dir, sd_error *err)
     fprintf(af.fp,
             "This directory was written by shapedem %s.\n"
             "The next run writing here replaces particles_*.vtu, walls_*.vtp, frames.pvd,\n"
-            "stats.csv and summary.txt; any other file is left alone.\n",
+            "stats.csv, biaxial.csv and summary.txt; any other file is left alone.\n",
             SD_VERSION_STRING);
     return sd_fs_atomic_commit(&af, err);
 }
@@ -346,10 +350,46 @@ static sd_status sd_output_stats_header(sd_output *o, const sd_world *w, size_t 
             const char *p = pre + i * SD_OUTPUT_PREFIX_MAX;
             fprintf(o->stats, ",%s_fx,%s_fy,%s_fz", p, p, p);
         }
+        sd_grid_info gi; /* solver grid: pouring, outlet, cell conflicts (src/grid) */
+        sd_grid_get_info(w, &gi);
+        o->stats_grid = gi.active;
+        if (gi.active)
+            fprintf(o->stats, ",poured,in_domain,discharged,discharged_mass,removed,conflicts");
         fputc('\n', o->stats);
         o->stats_walls = nw;
     }
     sd_free(pre);
+    return s;
+}
+
+/* biaxial.csv: one row per stats row when the world is a 2D box of four
+ * plane walls (seed 002 §3.2; columns in docs/output.md). Appended and
+ * flushed like stats.csv. */
+static sd_status sd_output_biaxial(sd_output *o, const sd_world *w, sd_error *err)
+{
+    sd_biaxial b;
+    if (sd_world_biaxial(w, &b) != SD_OK)
+        return SD_OK;
+    sd_status s = SD_OK;
+    char *path = sd_fs_join(o->dir, "biaxial.csv");
+    if (!path)
+        return sd_error_set(err, SD_ERR_MEMORY, o->dir, 0, "", "out of memory");
+    if (!o->biaxial) {
+        o->biaxial = fopen(path, "a");
+        if (!o->biaxial) {
+            s = sd_error_set(err, SD_ERR_IO, path, 0, "", "cannot open for appending: %s", strerror(errno));
+            goto done;
+        }
+        fprintf(o->biaxial, "step,time,width,height,sigma_xx,sigma_yy,strain_axial,strain_lateral,"
+                            "strain_volumetric,stress_ratio\n");
+    }
+    fprintf(o->biaxial, "%ld,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g\n", sd_world_step_count(w),
+            sd_world_time(w), b.width, b.height, b.sigma_xx, b.sigma_yy, b.strain_axial, b.strain_lateral,
+            b.strain_volumetric, b.stress_ratio);
+    if (fflush(o->biaxial) != 0 || ferror(o->biaxial))
+        s = sd_error_set(err, SD_ERR_IO, path, 0, "", "cannot write: %s", strerror(errno));
+done:
+    sd_free(path);
     return s;
 }
 
@@ -400,12 +440,19 @@ sd_status sd_output_stats(sd_output *o, const sd_world *w, sd_error *err)
         }
         fprintf(o->stats, ",%.10g,%.10g,%.10g", wi.force.x, wi.force.y, wi.force.z);
     }
+    if (o->stats_grid) {
+        sd_grid_info gi;
+        sd_grid_get_info(w, &gi);
+        fprintf(o->stats, ",%zu,%zu,%zu,%.10g,%zu,%ld", gi.poured, sd_world_particle_count(w), gi.removed_outlet,
+                gi.removed_mass, gi.removed, gi.conflicts);
+    }
     fputc('\n', o->stats);
     if (fflush(o->stats) != 0 || ferror(o->stats)) {
         s = sd_error_set(err, SD_ERR_IO, path, 0, "", "cannot write: %s", strerror(errno));
         goto done;
     }
     o->stats_rows++;
+    s = sd_output_biaxial(o, w, err);
 done:
     sd_free(path);
     return s;
@@ -454,6 +501,30 @@ static void sd_output_summary_text(FILE *fp, const sd_output *o, const sd_world 
     fprintf(fp, "max_overlap_ratio: %.10g\n", st.max_overlap_ratio);
     fprintf(fp, "max_speed_m_per_s: %.10g\n", st.max_speed);
     fprintf(fp, "pair_list_rebuilds: %ld\n", st.rebuilds);
+    sd_grid_info gi; /* solver grid (src/grid, docs/grid-solver.md) */
+    sd_grid_get_info(w, &gi);
+    if (gi.active) {
+        fprintf(fp, "grid_cell_m: %.10g\n", gi.cell);
+        fprintf(fp, "grid_cells: %ld x %ld x %ld\n", gi.nx, gi.ny, gi.nz);
+        fprintf(fp, "grid_poured: %zu\n", gi.poured);
+        fprintf(fp, "grid_in_domain: %zu\n", sd_world_particle_count(w));
+        fprintf(fp, "grid_discharged: %zu\n", gi.removed_outlet);
+        fprintf(fp, "grid_discharged_mass_kg: %.10g\n", gi.removed_mass);
+        fprintf(fp, "grid_removed: %zu\n", gi.removed);
+        fprintf(fp, "grid_domain_min_m: %.10g %.10g %.10g\n", gi.domain_lo[0], gi.domain_lo[1], gi.domain_lo[2]);
+        fprintf(fp, "grid_domain_max_m: %.10g %.10g %.10g\n", gi.domain_hi[0], gi.domain_hi[1], gi.domain_hi[2]);
+        fprintf(fp, "grid_outlet_open: %d\n", gi.outlet_open);
+        if (gi.outlet_open || gi.outlet_time > 0) {
+            fprintf(fp, "grid_outlet_time_s: %.10g\n", gi.outlet_time);
+            fprintf(fp, "grid_outlet_x_m: %.10g %.10g\n", gi.outlet_x0, gi.outlet_x1);
+            fprintf(fp, "grid_outlet_y_m: %.10g %.10g\n", gi.outlet_y0, gi.outlet_y1);
+        }
+        fprintf(fp, "grid_conflicts_resolved: %ld\n", gi.conflicts);
+        fprintf(fp, "grid_max_without_cell: %zu\n", gi.max_overflow);
+        fprintf(fp, "grid_slot_overflows: %ld\n", gi.slot_overflows);
+        fprintf(fp, "grid_slots_used_max: %d\n", gi.slots_used_max);
+        fprintf(fp, "grid_solver_bytes: %zu\n", gi.bytes);
+    }
     size_t nw = sd_world_wall_count(w);
     for (size_t i = 0; i < nw; ++i) {
         sd_wall_info wi;
@@ -468,6 +539,15 @@ static void sd_output_summary_text(FILE *fp, const sd_output *o, const sd_world 
     size_t nn = sd_world_narrow_stats(w, ns, 64);
     for (size_t i = 0; i < nn && i < 64; ++i) {
         double ev = (double)ns[i].evaluations;
+        if (ns[i].iterations == 0 && ns[i].contacts > 0) { /* planar mode: seed 002 Table 1 */
+            long long apart = ns[i].evaluations - ns[i].contacts;
+            fprintf(fp, "narrow_phase %s-%s: evaluations %lld, mean_support_calls %.3f, contact %lld with "
+                        "mean_support_calls %.3f, no_contact %lld with mean_support_calls %.3f\n",
+                    ns[i].kind_a, ns[i].kind_b, ns[i].evaluations, (double)ns[i].support_calls / ev,
+                    ns[i].contacts, (double)ns[i].contact_support_calls / (double)ns[i].contacts, apart,
+                    apart > 0 ? (double)(ns[i].support_calls - ns[i].contact_support_calls) / (double)apart : 0.0);
+            continue;
+        }
         fprintf(fp, "narrow_phase %s-%s: evaluations %lld, mean_iterations %.3f, mean_support_calls %.3f\n",
                 ns[i].kind_a, ns[i].kind_b, ns[i].evaluations, (double)ns[i].iterations / ev,
                 (double)ns[i].support_calls / ev);
@@ -484,6 +564,11 @@ sd_status sd_output_close(sd_output *o, const sd_world *w, const sd_run_summary 
             s = sd_error_set(err, SD_ERR_IO, o->dir, 0, "", "cannot close stats.csv: %s",
                              strerror(errno));
         o->stats = NULL;
+    }
+    if (o->biaxial) {
+        if (fclose(o->biaxial) != 0 && s == SD_OK)
+            s = sd_error_set(err, SD_ERR_IO, o->dir, 0, "", "cannot close biaxial.csv: %s", strerror(errno));
+        o->biaxial = NULL;
     }
     /* The first error is the one reported. */
     sd_error err2;

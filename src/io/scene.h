@@ -70,7 +70,16 @@ typedef struct sd_scene_shape {
     size_t vertex_count;          /* polyhedron */
     sd_v3d *vertices;             /* polyhedron, from the scene or the file */
     char file[SD_SCENE_PATH_MAX]; /* polyhedron file, resolved, or "" */
+    char warning[400];            /* polyhedron file taken as its hull (nonconvex: hull), or "" */
     int line;
+    /* planar types (dimension 2): kind2d is the sd_shape2d_kind, or -1 for a
+     * 3D type; kind is then SD_SHAPE_KIND_COUNT + kind2d (the type choice) */
+    int kind2d;
+    double axes[2];               /* m, ellipse semi-axes */
+    size_t point_count;           /* polygon / polybezier points */
+    double *points;               /* m, x0, y0, x1, y1, ... */
+    size_t fourier_count;         /* N + 1 values a_0 .. a_N */
+    double *fourier_a, *fourier_b;/* m, a_0..a_N and b_1..b_N (zeros when not given) */
 } sd_scene_shape;
 
 typedef struct sd_scene_material {
@@ -93,6 +102,8 @@ typedef struct sd_scene_wall {
     unsigned open_faces;          /* SD_BOX_* mask */
     int material;
     int line;
+    int has_motion;               /* velocity or servo keys given */
+    sd_wall_motion_def motion;    /* prescribed or servo-controlled motion */
 } sd_scene_wall;
 
 enum { SD_OUT_VTK = 1 << 0, SD_OUT_CSV = 1 << 1 };
@@ -103,6 +114,28 @@ typedef struct sd_scene_output {
     long stats_every;             /* steps between stats.csv rows */
     unsigned formats;             /* SD_OUT_* mask */
 } sd_scene_output;
+
+/* Layer-by-layer pouring and the outlet of the grid solver (seed 001
+ * §4.1-4.2; src/grid). */
+typedef struct sd_scene_pour {
+    int given, line;              /* the pour: section, and its line */
+    int material;
+    double radius;                /* m */
+    double height;                /* m, z of the sheets' centres */
+    double rate;                  /* 1/s, sheets per second */
+    double vertical_speed;        /* m/s, vz uniform in [-v, v] */
+    double horizontal_speed;      /* m/s, vx, vy uniform in [-v, v] */
+    double start;                 /* s, first sheet */
+    long count;                   /* particles: given, or from fill_height */
+    double fill_height;           /* m, 0 = count given */
+    double packing_fraction;      /* -, for the count from fill_height */
+} sd_scene_pour;
+
+typedef struct sd_scene_outlet {
+    int given, line;
+    double lo[2], hi[2];          /* m, the hole [x0, x1] x [y0, y1] in the floor */
+    double open_at;               /* s */
+} sd_scene_outlet;
 
 typedef struct sd_scene {
     char path[SD_SCENE_PATH_MAX];
@@ -117,6 +150,8 @@ typedef struct sd_scene {
     sd_scene_generator *generators;
     sd_scene_wall *walls;
     sd_scene_output output;
+    sd_scene_pour pour;
+    sd_scene_outlet outlet;
 } sd_scene;
 
 /* Parses and checks a scene file. On error *out is NULL and err names the

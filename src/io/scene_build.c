@@ -15,9 +15,11 @@
 
 #include "core/alloc.h"
 #include "core/error.h"
+#include "grid/grid.h"
 #include "io/scene.h"
 #include "io/scene_keys.h"
 #include "shape/shape.h"
+#include "shape/shape2d.h"
 
 /* Scene type names in sd_shape_kind order: what sd_shape_desc.kind takes. */
 static const char *const sd_shape_type_names[] = {
@@ -106,7 +108,7 @@ static sd_status sd_check_overlaps(const sd_scene *s, const sd_scene_spheres *sp
 }
 
 /* How far sphere d crosses wall w (m, > 0 means outside), and which side. */
-static double sd_wall_excess(const sd_scene_wall *w, const sd_sphere_def *d, const char **side)
+static double sd_wall_excess(const sd_scene_wall *w, const sd_sphere_def *d, const char **side, int planar)
 {
     if (w->kind == 0) {
         *side = "plane";
@@ -120,7 +122,7 @@ static double sd_wall_excess(const sd_scene_wall *w, const sd_sphere_def *d, con
     const double lo[3] = {w->lo.x, w->lo.y, w->lo.z}, hi[3] = {w->hi.x, w->hi.y, w->hi.z};
     double worst = -HUGE_VAL;
     *side = "";
-    for (int a = 0; a < 3; ++a) {
+    for (int a = 0; a < (planar ? 2 : 3); ++a) { /* the planar mode has no z faces */
         /* Open faces do not hold anything in: spheres may start beyond them
          * (poured into an open-top box from above). */
         if (!(w->open_faces & (1u << (2 * a))) && lo[a] - (c[a] - d->radius) > worst) {
@@ -142,7 +144,7 @@ static sd_status sd_check_walls(const sd_scene *s, const sd_scene_spheres *sp, s
         for (size_t wi = 0; wi < s->wall_count; ++wi) {
             const sd_scene_wall *w = &s->walls[wi];
             const char *side;
-            double excess = sd_wall_excess(w, d, &side);
+            double excess = sd_wall_excess(w, d, &side, s->world.dimension == 2);
             if (!(excess > SD_SCENE_WALL_TOL * d->radius))
                 continue;
             sd_origin o = sd_sphere_origin(s, sp, k);
@@ -162,14 +164,93 @@ static sd_status sd_check_walls(const sd_scene *s, const sd_scene_spheres *sp, s
     return SD_OK;
 }
 
+/* The planar mode: every particle in the plane z = 0, moving in it. */
+static sd_status sd_check_planar(const sd_scene *s, const sd_scene_spheres *sp, sd_error *err)
+{
+    if (s->world.dimension != 2)
+        return SD_OK;
+    for (size_t k = 0; k < sp->count; ++k) {
+        const sd_sphere_def *d = &sp->defs[k];
+        if (d->position.z == 0 && d->velocity.z == 0 && d->angular_velocity.x == 0 && d->angular_velocity.y == 0)
+            continue;
+        sd_origin o = sd_sphere_origin(s, sp, k);
+        char dk[160];
+        sd_describe(s, sp, k, dk, sizeof dk);
+        return sd_error_set(err, SD_ERR_INPUT, o.file, o.line, o.key,
+                            "dimension 2: %s must lie in the plane z = 0 with velocity z = 0 and angular "
+                            "velocity about z only",
+                            dk);
+    }
+    return SD_OK;
+}
+
 /* Adds the scene's shapes (scene shape i is world shape i) and fills
  * bound[i] with each one's bounding radius. An error from the world keeps
  * its message and gets the entry's line and key. */
+/* A planar shape (dimension 2): scale multiplies every length. */
+static int sd_build_shape2d(const sd_scene_shape *sh, sd_world *w, sd_error *err)
+{
+    static const char *const names[] = {
+#define SD_X_NAME2(e, name, doc) name,
+        SD_SHAPE2D_KINDS(SD_X_NAME2)
+#undef SD_X_NAME2
+    };
+    double c = sh->scale;
+    size_t nv = sh->kind2d == SD_SHAPE2D_FOURIER ? 2 * sh->fourier_count : 2 * sh->point_count;
+    double *tmp = sd_malloc((nv ? nv : 1) * sizeof *tmp);
+    if (!tmp) {
+        sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory");
+        return -1;
+    }
+    sd_shape2d_def d = sd_shape2d_def_default();
+    d.kind = names[sh->kind2d];
+    d.radius = c * (sh->kind2d == SD_SHAPE2D_CIRCLE ? sh->size.x : sh->rounding);
+    d.semi_axes[0] = c * sh->axes[0];
+    d.semi_axes[1] = c * sh->axes[1];
+    if (sh->kind2d == SD_SHAPE2D_FOURIER) {
+        for (size_t k = 0; k < sh->fourier_count; ++k) {
+            tmp[k] = c * sh->fourier_a[k];
+            tmp[sh->fourier_count + k] = c * sh->fourier_b[k];
+        }
+        d.fourier_a = tmp;
+        d.fourier_b = tmp + sh->fourier_count;
+        d.order = (int)sh->fourier_count - 1;
+    } else if (sh->point_count) {
+        for (size_t k = 0; k < 2 * sh->point_count; ++k)
+            tmp[k] = c * sh->points[k];
+        d.points = tmp;
+        d.point_count = sh->point_count;
+    }
+    int idx = sd_world_add_shape2d(w, sh->name, &d, err);
+    sd_free(tmp);
+    return idx;
+}
+
 static sd_status sd_build_shapes(const sd_scene *s, sd_world *w, double *bound, sd_error *err)
 {
     char key[160];
     for (size_t i = 0; i < s->shape_count; ++i) {
         const sd_scene_shape *sh = &s->shapes[i];
+        if (sh->kind2d >= 0) {
+            sd_error_clear(err);
+            int idx = sd_build_shape2d(sh, w, err);
+            if (idx < 0) {
+                /* the world names its own field: a key of the entry, or the entry */
+                if (err->key[0] && sd_scene_key_find(SD_SEC_SHAPE, err->key))
+                    snprintf(key, sizeof key, "shapes[%zu].%.100s", i, err->key);
+                else
+                    snprintf(key, sizeof key, "shapes[%zu]", i);
+                err->key[0] = '\0';
+                return sd_where(err, err->code != SD_OK ? err->code : SD_ERR_INPUT, s, sh->line, key);
+            }
+            snprintf(key, sizeof key, "shapes[%zu]", i);
+            sd_shape_info info;
+            if (idx != (int)i || sd_world_get_shape(w, i, &info) != SD_OK)
+                return sd_error_set(err, SD_ERR_INTERNAL, s->path, sh->line, key,
+                                    "the world gave shape index %d, expected %zu", idx, i);
+            bound[i] = info.bounding_radius;
+            continue;
+        }
         sd_shape_desc d = sd_shape_desc_default();
         d.kind = sd_shape_type_names[sh->kind];
         d.size = sh->size;
@@ -257,6 +338,19 @@ static sd_status sd_build(const sd_scene *s, sd_world *w, sd_scene_spheres *sp, 
         if (idx < 0)
             return sd_where(err, err->code != SD_OK ? err->code : SD_ERR_INPUT, s, wl->line, key);
     }
+    /* motions once every wall exists: a servo wall measures its length
+     * between the walls across it */
+    for (size_t i = 0; i < s->wall_count; ++i) {
+        const sd_scene_wall *wl = &s->walls[i];
+        if (!wl->has_motion)
+            continue;
+        sd_error_clear(err);
+        if ((st = sd_world_set_wall_motion(w, (int)i, &wl->motion, err)) != SD_OK) {
+            snprintf(key, sizeof key, "walls[%zu].%.40s", i, err->key[0] ? err->key : "servo_stress");
+            err->key[0] = '\0';
+            return sd_where(err, st, s, wl->line, key);
+        }
+    }
 
     double *bound = sd_calloc(s->shape_count ? s->shape_count : 1, sizeof *bound);
     if (!bound)
@@ -272,6 +366,8 @@ static sd_status sd_build(const sd_scene *s, sd_world *w, sd_scene_spheres *sp, 
     if ((st = sd_check_overlaps(s, sp, err)) != SD_OK)
         return st;
     if ((st = sd_check_walls(s, sp, err)) != SD_OK)
+        return st;
+    if ((st = sd_check_planar(s, sp, err)) != SD_OK)
         return st;
     /* One call per run of spheres or bodies of a generator keeps ids in
      * generation order (a list may mix them). */
@@ -295,6 +391,23 @@ static sd_status sd_build(const sd_scene *s, sd_world *w, sd_scene_spheres *sp, 
     if (st != SD_OK)
         return st;
 
+    /* pouring and the outlet of the grid solver (src/grid, seed 001 4.1-4.2) */
+    if (s->pour.given) {
+        sd_grid_pour_def pd = sd_grid_pour_def_default();
+        pd.radius = s->pour.radius;
+        pd.material = s->pour.material;
+        pd.height = s->pour.height;
+        pd.layers_per_second = s->pour.rate;
+        pd.count = (size_t)s->pour.count;
+        pd.vz_range = s->pour.vertical_speed;
+        pd.vh_range = s->pour.horizontal_speed;
+        pd.start_time = s->pour.start;
+        if ((st = sd_grid_set_pour(w, &pd, err)) != SD_OK)
+            return sd_where(err, st, s, s->pour.line, "pour");
+    }
+    if (s->outlet.given && (st = sd_grid_set_outlet_at(w, s->outlet.lo[0], s->outlet.hi[0], s->outlet.lo[1],
+                                                       s->outlet.hi[1], s->outlet.open_at, err)) != SD_OK)
+        return sd_where(err, st, s, s->outlet.line, "outlet");
     if ((st = sd_world_prepare(w, err)) != SD_OK)
         return sd_where(err, st, s, s->simulation_line, "simulation");
     double tc = 0.0;

@@ -153,13 +153,15 @@ static double sd_gen_radius(sd_rng *rng, const sd_scene_generator *g)
     return sd_rng_range(rng, g->radius_min, g->radius_max);
 }
 
-static void sd_gen_jitter(sd_rng *rng, const sd_scene_generator *g, sd_sphere_def *d)
+static void sd_gen_jitter(sd_rng *rng, const sd_scene_generator *g, sd_sphere_def *d, int planar)
 {
     if (g->velocity_jitter > 0.0) {
         double j = g->velocity_jitter;
         d->velocity.x += sd_rng_range(rng, -j, j);
         d->velocity.y += sd_rng_range(rng, -j, j);
-        d->velocity.z += sd_rng_range(rng, -j, j);
+        double jz = sd_rng_range(rng, -j, j); /* always drawn: the same stream in 2D */
+        if (!planar)
+            d->velocity.z += jz;
     }
 }
 
@@ -168,10 +170,16 @@ static void sd_gen_jitter(sd_rng *rng, const sd_scene_generator *g, sd_sphere_de
  * three uniforms u1, u2, u3:
  *   q = (sqrt(u1) cos 2 pi u3, sqrt(1-u1) sin 2 pi u2, sqrt(1-u1) cos 2 pi u2, sqrt(u1) sin 2 pi u3).
  * Only shaped bodies draw, so scenes of spheres keep their streams. */
-static void sd_gen_orient(sd_rng *rng, sd_scene_orient mode, const double fixed[4], double q[4])
+static void sd_gen_orient(sd_rng *rng, sd_scene_orient mode, const double fixed[4], double q[4], int planar)
 {
     const double two_pi = 6.28318530717958647692;
-    if (mode == SD_ORIENT_RANDOM) {
+    if (mode == SD_ORIENT_RANDOM && planar) {
+        /* dimension 2: a uniform angle about z */
+        double a = two_pi * sd_rng_uniform(rng);
+        q[0] = cos(0.5 * a);
+        q[1] = q[2] = 0.0;
+        q[3] = sin(0.5 * a);
+    } else if (mode == SD_ORIENT_RANDOM) {
         double u1 = sd_rng_uniform(rng), u2 = sd_rng_uniform(rng), u3 = sd_rng_uniform(rng);
         double a = sqrt(1.0 - u1), b = sqrt(u1);
         q[0] = b * cos(two_pi * u3);
@@ -224,6 +232,8 @@ static sd_status sd_gen_random(const sd_scene *s, size_t gi, double bound, sd_rn
             sd_v3d p = {sd_rng_range(rng, g->box_lo.x + r, g->box_hi.x - r),
                         sd_rng_range(rng, g->box_lo.y + r, g->box_hi.y - r),
                         sd_rng_range(rng, g->box_lo.z + r, g->box_hi.z - r)};
+            if (s->world.dimension == 2)
+                p.z = 0.0; /* the planar mode: z range ignored (one draw kept for the stream) */
             /* Zero tolerance: generated spheres may touch, never overlap. */
             if (sd_grid_first_overlap(&grid, defs, p, r, 0.0) == SD_GRID_NONE) {
                 memset(d, 0, sizeof *d);
@@ -238,8 +248,8 @@ static sd_status sd_gen_random(const sd_scene *s, size_t gi, double bound, sd_rn
         d->angular_velocity = g->angular_velocity;
         d->material = g->material;
         if (g->shape >= 0)
-            sd_gen_orient(rng, g->orient, g->quat, quat[placed]);
-        sd_gen_jitter(rng, g, d);
+            sd_gen_orient(rng, g->orient, g->quat, quat[placed], s->world.dimension == 2);
+        sd_gen_jitter(rng, g, d, s->world.dimension == 2);
         sd_grid_insert(&grid, placed, d->position);
         ++placed;
     }
@@ -339,7 +349,7 @@ sd_status sd_scene_generate(const sd_scene *s, const double *shape_bound, sd_sce
         double bound = g->shape >= 0 ? shape_bound[g->shape] : 0.0;
         for (size_t k = 0; k < n; ++k) {
             out->shape[at + k] = g->kind == SD_GEN_LIST ? g->list_shape[k] : g->shape;
-            sd_gen_orient(&rng, SD_ORIENT_IDENTITY, NULL, quat[k]); /* no draw */
+            sd_gen_orient(&rng, SD_ORIENT_IDENTITY, NULL, quat[k], s->world.dimension == 2); /* no draw */
         }
         if (g->shape >= 0 && g->kind != SD_GEN_LIST) {
             sd_status st = sd_gen_check_bound(s, gi, bound, err);
@@ -365,9 +375,9 @@ sd_status sd_scene_generate(const sd_scene *s, const double *shape_bound, sd_sce
                         d->material = g->material;
                         if (g->shape >= 0) {
                             d->radius = bound;
-                            sd_gen_orient(&rng, g->orient, g->quat, quat[k]);
+                            sd_gen_orient(&rng, g->orient, g->quat, quat[k], s->world.dimension == 2);
                         }
-                        sd_gen_jitter(&rng, g, d);
+                        sd_gen_jitter(&rng, g, d, s->world.dimension == 2);
                     }
             break;
         }
@@ -385,9 +395,9 @@ sd_status sd_scene_generate(const sd_scene *s, const double *shape_bound, sd_sce
                 defs[k] = g->list[k];
                 if (g->kind == SD_GEN_LIST && g->list_shape[k] >= 0) {
                     defs[k].radius = shape_bound[g->list_shape[k]];
-                    sd_gen_orient(&rng, g->list_orient[k], g->list_quat[k], quat[k]);
+                    sd_gen_orient(&rng, g->list_orient[k], g->list_quat[k], quat[k], s->world.dimension == 2);
                 }
-                sd_gen_jitter(&rng, g, &defs[k]);
+                sd_gen_jitter(&rng, g, &defs[k], s->world.dimension == 2);
             }
             break;
         }

@@ -13,7 +13,9 @@
 #include <string.h>
 
 #include "io/scene.h"
+#include "shape/polylib.h"
 #include "shape/shape.h"
+#include "shape/shape2d.h"
 
 /* Contact-law names come from the public X-macro list (STYLE.md
  * convention 4); the trailing '|' is skipped by the choice readers. */
@@ -21,7 +23,9 @@
 #define SD_LAW_CHOICES SD_CONTACT_LAWS(SD_X_CHOICE)
 /* Shape type names, in sd_shape_kind order, from the kinds list in
  * shape/shape.h (the same list the world reads desc.kind against). */
-#define SD_SHAPE_CHOICES SD_SHAPE_KINDS(SD_X_CHOICE)
+#define SD_SHAPE_CHOICES SD_SHAPE_KINDS(SD_X_CHOICE) SD_SHAPE2D_KINDS(SD_X_CHOICE)
+/* Built-in polyhedra, from the preset list in shape/polylib.h. */
+#define SD_POLY_CHOICES SD_POLY_PRESETS(SD_X_CHOICE)
 
 #define ALL SD_KIND_ALL
 #define LAT (1u << SD_GEN_LATTICE)
@@ -36,6 +40,14 @@
 #define SCONE (1u << SD_SHAPE_CONE)
 #define SELL (1u << SD_SHAPE_ELLIPSOID)
 #define SPOLY (1u << SD_SHAPE_POLYHEDRON)
+/* planar shape types follow the 3D ones in the type choices (scene.h) */
+#define S3D ((1u << SD_SHAPE_KIND_COUNT) - 1u)
+#define S2(k) (1u << (SD_SHAPE_KIND_COUNT + (k)))
+#define SCIRC S2(SD_SHAPE2D_CIRCLE)
+#define SELL2 S2(SD_SHAPE2D_ELLIPSE)
+#define SPOLY2 S2(SD_SHAPE2D_POLYGON)
+#define SBEZ S2(SD_SHAPE2D_POLYBEZIER)
+#define SFOUR S2(SD_SHAPE2D_FOURIER)
 
 /* section, key, type, range, choices, applies to, required for, unit, default, meaning */
 const sd_scene_key sd_scene_keys[] = {
@@ -48,14 +60,25 @@ const sd_scene_key sd_scene_keys[] = {
     {SD_SEC_ROOT, "shapes", SD_KT_LIST, SD_KR_ANY, NULL, ALL, 0, "", "[]",
      "shape templates for non-spherical particles, named by particles[].shape; their order "
      "gives the shape index"},
-    {SD_SEC_ROOT, "particles", SD_KT_LIST, SD_KR_ANY, NULL, ALL, ALL, "", "required",
-     "particle generators, at least one; particle ids follow their order"},
+    {SD_SEC_ROOT, "particles", SD_KT_LIST, SD_KR_ANY, NULL, ALL, 0, "", "required",
+     "particle generators, at least one (none when pour is given); particle ids follow their "
+     "order"},
     {SD_SEC_ROOT, "walls", SD_KT_LIST, SD_KR_ANY, NULL, ALL, 0, "", "[]", "planes and boxes"},
     {SD_SEC_ROOT, "output", SD_KT_MAP, SD_KR_ANY, NULL, ALL, 0, "", "{}",
      "where and how often results are written"},
+    {SD_SEC_ROOT, "pour", SD_KT_MAP, SD_KR_ANY, NULL, ALL, 0, "", "-",
+     "solver grid: pour spheres layer by layer from the top (seed 001 4.1; docs/grid-solver.md)"},
+    {SD_SEC_ROOT, "outlet", SD_KT_MAP, SD_KR_ANY, NULL, ALL, 0, "", "-",
+     "solver grid: a rectangular hole in the floor of the box wall; particles falling through "
+     "are counted as discharged (seed 001 4.2)"},
 
     {SD_SEC_SIMULATION, "dimension", SD_KT_INT, SD_KR_ANY, NULL, ALL, 0, "", "3",
-     "3 (the planar mode, 2, is not available yet)"},
+     "3, or 2: the planar mode (every z, velocity z and gravity z is 0, rotation about z "
+     "only, masses per unit thickness of 1 m; shapes: circle, ellipse, polygon, polybezier, "
+     "fourier)"},
+    {SD_SEC_SIMULATION, "local_damping", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "", "0",
+     "velocity-based local damping coefficient alpha in [0, 1) (seed 002 3.2): each force "
+     "and torque component gets -alpha |unbalanced| sign(velocity); 0 = off"},
     {SD_SEC_SIMULATION, "dt", SD_KT_NUMBER, SD_KR_POS, NULL, ALL, ALL, "s", "required",
      "time step; must not exceed 1/5 of the shortest contact duration"},
     {SD_SEC_SIMULATION, "steps", SD_KT_INT, SD_KR_NONNEG, NULL, ALL, 0, "", "-",
@@ -98,6 +121,9 @@ const sd_scene_key sd_scene_keys[] = {
     {SD_SEC_MATERIAL, "damping", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "N s/m", "0",
      "linear law: viscous coefficient eta of the normal and tangential dashpots (seed 001 "
      "eqs. 6, 8), used instead of the restitution; 0 = damping from the restitution"},
+    {SD_SEC_MATERIAL, "volume_stiffness", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "N/m^3", "0",
+     "stiffness k_V of the volume_linear law (F = k_V V, V the overlap volume of two "
+     "polyhedra); 0 = unset, required when a volume_linear contact involves the material"},
 
     {SD_SEC_INTERACTION, "between", SD_KT_NAME_PAIR, SD_KR_NONEMPTY, NULL, ALL, ALL, "",
      "required", "the two material names (may be the same)"},
@@ -111,6 +137,8 @@ const sd_scene_key sd_scene_keys[] = {
      "linear-law normal stiffness of the pair"},
     {SD_SEC_INTERACTION, "damping", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "N s/m", "mixed",
      "linear-law viscous coefficient eta of the pair (0 = from the restitution)"},
+    {SD_SEC_INTERACTION, "volume_stiffness", SD_KT_NUMBER, SD_KR_POS, NULL, ALL, 0, "N/m^3", "mixed",
+     "volume_linear-law stiffness k_V of the pair"},
     {SD_SEC_INTERACTION, "contact_law", SD_KT_ENUM, SD_KR_ANY, SD_LAW_CHOICES, ALL, 0, "",
      "simulation.contact_law", "contact law of the pair"},
 
@@ -118,32 +146,67 @@ const sd_scene_key sd_scene_keys[] = {
      "unique name, used by particles[].shape"},
     {SD_SEC_SHAPE, "type", SD_KT_ENUM, SD_KR_ANY, SD_SHAPE_CHOICES, ALL, ALL, "", "required",
      "the convex shape; every shape may be rounded (rounding) or given a margin"},
-    {SD_SEC_SHAPE, "radius", SD_KT_NUMBER, SD_KR_POS, NULL, SSPH, SSPH, "m", "required",
-     "sphere radius"},
-    {SD_SEC_SHAPE, "size", SD_KT_NUM_OR_VEC3, SD_KR_POS, NULL, SBOX | SCYL | SCONE, SBOX, "m",
+    {SD_SEC_SHAPE, "radius", SD_KT_NUMBER, SD_KR_POS, NULL, SSPH | SCIRC, SSPH | SCIRC, "m", "required",
+     "sphere or circle radius"},
+    {SD_SEC_SHAPE, "axes", SD_KT_VEC2, SD_KR_POS, NULL, SELL2, SELL2, "m", "required",
+     "ellipse semi-axes [a, b] along x, y"},
+    {SD_SEC_SHAPE, "points", SD_KT_VEC2_LIST, SD_KR_ANY, NULL, SPOLY2 | SBEZ, SPOLY2 | SBEZ, "m",
+     "required",
+     "polygon: points whose convex hull is the shape (at least 3, not collinear); polybezier: "
+     "3m control points of m cubic Bezier segments P3k..P3k+3 closing on the first point, a "
+     "convex curve (any frame: moved to the centroid)"},
+    {SD_SEC_SHAPE, "fourier_a", SD_KT_NUM_LIST, SD_KR_ANY, NULL, SFOUR, SFOUR, "m", "required",
+     "a_0 .. a_N of the support function p(theta) = a_0/2 + sum a_k cos k theta + b_k sin k "
+     "theta (seed 002 eq. 2); the series must be convex, p + p'' >= 0 (eq. 5; `shapedem shape "
+     "fit-fourier` reduces it)"},
+    {SD_SEC_SHAPE, "fourier_b", SD_KT_NUM_LIST, SD_KR_ANY, NULL, SFOUR, 0, "m", "zeros",
+     "b_1 .. b_N (one fewer than fourier_a)"},
+    {SD_SEC_SHAPE, "size", SD_KT_NUM_OR_VEC3, SD_KR_POS, NULL, SBOX | SCYL | SCONE | SPOLY, SBOX, "m",
      "required (box)",
      "box: full edge lengths [x, y, z]; cylinder: [diameter, -, length] and cone: [base "
      "diameter, -, height], axis z, y ignored (or give diameter and length / height); a number "
-     "sets all three"},
-    {SD_SEC_SHAPE, "diameter", SD_KT_NUMBER, SD_KR_POS, NULL, SCYL | SCONE, 0, "m", "size x",
+     "sets all three. Polyhedron preset: the diameter of its circumscribed sphere (prism and "
+     "cylinder presets: [diameter, -, length] like the cylinder)"},
+    {SD_SEC_SHAPE, "diameter", SD_KT_NUMBER, SD_KR_POS, NULL, SCYL | SCONE | SPOLY, 0, "m", "size x",
      "cylinder diameter or cone base diameter, with length (cylinder) or height (cone) instead "
-     "of size"},
-    {SD_SEC_SHAPE, "length", SD_KT_NUMBER, SD_KR_POS, NULL, SCYL, 0, "m", "size z",
-     "cylinder length along its axis z, with diameter instead of size"},
+     "of size; prism and cylinder presets: the diameter of the circle through the n-gon's corners"},
+    {SD_SEC_SHAPE, "length", SD_KT_NUMBER, SD_KR_POS, NULL, SCYL | SPOLY, 0, "m", "size z",
+     "cylinder (and prism or cylinder preset) length along its axis z, with diameter instead of "
+     "size"},
     {SD_SEC_SHAPE, "height", SD_KT_NUMBER, SD_KR_POS, NULL, SCONE, 0, "m", "size z",
      "cone height along its axis z (apex up), with diameter instead of size"},
     {SD_SEC_SHAPE, "semi_axes", SD_KT_VEC3, SD_KR_POS, NULL, SELL, SELL, "m", "required",
      "semi-axes a, b, c along x, y, z"},
     {SD_SEC_SHAPE, "vertices", SD_KT_VEC3_LIST, SD_KR_ANY, NULL, SPOLY, 0, "m", "-",
      "points whose convex hull is the shape, at least 4 and not coplanar (any frame: the "
-     "template is moved to its centre of mass); give vertices or file"},
+     "template is moved to its centre of mass); give one of vertices, file and preset"},
     {SD_SEC_SHAPE, "file", SD_KT_STRING, SD_KR_NONEMPTY, NULL, SPOLY, 0, "", "-",
-     "OBJ file (its v lines) or STL file (ASCII or binary), relative to the scene file, whose "
-     "vertices span the hull, in m before scale; give vertices or file"},
+     "OBJ file (v and f lines) or STL file (ASCII or binary), relative to the scene file, in m "
+     "before scale: a convex mesh (see nonconvex); give one of vertices, file and preset"},
+    {SD_SEC_SHAPE, "nonconvex", SD_KT_ENUM, SD_KR_ANY, "reject|hull", SPOLY, 0, "", "reject",
+     "a mesh file whose faces are not on its convex hull: reject (an error that says how far "
+     "from convex it is) or hull (take the convex hull, with a warning)"},
+    {SD_SEC_SHAPE, "preset", SD_KT_ENUM, SD_KR_ANY, SD_POLY_CHOICES, SPOLY, 0, "", "-",
+     "a built-in polyhedron, sized by size (circumscribed diameter) or edge: Platonic solids; "
+     "prism (sides-gon, axis z); cylinder (the same solid with cap centres, seed 000 §3.1: "
+     "sides 20 gives 42 vertices, 80 triangles, 22 faces); random (seeded, faces or "
+     "vertex_count); give one of vertices, file and preset"},
+    {SD_SEC_SHAPE, "edge", SD_KT_NUMBER, SD_KR_POS, NULL, SPOLY, 0, "m", "-",
+     "edge length of a Platonic preset, instead of size"},
+    {SD_SEC_SHAPE, "sides", SD_KT_INT, SD_KR_POS, NULL, SPOLY, 0, "", "-",
+     "prism and cylinder presets: number of sides n, 3 to 500 (required for them)"},
+    {SD_SEC_SHAPE, "faces", SD_KT_INT, SD_KR_POS, NULL, SPOLY, 0, "", "-",
+     "random preset: number of faces, 4 to 500 (planes tangent to a sphere at random normals); "
+     "give faces or vertex_count"},
+    {SD_SEC_SHAPE, "vertex_count", SD_KT_INT, SD_KR_POS, NULL, SPOLY, 0, "", "-",
+     "random preset: number of vertices, 4 to 500 (random points on a sphere); give faces or "
+     "vertex_count"},
+    {SD_SEC_SHAPE, "seed", SD_KT_INT, SD_KR_NONNEG, NULL, SPOLY, 0, "", "1",
+     "random preset: seed (the same seed gives the same polyhedron on every machine)"},
     {SD_SEC_SHAPE, "rounding", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "m", "0",
      "radius of a sphere swept over the shape: edges are rounded and every outer size grows by "
      "2 x rounding"},
-    {SD_SEC_SHAPE, "margin", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "m", "0",
+    {SD_SEC_SHAPE, "margin", SD_KT_NUMBER, SD_KR_NONNEG, NULL, S3D, 0, "m", "0",
      "the outer size stays as given: the core is shrunk by margin and swept by it, so edges "
      "are rounded by margin; give at most one of rounding and margin"},
     {SD_SEC_SHAPE, "scale", SD_KT_NUMBER, SD_KR_POS, NULL, ALL, 0, "", "1",
@@ -220,6 +283,26 @@ const sd_scene_key sd_scene_keys[] = {
      "upper corner, > min on every axis; particles stay inside"},
     {SD_SEC_WALL, "open", SD_KT_ENUM_LIST, SD_KR_ANY, "xmin|xmax|ymin|ymax|zmin|zmax", BOX, 0, "",
      "[]", "faces left out of the box"},
+    {SD_SEC_WALL, "velocity", SD_KT_VEC3, SD_KR_ANY, NULL, ALL, 0, "m/s", "[0, 0, 0]",
+     "prescribed velocity (loading), applied from move_start to move_end"},
+    {SD_SEC_WALL, "move_start", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "s", "0",
+     "time the prescribed velocity starts; the strains of biaxial.csv count from the first "
+     "start of a non-zero velocity"},
+    {SD_SEC_WALL, "move_end", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "s", "never",
+     "time the prescribed velocity stops"},
+    {SD_SEC_WALL, "servo_stress", SD_KT_NUMBER, SD_KR_NONNEG, NULL, PLANE, 0, "Pa", "0",
+     "servo control (seed 002 3.2): each step the plane moves along its normal so the normal "
+     "stress it carries (force over the distance between the two opposite planes across it; "
+     "2D: per 1 m thickness) tracks this value; 0 = no servo; wins over velocity where both act"},
+    {SD_SEC_WALL, "servo_start", SD_KT_NUMBER, SD_KR_NONNEG, NULL, PLANE, 0, "s", "0",
+     "time the servo starts"},
+    {SD_SEC_WALL, "servo_end", SD_KT_NUMBER, SD_KR_NONNEG, NULL, PLANE, 0, "s", "never",
+     "time the servo stops"},
+    {SD_SEC_WALL, "servo_gain", SD_KT_NUMBER, SD_KR_NONNEG, NULL, PLANE, 0, "m/(s Pa)", "0",
+     "servo gain G: velocity = G (target - stress); 0 = automatic, half the gain that would "
+     "cancel the error in one step from the contact stiffness on the wall (docs/physics.md)"},
+    {SD_SEC_WALL, "servo_max_speed", SD_KT_NUMBER, SD_KR_NONNEG, NULL, PLANE, 0, "m/s", "0",
+     "cap of the servo velocity; 0 = a tenth of the skin per step"},
 
     {SD_SEC_OUTPUT, "directory", SD_KT_STRING, SD_KR_ANY, NULL, ALL, 0, "", "\"\"",
      "output directory, relative to the current directory; \"\" = out/NAME for a scene NAME.yaml"},
@@ -229,6 +312,35 @@ const sd_scene_key sd_scene_keys[] = {
      "steps between rows of stats.csv (the default is at least 1)"},
     {SD_SEC_OUTPUT, "formats", SD_KT_ENUM_LIST, SD_KR_ANY, "vtk|csv", ALL, 0, "", "[vtk, csv]",
      "what to write: vtk frames, csv statistics"},
+
+    {SD_SEC_POUR, "material", SD_KT_STRING, SD_KR_NONEMPTY, NULL, ALL, ALL, "", "required",
+     "material of the poured spheres"},
+    {SD_SEC_POUR, "radius", SD_KT_NUMBER, SD_KR_POS, NULL, ALL, ALL, "m", "required",
+     "radius of the poured spheres"},
+    {SD_SEC_POUR, "count", SD_KT_INT, SD_KR_ONE, NULL, ALL, 0, "", "-",
+     "spheres to pour in all (give count or fill_height)"},
+    {SD_SEC_POUR, "fill_height", SD_KT_NUMBER, SD_KR_POS, NULL, ALL, 0, "m", "-",
+     "pour as many spheres as fill the box floor's area up to this height above the floor at "
+     "packing_fraction (give count or fill_height)"},
+    {SD_SEC_POUR, "packing_fraction", SD_KT_NUMBER, SD_KR_UNIT, NULL, ALL, 0, "", "0.6",
+     "packing fraction assumed by fill_height"},
+    {SD_SEC_POUR, "height", SD_KT_NUMBER, SD_KR_ANY, NULL, ALL, ALL, "m", "required",
+     "z of the centres of each new sheet (inside the box)"},
+    {SD_SEC_POUR, "layers_per_second", SD_KT_NUMBER, SD_KR_POS, NULL, ALL, 0, "1/s", "4",
+     "feed rate: sheets per second (seed 001 Table 2: 4 or 8)"},
+    {SD_SEC_POUR, "vertical_speed", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "m/s", "0.5",
+     "each sphere starts with a vertical velocity uniform in [-v, v] (seed 001 4.1)"},
+    {SD_SEC_POUR, "horizontal_speed", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "m/s", "0.1",
+     "each sphere starts with horizontal velocities uniform in [-v, v] (seed 001 4.1)"},
+    {SD_SEC_POUR, "start", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "s", "0",
+     "time of the first sheet"},
+
+    {SD_SEC_OUTLET, "min", SD_KT_VEC2, SD_KR_ANY, NULL, ALL, ALL, "m", "required",
+     "[x, y] corner of the hole in the floor (the box wall's zmin face)"},
+    {SD_SEC_OUTLET, "max", SD_KT_VEC2, SD_KR_ANY, NULL, ALL, ALL, "m", "required",
+     "[x, y] opposite corner of the hole (max > min)"},
+    {SD_SEC_OUTLET, "open_at", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "s", "0",
+     "time the hole opens (fill and settle first, then discharge)"},
 };
 
 const size_t sd_scene_key_count = sizeof sd_scene_keys / sizeof sd_scene_keys[0];
@@ -280,7 +392,7 @@ const char sd_scene_example[] =
 
 static const char *const sd_section_names[SD_SEC_COUNT] = {
     "(top level)", "simulation", "materials[]", "interactions[]", "shapes[]", "particles[]",
-    "particles[].spheres[]", "walls[]", "output",
+    "particles[].spheres[]", "walls[]", "output", "pour", "outlet",
 };
 
 const char *sd_scene_section_name(sd_scene_section sec)
@@ -380,6 +492,9 @@ const char *sd_scene_type_text(const sd_scene_key *k, char *buf, size_t size)
     case SD_KT_NAME_PAIR: snprintf(buf, size, "[name, name]"); break;
     case SD_KT_ORIENTATION: snprintf(buf, size, "identity, random or [w, x, y, z]"); break;
     case SD_KT_VEC3_LIST: snprintf(buf, size, "list of [x, y, z]"); break;
+    case SD_KT_VEC2: snprintf(buf, size, "[x, y]%s%s", sp, r); break;
+    case SD_KT_VEC2_LIST: snprintf(buf, size, "list of [x, y]"); break;
+    case SD_KT_NUM_LIST: snprintf(buf, size, "list of numbers"); break;
     }
     return buf;
 }
@@ -458,13 +573,31 @@ static const char *const sd_scene_rules[] = {
     "frame (centre of mass at the origin, principal axes along x, y, z); a body's mass is the "
     "material's density x the shape's volume. sphere needs radius; box needs size; cylinder "
     "needs size, or diameter and length; cone needs size, or diameter and height; ellipsoid "
-    "needs semi_axes; polyhedron needs vertices or file (at least 4 points, not coplanar).",
+    "needs semi_axes; polyhedron needs vertices, file (a convex OBJ or STL mesh) or preset (a "
+    "built-in polyhedron with size or edge; prism and cylinder also sides; random also faces or "
+    "vertex_count), at least 4 points, not coplanar.",
     "A generator makes spheres (radius) or bodies of one shape (shape: NAME), never both; list "
     "entries each give radius or shape (or take the generator's shape). Shaped bodies are "
     "placed, spaced and checked for overlaps and walls by their bounding sphere (the smallest "
     "sphere about the centre of mass holding the shape), so they never start in contact; "
     "orientation random (the default) draws uniform rotations (Shoemake) from the generator's "
     "stream. Spheres and shaped bodies may be mixed in one scene.",
+    "pour and outlet need simulation.solver: grid and a box wall (the grid's domain). pour "
+    "lays a sheet of spheres every 1/layers_per_second s at height, one per two cells along x "
+    "and y (2 radii apart), skipping spots that are taken, until count spheres are poured "
+    "(seed 001 4.1); with fill_height, count = packing_fraction x floor area x fill_height / "
+    "sphere volume. particles may then be omitted. outlet opens a hole in the box's floor at "
+    "open_at; spheres falling through are removed and counted (stats.csv and summary.txt: "
+    "poured, in_domain, discharged, discharged_mass, conflicts).",
+    "simulation.dimension: 2 is the planar mode (seed 002): every position, velocity, gravity "
+    "and plane normal has z = 0 (generators place particles at z = 0 and ignore the z range of "
+    "their box), rotations are about z (random orientations draw a uniform angle), masses are "
+    "per unit thickness (m = density x area x 1 m) and shapes are the planar types circle "
+    "(radius), ellipse (axes), polygon (points), polybezier (points) and fourier (fourier_a, "
+    "fourier_b), each optionally rounded; spheres (radius) are circles. Box walls keep their x "
+    "and y faces (their z range must contain 0). A plane with servo_stress needs two opposite planes across it (their "
+    "distance is its contact length); four planes with normals +x, -x, +y, -y make the run "
+    "write biaxial.csv (docs/output.md).",
 };
 
 void sd_scene_print_keys(FILE *f, int markdown)

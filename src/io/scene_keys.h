@@ -21,6 +21,8 @@ typedef enum sd_scene_section {
     SD_SEC_SPHERE,      /* particles: - spheres: - ... (list generator) */
     SD_SEC_WALL,        /* walls: - ... */
     SD_SEC_OUTPUT,      /* output: */
+    SD_SEC_POUR,        /* pour: (solver grid) */
+    SD_SEC_OUTLET,      /* outlet: (solver grid) */
     SD_SEC_COUNT
 } sd_scene_section;
 
@@ -40,7 +42,10 @@ typedef enum sd_scene_type {
     SD_KT_BOX,          /* {min: [x, y, z], max: [x, y, z]} with max > min */
     SD_KT_NAME_PAIR,    /* [name, name] */
     SD_KT_ORIENTATION,  /* identity, random, or a quaternion [w, x, y, z] (normalised) */
-    SD_KT_VEC3_LIST     /* a list of [x, y, z] */
+    SD_KT_VEC3_LIST,    /* a list of [x, y, z] */
+    SD_KT_VEC2,         /* [x, y] (planar shapes) */
+    SD_KT_VEC2_LIST,    /* a list of [x, y] (planar shapes) */
+    SD_KT_NUM_LIST      /* a list of numbers (Fourier coefficients) */
 } sd_scene_type;
 
 /* The allowed values of a number (each component, for vectors). */
@@ -58,7 +63,7 @@ typedef enum sd_scene_range {
  * SD_SEC_PARTICLES (bit = 1 << sd_gen_kind), wall types for SD_SEC_WALL
  * (bit = 1 << kind, 0 plane, 1 box), shape types for SD_SEC_SHAPE (bit =
  * 1 << sd_shape_kind); everything else uses SD_KIND_ALL. */
-#define SD_KIND_ALL 0xffu
+#define SD_KIND_ALL 0xffffu /* 16 kinds: the 3D and the 2D shape types */
 
 typedef struct sd_scene_key {
     sd_scene_section section;

@@ -31,7 +31,9 @@
  * its vector header's sd_v3 would clash with this file's sd_v3 (sd_v3d
  * from three doubles), so it is renamed while the header is read. */
 #define sd_v3 sd_v3_core
+#include "shape/polylib.h"
 #include "shape/shape.h"
+#include "shape/shape2d.h"
 #undef sd_v3
 
 /* ---- parse context and errors ------------------------------------------ */
@@ -264,6 +266,22 @@ static sd_status sd_read_vec3(sd_parse *p, const sd_scene_key *k, yaml_node_t *n
     return SD_OK;
 }
 
+/* [x, y]: two numbers, each in the key's range (planar shapes). */
+static sd_status sd_read_vec2(sd_parse *p, const sd_scene_key *k, yaml_node_t *n, const char *key, double v[2])
+{
+    char got[96];
+    if (!n || n->type != YAML_SEQUENCE_NODE || sd_seq_len(n) != 2)
+        return sd_fail(p, sd_line(n), key, "expected a list of 2 numbers ([x, y]), got %s",
+                       sd_desc(n, got, sizeof got));
+    for (size_t i = 0; i < 2; ++i) {
+        static const char *const axis[2] = {" for x", " for y"};
+        sd_status st = sd_read_number(p, k, sd_seq_item(p, n, i), key, axis[i], "", &v[i]);
+        if (st != SD_OK)
+            return st;
+    }
+    return SD_OK;
+}
+
 static sd_status sd_read_string(sd_parse *p, const sd_scene_key *k, yaml_node_t *n,
                                 const char *key, const char **out)
 {
@@ -454,6 +472,26 @@ static sd_status sd_read_value(sd_parse *p, const sd_scene_key *k, yaml_node_t *
                 return st;
         }
         break;
+    case SD_KT_VEC2: st = sd_read_vec2(p, k, n, key, v->v); break;
+    case SD_KT_VEC2_LIST:
+        if (!n || n->type != YAML_SEQUENCE_NODE)
+            return sd_fail(p, v->line, key, "expected a list of [x, y], got %s", sd_desc(n, got, sizeof got));
+        for (size_t i = 0; i < sd_seq_len(n); ++i) {
+            snprintf(sub, sizeof sub, "%s[%zu]", key, i);
+            if ((st = sd_read_vec2(p, k, sd_seq_item(p, n, i), sub, v->v)) != SD_OK)
+                return st;
+        }
+        break;
+    case SD_KT_NUM_LIST:
+        if (!n || n->type != YAML_SEQUENCE_NODE)
+            return sd_fail(p, v->line, key, "expected a list of numbers such as [0.05, 0.001], got %s",
+                           sd_desc(n, got, sizeof got));
+        for (size_t i = 0; i < sd_seq_len(n); ++i) {
+            snprintf(sub, sizeof sub, "%s[%zu]", key, i);
+            if ((st = sd_read_number(p, k, sd_seq_item(p, n, i), sub, "", "", &v->num)) != SD_OK)
+                return st;
+        }
+        break;
     }
     return st;
 }
@@ -624,12 +662,13 @@ static sd_status sd_parse_simulation(sd_parse *p, yaml_node_t *root)
     s->world = sd_world_def_default();
 
     sd_get(p, sim, SD_SEC_SIMULATION, "dimension", path, &v);
-    if (v.integer == 2)
-        return sd_fail(p, v.line, "simulation.dimension",
-                       "planar mode not available yet (dimension 2); use dimension: 3");
-    if (v.integer != 3)
-        return sd_fail(p, v.line, "simulation.dimension", "expected 3, got %lld", v.integer);
-    s->world.dimension = 3;
+    if (v.integer != 3 && v.integer != 2)
+        return sd_fail(p, v.line, "simulation.dimension", "expected 2 or 3, got %lld", v.integer);
+    s->world.dimension = (int)v.integer;
+    sd_get(p, sim, SD_SEC_SIMULATION, "local_damping", path, &v);
+    if (!(v.num < 1.0))
+        return sd_fail(p, v.line, "simulation.local_damping", "expected a coefficient in [0, 1), got %g", v.num);
+    s->world.local_damping = v.num;
 
     sd_get(p, sim, SD_SEC_SIMULATION, "dt", path, &v);
     s->world.dt = v.num;
@@ -656,6 +695,10 @@ static sd_status sd_parse_simulation(sd_parse *p, yaml_node_t *root)
 
     sd_get(p, sim, SD_SEC_SIMULATION, "gravity", path, &v);
     s->world.gravity = sd_v3(v.v);
+    if (s->world.dimension == 2 && v.v[2] != 0.0)
+        return sd_fail(p, v.line ? v.line : s->simulation_line, "simulation.gravity",
+                       "dimension 2 needs gravity in the x-y plane, [gx, gy, 0]; got z = %g%s", v.v[2],
+                       v.line ? "" : " (the default [0, 0, -9.81])");
     sd_get(p, sim, SD_SEC_SIMULATION, "seed", path, &v);
     s->world.seed = (uint64_t)v.integer;
     sd_get(p, sim, SD_SEC_SIMULATION, "threads", path, &v);
@@ -736,6 +779,8 @@ static sd_status sd_parse_materials(sd_parse *p, yaml_node_t *list, int line)
         d->tangential_stiffness_ratio = v.num;
         sd_get(p, m, SD_SEC_MATERIAL, "damping", path, &v);
         d->damping = v.num;
+        sd_get(p, m, SD_SEC_MATERIAL, "volume_stiffness", path, &v);
+        d->volume_stiffness = v.num;
     }
     /* Names point into the array only now that it will not move. */
     for (size_t i = 0; i < n; ++i)
@@ -789,6 +834,7 @@ static sd_status sd_parse_interactions(sd_parse *p, yaml_node_t *list)
             sd_get(p, m, SD_SEC_INTERACTION, "rolling_friction", path, &v) ? v.num : -1.0;
         si->def.stiffness = sd_get(p, m, SD_SEC_INTERACTION, "stiffness", path, &v) ? v.num : -1.0;
         si->def.damping = sd_get(p, m, SD_SEC_INTERACTION, "damping", path, &v) ? v.num : -1.0;
+        si->def.volume_stiffness = sd_get(p, m, SD_SEC_INTERACTION, "volume_stiffness", path, &v) ? v.num : -1.0;
         si->def.law = sd_get(p, m, SD_SEC_INTERACTION, "contact_law", path, &v)
                           ? (int)sd_contact_law_from_name(v.str)
                           : -1;
@@ -1005,13 +1051,19 @@ static double sd_lef32(const unsigned char *b)
     return (double)f;
 }
 
-/* Only the vertices of a mesh file matter: the shape is their convex hull.
- * OBJ: every "v x y z" line (texture, normal and face lines are skipped).
- * STL: the vertices of every triangle, binary (80-byte header, triangle
- * count, 50 bytes per triangle) when the size matches, ASCII ("vertex x y
- * z") otherwise. Repeated vertices (STL repeats each in every triangle) are
- * dropped. Errors name the scene line of shapes[i].file and the mesh file. */
-static sd_status sd_read_mesh(sd_parse *p, sd_scene_shape *sh, const char *key, int line)
+/* The shape is the convex hull of a mesh file's vertices; its faces only
+ * prove that the mesh is convex (seed 000 §2.1 templates are convex).
+ * OBJ: every "v x y z" line, and "f i j k ..." lines (i, i/t, i/t/n or
+ * i//n, negative = relative) for the faces. STL: the vertices of every
+ * triangle, binary (80-byte header, triangle count, 50 bytes per triangle)
+ * when the size matches, ASCII ("vertex x y z", three per facet)
+ * otherwise. Repeated vertices (STL repeats each in every triangle) are
+ * dropped. A vertex or a face centre deeper than 1e-6 of the mesh's size
+ * inside the hull makes the mesh non-convex: an error that says how far,
+ * unless take_hull (then a warning in sh->warning). Errors name the scene
+ * line of shapes[i].file and the mesh file. */
+#define SD_MESH_CONVEX_REL 1e-6
+static sd_status sd_read_mesh(sd_parse *p, sd_scene_shape *sh, const char *key, int line, int take_hull)
 {
     const char *dot = strrchr(sh->file, '.');
     int obj = dot && (!strcmp(dot, ".obj") || !strcmp(dot, ".OBJ"));
@@ -1041,16 +1093,22 @@ static sd_status sd_read_mesh(sd_parse *p, sd_scene_shape *sh, const char *key, 
         return sd_fail(p, line, key, "cannot read the mesh file '%s'", sh->file);
     }
     buf[size] = '\0';
-    sd_vbuf vb = {NULL, 0, 0};
+    sd_vbuf vb = {NULL, 0, 0}, fc = {NULL, 0, 0}; /* vertices, face centres */
     sd_status st = SD_OK;
     int oom = 0;
     if (stl && size >= 84 && 84 + 50 * (long)sd_le32(buf + 80) == size) {
         size_t nt = sd_le32(buf + 80);
-        for (size_t t = 0; t < nt && !oom; ++t)
+        for (size_t t = 0; t < nt && !oom; ++t) {
             for (int c = 0; c < 3 && !oom; ++c) {
                 const unsigned char *q = buf + 84 + 50 * t + 12 + 12 * (size_t)c;
                 oom = !sd_vbuf_push(&vb, sd_lef32(q), sd_lef32(q + 4), sd_lef32(q + 8));
             }
+            if (!oom) {
+                const sd_v3d *a = &vb.v[vb.n - 3];
+                oom = !sd_vbuf_push(&fc, (a[0].x + a[1].x + a[2].x) / 3, (a[0].y + a[1].y + a[2].y) / 3,
+                                    (a[0].z + a[1].z + a[2].z) / 3);
+            }
+        }
     } else {
         char *text = (char *)buf;
         if (memchr(buf, '\0', (size_t)size))
@@ -1078,6 +1136,35 @@ static sd_status sd_read_mesh(sd_parse *p, sd_scene_shape *sh, const char *key, 
                                  sh->file, ln, tag);
                 else
                     oom = !sd_vbuf_push(&vb, x[0], x[1], x[2]);
+                if (!oom && st == SD_OK && stl && vb.n % 3 == 0) { /* a facet's third vertex */
+                    const sd_v3d *a = &vb.v[vb.n - 3];
+                    oom = !sd_vbuf_push(&fc, (a[0].x + a[1].x + a[2].x) / 3, (a[0].y + a[1].y + a[2].y) / 3,
+                                        (a[0].z + a[1].z + a[2].z) / 3);
+                }
+            } else if (obj && t[0] == 'f' && (t[1] == ' ' || t[1] == '\t')) {
+                /* a face: the centre of the vertices it names */
+                double cx = 0, cy = 0, cz = 0;
+                int nfv = 0;
+                char *at = t + 1, *end;
+                for (;;) {
+                    at += strspn(at, " \t\r");
+                    if (!*at)
+                        break;
+                    long idx = strtol(at, &end, 10);
+                    long k = idx < 0 ? (long)vb.n + idx : idx - 1;
+                    if (end == at || idx == 0 || k < 0 || k >= (long)vb.n) {
+                        st = sd_fail(p, line, key, "%s line %d: a face names vertex '%.20s', but %zu vertices "
+                                                   "are defined before it", sh->file, ln, at, vb.n);
+                        break;
+                    }
+                    cx += vb.v[k].x;
+                    cy += vb.v[k].y;
+                    cz += vb.v[k].z;
+                    ++nfv;
+                    at = end + strcspn(end, " \t\r"); /* skip /t/n */
+                }
+                if (st == SD_OK && nfv >= 3)
+                    oom = !sd_vbuf_push(&fc, cx / nfv, cy / nfv, cz / nfv);
             }
             ++ln;
             c = eol ? eol + 1 : c + strlen(c);
@@ -1088,6 +1175,7 @@ static sd_status sd_read_mesh(sd_parse *p, sd_scene_shape *sh, const char *key, 
         st = sd_error_set(p->err, SD_ERR_MEMORY, p->path, line, key, "out of memory");
     if (st != SD_OK) {
         sd_free(vb.v);
+        sd_free(fc.v);
         return st;
     }
     if (vb.n > 1)
@@ -1098,12 +1186,41 @@ static sd_status sd_read_mesh(sd_parse *p, sd_scene_shape *sh, const char *key, 
             vb.v[u++] = vb.v[k];
     sh->vertices = vb.v;
     sh->vertex_count = u;
-    if (u < 4)
+    if (u < 4) {
+        sd_free(fc.v);
         return sd_fail(p, line, key, "expected at least 4 distinct vertices in '%s', got %zu",
                        sh->file, u);
-    if (u > SD_SHAPE_MAX_VERTICES)
+    }
+    if (u > SD_SHAPE_MAX_VERTICES) {
+        sd_free(fc.v);
         return sd_fail(p, line, key, "expected at most %d distinct vertices in '%s', got %zu",
                        SD_SHAPE_MAX_VERTICES, sh->file, u);
+    }
+    size_t which;
+    double msize, depth = sd_mesh_concavity(vb.v, u, fc.v, fc.n, &which, &msize);
+    sd_v3d wp = which < u ? vb.v[which] : fc.v[which - u];
+    sd_free(fc.v);
+    if (depth == -2)
+        return sd_error_set(p->err, SD_ERR_MEMORY, p->path, line, key, "out of memory");
+    if (depth < 0)
+        return sd_fail(p, line, key, "the vertices of '%s' are flat (or coincide): a polyhedron needs volume",
+                       sh->file);
+    if (depth > SD_MESH_CONVEX_REL * msize) {
+        char what[160];
+        if (which < u)
+            snprintf(what, sizeof what, "its vertex (%g, %g, %g)", wp.x, wp.y, wp.z);
+        else
+            snprintf(what, sizeof what, "the centre (%g, %g, %g) of its face %zu", wp.x, wp.y, wp.z,
+                     which - u + 1);
+        if (!take_hull)
+            return sd_fail(p, line, key,
+                           "'%s' is not convex: %s lies %g (%.3g %% of its size %g, in the file's units) "
+                           "inside its convex hull; set nonconvex: hull to use the hull", sh->file, what, depth,
+                           100.0 * depth / msize, msize);
+        snprintf(sh->warning, sizeof sh->warning,
+                 "'%.150s' is not convex (%s lies %.3g %% of its size inside its hull): using its convex hull",
+                 sh->file, what, 100.0 * depth / msize);
+    }
     return SD_OK;
 }
 
@@ -1153,6 +1270,200 @@ static sd_status sd_parse_axial(sd_parse *p, yaml_node_t *m, sd_scene_shape *sh,
     return SD_OK;
 }
 
+/* The keys of a planar shape (dimension 2): radius, axes, points or the
+ * Fourier coefficients; the shape itself is checked by the world
+ * (sd_world_add_shape2d: convexity, hulls), whose message gets this entry's
+ * line. */
+static sd_status sd_parse_shape2d(sd_parse *p, yaml_node_t *m, sd_scene_shape *sh, const char *path)
+{
+    char key[96];
+    sd_value v;
+    sd_status st;
+    switch (sh->kind2d) {
+    case SD_SHAPE2D_CIRCLE:
+        sd_get(p, m, SD_SEC_SHAPE, "radius", path, &v);
+        sh->size = (sd_v3d){v.num, v.num, 0.0};
+        break;
+    case SD_SHAPE2D_ELLIPSE:
+        sd_get(p, m, SD_SEC_SHAPE, "axes", path, &v);
+        sh->axes[0] = v.v[0];
+        sh->axes[1] = v.v[1];
+        break;
+    case SD_SHAPE2D_POLYGON:
+    case SD_SHAPE2D_POLYBEZIER: {
+        sd_get(p, m, SD_SEC_SHAPE, "points", path, &v);
+        size_t np = sd_seq_len(v.node);
+        sd_kp(key, sizeof key, path, "points");
+        int bez = sh->kind2d == SD_SHAPE2D_POLYBEZIER;
+        if (np < 3 || np > SD_SHAPE2D_MAX_POINTS || (bez && np % 3 != 0))
+            return sd_fail(p, v.line, key, "expected %s (at most %d), got %zu",
+                           bez ? "3m control points of m cubic segments, m >= 1" : "at least 3 points",
+                           SD_SHAPE2D_MAX_POINTS, np);
+        sh->points = sd_calloc(2 * np, sizeof *sh->points);
+        if (!sh->points)
+            return sd_error_set(p->err, SD_ERR_MEMORY, p->path, 0, "", "out of memory");
+        const sd_scene_key *row = sd_scene_key_find(SD_SEC_SHAPE, "points");
+        for (size_t k = 0; k < np; ++k)
+            if ((st = sd_read_vec2(p, row, sd_seq_item(p, v.node, k), key, sh->points + 2 * k)))
+                return st;
+        sh->point_count = np;
+        break;
+    }
+    case SD_SHAPE2D_FOURIER: {
+        sd_value b;
+        sd_get(p, m, SD_SEC_SHAPE, "fourier_a", path, &v);
+        int hb = sd_get(p, m, SD_SEC_SHAPE, "fourier_b", path, &b);
+        size_t na = sd_seq_len(v.node), nb = hb ? sd_seq_len(b.node) : 0;
+        sd_kp(key, sizeof key, path, "fourier_a");
+        if (na < 1 || na > SD_SHAPE2D_MAX_ORDER + 1)
+            return sd_fail(p, v.line, key, "expected a_0 .. a_N, 1 to %d values, got %zu", SD_SHAPE2D_MAX_ORDER + 1,
+                           na);
+        if (hb && nb != na - 1)
+            return sd_fail(p, b.line, sd_kp(key, sizeof key, path, "fourier_b"),
+                           "expected b_1 .. b_N, %zu values (one fewer than fourier_a), got %zu", na - 1, nb);
+        sh->fourier_a = sd_calloc(na, sizeof *sh->fourier_a);
+        sh->fourier_b = sd_calloc(na, sizeof *sh->fourier_b);
+        if (!sh->fourier_a || !sh->fourier_b)
+            return sd_error_set(p->err, SD_ERR_MEMORY, p->path, 0, "", "out of memory");
+        const sd_scene_key *row = sd_scene_key_find(SD_SEC_SHAPE, "fourier_a");
+        for (size_t k = 0; k < na; ++k)
+            if ((st = sd_read_number(p, row, sd_seq_item(p, v.node, k), key, "", "", &sh->fourier_a[k])))
+                return st;
+        for (size_t k = 0; k < nb; ++k)
+            if ((st = sd_read_number(p, row, sd_seq_item(p, b.node, k), key, "", "", &sh->fourier_b[k])))
+                return st;
+        if (!(sh->fourier_a[0] > 0.0))
+            return sd_fail(p, v.line, key, "expected a_0 > 0 (twice the mean radius), got %g", sh->fourier_a[0]);
+        sh->fourier_count = na;
+        break;
+    }
+    default:
+        return sd_fail(p, sh->line, path, "unknown shape type");
+    }
+    return SD_OK;
+}
+
+/* Keys that only a polyhedron preset takes, refused without one. */
+static sd_status sd_no_preset_keys(sd_parse *p, yaml_node_t *m, const char *path)
+{
+    static const char *const only[] = {"size", "diameter", "length", "edge", "sides", "faces", "vertex_count", "seed"};
+    char key[96];
+    sd_value v;
+    for (size_t k = 0; k < sizeof only / sizeof only[0]; ++k)
+        if (sd_get(p, m, SD_SEC_SHAPE, only[k], path, &v))
+            return sd_fail(p, v.line, sd_kp(key, sizeof key, path, only[k]),
+                           "%s applies to a polyhedron preset (preset: ...) only", only[k]);
+    return SD_OK;
+}
+
+/* A built-in polyhedron (shape/polylib.h): its keys are checked against
+ * the preset, then its vertices are made here, as if the scene gave them. */
+static sd_status sd_parse_preset(sd_parse *p, yaml_node_t *m, sd_scene_shape *sh, const char *path,
+                                 const sd_value *pv)
+{
+    char key[96];
+    sd_poly_def d;
+    memset(&d, 0, sizeof d);
+    d.preset = pv->choice;
+    d.seed = 1;
+    const char *name = sd_polylib_name(d.preset);
+    const int platonic = d.preset <= SD_POLY_ICOSAHEDRON;
+    const int axial = d.preset == SD_POLY_PRISM || d.preset == SD_POLY_CYLINDER;
+    const int rnd = d.preset == SD_POLY_RANDOM;
+    sd_value sz, dm, ln, ed, sdv, fcv, vcv, sev;
+    int hs = sd_get(p, m, SD_SEC_SHAPE, "size", path, &sz);
+    int hd = sd_get(p, m, SD_SEC_SHAPE, "diameter", path, &dm);
+    int hl = sd_get(p, m, SD_SEC_SHAPE, "length", path, &ln);
+    int he = sd_get(p, m, SD_SEC_SHAPE, "edge", path, &ed);
+    int hsd = sd_get(p, m, SD_SEC_SHAPE, "sides", path, &sdv);
+    int hfc = sd_get(p, m, SD_SEC_SHAPE, "faces", path, &fcv);
+    int hvc = sd_get(p, m, SD_SEC_SHAPE, "vertex_count", path, &vcv);
+    int hse = sd_get(p, m, SD_SEC_SHAPE, "seed", path, &sev);
+    /* keys another preset takes */
+    struct {
+        int given, ok;
+        const sd_value *v;
+        const char *k, *who;
+    } chk[] = {
+        {he, platonic, &ed, "edge", "the Platonic presets"},
+        {hd, axial, &dm, "diameter", "the prism and cylinder presets"},
+        {hl, axial, &ln, "length", "the prism and cylinder presets"},
+        {hsd, axial, &sdv, "sides", "the prism and cylinder presets"},
+        {hfc, rnd, &fcv, "faces", "the random preset"},
+        {hvc, rnd, &vcv, "vertex_count", "the random preset"},
+        {hse, rnd, &sev, "seed", "the random preset"},
+    };
+    for (size_t k = 0; k < sizeof chk / sizeof chk[0]; ++k)
+        if (chk[k].given && !chk[k].ok)
+            return sd_fail(p, chk[k].v->line, sd_kp(key, sizeof key, path, chk[k].k),
+                           "%s applies to %s, not to %s", chk[k].k, chk[k].who, name);
+    if (axial) {
+        if (hs && (hd || hl))
+            return sd_fail(p, hd ? dm.line : ln.line, sd_kp(key, sizeof key, path, hd ? "diameter" : "length"),
+                           "give either size or diameter and length, not both (size is at line %d)", sz.line);
+        if (hs) {
+            d.diameter = sz.v[0];
+            d.length = sz.v[2];
+        } else if (hd && hl) {
+            d.diameter = dm.num;
+            d.length = ln.num;
+        } else {
+            const char *miss = !hd && !hl ? "size" : !hd ? "diameter" : "length";
+            return sd_fail(p, sh->line, sd_kp(key, sizeof key, path, miss),
+                           "missing required key '%s' (a %s needs size [diameter, -, length], or diameter "
+                           "and length)", miss, name);
+        }
+        if (!hsd)
+            return sd_fail(p, sh->line, sd_kp(key, sizeof key, path, "sides"),
+                           "missing required key 'sides' (the number of sides of the %s, 3 to %d)", name,
+                           SD_POLY_MAX_SIDES);
+        if (sdv.integer < 3 || sdv.integer > SD_POLY_MAX_SIDES)
+            return sd_fail(p, sdv.line, sd_kp(key, sizeof key, path, "sides"), "expected 3 to %d sides, got %lld",
+                           SD_POLY_MAX_SIDES, sdv.integer);
+        d.sides = (int)sdv.integer;
+    } else {
+        if (hs && he)
+            return sd_fail(p, ed.line, sd_kp(key, sizeof key, path, "edge"),
+                           "give either size or edge, not both (size is at line %d)", sz.line);
+        if (!hs && !he)
+            return sd_fail(p, sh->line, sd_kp(key, sizeof key, path, "size"),
+                           "missing required key 'size' (the diameter of the %s's circumscribed sphere%s)", name,
+                           platonic ? ", or edge: its edge length" : "");
+        if (hs && !(sz.v[0] == sz.v[1] && sz.v[1] == sz.v[2]))
+            return sd_fail(p, sz.line, sd_kp(key, sizeof key, path, "size"),
+                           "expected one number, the diameter of the %s's circumscribed sphere", name);
+        d.diameter = hs ? sz.v[0] : sd_polylib_edge_to_diameter(d.preset, ed.num);
+    }
+    if (rnd) {
+        if (hfc == hvc)
+            return sd_fail(p, hfc ? vcv.line : sh->line, sd_kp(key, sizeof key, path, hfc ? "vertex_count" : "faces"),
+                           hfc ? "give either faces or vertex_count, not both"
+                               : "missing required key 'faces' (or vertex_count) for the random preset");
+        const sd_value *cv = hfc ? &fcv : &vcv;
+        if (cv->integer < 4 || cv->integer > SD_POLY_MAX_RANDOM)
+            return sd_fail(p, cv->line, sd_kp(key, sizeof key, path, hfc ? "faces" : "vertex_count"),
+                           "expected 4 to %d, got %lld", SD_POLY_MAX_RANDOM, cv->integer);
+        if (hfc)
+            d.faces = (int)cv->integer;
+        else
+            d.points = (int)cv->integer;
+        if (hse)
+            d.seed = (uint64_t)sev.integer;
+    }
+    size_t n = sd_polylib_vertex_count(&d), got = 0;
+    sh->vertices = sd_calloc(n ? n : 1, sizeof *sh->vertices);
+    if (!sh->vertices)
+        return sd_error_set(p->err, SD_ERR_MEMORY, p->path, 0, "", "out of memory");
+    sd_error e2;
+    if (sd_polylib_vertices(&d, sh->vertices, n, &got, &e2) != SD_OK) {
+        char kk[24]; /* polylib names one of the short keys above */
+        snprintf(kk, sizeof kk, "%.20s", e2.key[0] ? e2.key : "preset");
+        return sd_fail(p, pv->line, sd_kp(key, sizeof key, path, kk), "%s", e2.msg);
+    }
+    sh->vertex_count = got;
+    return SD_OK;
+}
+
 static sd_status sd_parse_shapes(sd_parse *p, yaml_node_t *list)
 {
     sd_scene *s = p->s;
@@ -1184,6 +1495,13 @@ static sd_status sd_parse_shapes(sd_parse *p, yaml_node_t *list)
         if ((st = sd_read_value(p, type_row, tn, key, &v)))
             return st;
         sh->kind = v.choice;
+        /* planar types follow the 3D ones in the choices (scene.h) */
+        sh->kind2d = sh->kind >= SD_SHAPE_KIND_COUNT ? sh->kind - SD_SHAPE_KIND_COUNT : -1;
+        if ((sh->kind2d >= 0) != (s->world.dimension == 2))
+            return sd_fail(p, v.line, key, "shape type '%s' is %s, but simulation.dimension is %d%s", v.str,
+                           sh->kind2d >= 0 ? "planar (2D)" : "3D", s->world.dimension,
+                           s->world.dimension == 2 ? " (planar types: circle, ellipse, polygon, polybezier, fourier)"
+                                                   : " (set dimension: 2 for planar shapes)");
         snprintf(kind_name, sizeof kind_name, "a %s shape", v.str);
         if ((st = sd_check_map(p, m, SD_SEC_SHAPE, 1u << sh->kind, kind_name, path, sh->line)))
             return st;
@@ -1230,21 +1548,36 @@ static sd_status sd_parse_shapes(sd_parse *p, yaml_node_t *list)
             sh->size = sd_v3(v.v);
             break;
         case SD_SHAPE_POLYHEDRON: {
-            sd_value vv, fv;
+            sd_value vv, fv, pv, ncv;
             int hv = sd_get(p, m, SD_SEC_SHAPE, "vertices", path, &vv);
             int hf = sd_get(p, m, SD_SEC_SHAPE, "file", path, &fv);
-            if (hv && hf)
-                return sd_fail(p, fv.line, sd_kp(key, sizeof key, path, "file"),
-                               "give either vertices or file, not both (vertices is at line %d)",
-                               vv.line);
-            if (!hv && !hf)
+            int hp = sd_get(p, m, SD_SEC_SHAPE, "preset", path, &pv);
+            int hnc = sd_get(p, m, SD_SEC_SHAPE, "nonconvex", path, &ncv);
+            if (hv + hf + hp > 1) {
+                const sd_value *second = hp ? &pv : &fv;
+                return sd_fail(p, second->line, sd_kp(key, sizeof key, path, hp ? "preset" : "file"),
+                               "give one of vertices, file and preset, not more (%s is at line %d)",
+                               hv ? "vertices" : "file", hv ? vv.line : fv.line);
+            }
+            if (!hv && !hf && !hp)
                 return sd_fail(p, sh->line, sd_kp(key, sizeof key, path, "vertices"),
-                               "missing required key 'vertices' (or file: an OBJ or STL file)");
+                               "missing required key 'vertices' (or file: an OBJ or STL file, or "
+                               "preset: a built-in polyhedron)");
+            if (hnc && !hf)
+                return sd_fail(p, ncv.line, sd_kp(key, sizeof key, path, "nonconvex"),
+                               "nonconvex applies to a mesh file (file:) only");
+            if (hp) {
+                if ((st = sd_parse_preset(p, m, sh, path, &pv)))
+                    return st;
+                break;
+            }
+            if ((st = sd_no_preset_keys(p, m, path)))
+                return st;
             if (hf) {
                 sd_kp(key, sizeof key, path, "file");
                 if (!sd_resolve(p->path, fv.str, sh->file, sizeof sh->file))
                     return sd_fail(p, fv.line, key, "path too long");
-                if ((st = sd_read_mesh(p, sh, key, fv.line)))
+                if ((st = sd_read_mesh(p, sh, key, fv.line, hnc && ncv.choice == 1)))
                     return st;
                 break;
             }
@@ -1271,6 +1604,11 @@ static sd_status sd_parse_shapes(sd_parse *p, yaml_node_t *list)
             break;
         }
         default:
+            if (sh->kind2d >= 0) {
+                if ((st = sd_parse_shape2d(p, m, sh, path)))
+                    return st;
+                break;
+            }
             return sd_fail(p, sh->line, path, "unknown shape type");
         }
     }
@@ -1505,6 +1843,53 @@ static sd_status sd_parse_particles(sd_parse *p, yaml_node_t *list, int line)
 
 /* ---- walls and output --------------------------------------------------- */
 
+/* Moving walls (servo.c): a prescribed velocity and/or a servo target. */
+static sd_status sd_parse_wall_motion(sd_parse *p, yaml_node_t *m, sd_scene_wall *w, const char *path)
+{
+    char key[96];
+    sd_value v, vs, ve;
+    sd_wall_motion_def *d = &w->motion;
+    *d = sd_wall_motion_def_default();
+    int any = 0;
+    if (sd_get(p, m, SD_SEC_WALL, "velocity", path, &v)) {
+        any = 1;
+        d->velocity = sd_v3(v.v);
+        if (p->s->world.dimension == 2 && v.v[2] != 0.0)
+            return sd_fail(p, v.line, sd_kp(key, sizeof key, path, "velocity"),
+                           "dimension 2 needs a velocity with z = 0, got %g", v.v[2]);
+    }
+    int hs = sd_get(p, m, SD_SEC_WALL, "move_start", path, &vs);
+    int he = sd_get(p, m, SD_SEC_WALL, "move_end", path, &ve);
+    d->move_start = vs.num;
+    d->move_end = he ? ve.num : -1.0;
+    if (he && !(ve.num > vs.num))
+        return sd_fail(p, ve.line, sd_kp(key, sizeof key, path, "move_end"),
+                       "expected move_end > move_start (%g s), got %g s", vs.num, ve.num);
+    any |= hs | he;
+    if (sd_get(p, m, SD_SEC_WALL, "servo_stress", path, &v)) {
+        any = 1;
+        d->servo_stress = v.num;
+    }
+    hs = sd_get(p, m, SD_SEC_WALL, "servo_start", path, &vs);
+    he = sd_get(p, m, SD_SEC_WALL, "servo_end", path, &ve);
+    d->servo_start = vs.num;
+    d->servo_end = he ? ve.num : -1.0;
+    if (he && !(ve.num > vs.num))
+        return sd_fail(p, ve.line, sd_kp(key, sizeof key, path, "servo_end"),
+                       "expected servo_end > servo_start (%g s), got %g s", vs.num, ve.num);
+    any |= hs | he;
+    if (sd_get(p, m, SD_SEC_WALL, "servo_gain", path, &v)) {
+        any = 1;
+        d->servo_gain = v.num;
+    }
+    if (sd_get(p, m, SD_SEC_WALL, "servo_max_speed", path, &v)) {
+        any = 1;
+        d->servo_max_speed = v.num;
+    }
+    w->has_motion = any;
+    return SD_OK;
+}
+
 static sd_status sd_parse_walls(sd_parse *p, yaml_node_t *list)
 {
     sd_scene *s = p->s;
@@ -1573,6 +1958,11 @@ static sd_status sd_parse_walls(sd_parse *p, yaml_node_t *list)
             sd_get(p, m, SD_SEC_WALL, "open", path, &v);
             w->open_faces = v.mask;
         }
+        if (s->world.dimension == 2 && w->kind == 0 && w->normal.z != 0.0)
+            return sd_fail(p, w->line, sd_kp(key, sizeof key, path, "normal"),
+                           "dimension 2: a plane is a line in x-y, its normal needs z = 0");
+        if ((st = sd_parse_wall_motion(p, m, w, path)))
+            return st;
     }
     return SD_OK;
 }
@@ -1600,6 +1990,137 @@ static sd_status sd_parse_output(sd_parse *p, yaml_node_t *root, int line)
     /* The choice order vtk|csv matches SD_OUT_VTK, SD_OUT_CSV. */
     s->output.formats =
         sd_get(p, out, SD_SEC_OUTPUT, "formats", path, &v) ? v.mask : (SD_OUT_VTK | SD_OUT_CSV);
+    return SD_OK;
+}
+
+/* ---- pour and outlet (solver grid, src/grid) ----------------------------- */
+
+static int sd_key_line(sd_parse *p, yaml_node_t *map, const char *key);
+
+/* The union of the box walls: the grid solver's domain. 0 when there is none. */
+static int sd_scene_box_union(const sd_scene *s, sd_v3d *lo, sd_v3d *hi)
+{
+    int n = 0;
+    for (size_t i = 0; i < s->wall_count; ++i) {
+        const sd_scene_wall *w = &s->walls[i];
+        if (w->kind != 1)
+            continue;
+        if (!n++) {
+            *lo = w->lo;
+            *hi = w->hi;
+            continue;
+        }
+        lo->x = fmin(lo->x, w->lo.x), lo->y = fmin(lo->y, w->lo.y), lo->z = fmin(lo->z, w->lo.z);
+        hi->x = fmax(hi->x, w->hi.x), hi->y = fmax(hi->y, w->hi.y), hi->z = fmax(hi->z, w->hi.z);
+    }
+    return n;
+}
+
+/* pour: and outlet: need solver grid and a box wall. */
+static sd_status sd_grid_section_needs(sd_parse *p, const char *sec, int line, sd_v3d *lo, sd_v3d *hi)
+{
+    if (p->s->world.solver != SD_SOLVER_GRID)
+        return sd_fail(p, line, sec, "%s needs simulation.solver: grid (the dense grid-stencil solver)", sec);
+    if (!sd_scene_box_union(p->s, lo, hi))
+        return sd_fail(p, line, sec, "%s needs a box wall (the grid solver's domain)", sec);
+    return SD_OK;
+}
+
+static sd_status sd_parse_pour(sd_parse *p, yaml_node_t *root)
+{
+    sd_scene_pour *pr = &p->s->pour;
+    yaml_node_t *m = sd_map_get(p, root, "pour");
+    const char *path = "pour";
+    char key[96];
+    sd_value v;
+    sd_status st;
+    if (!m)
+        return SD_OK;
+    pr->given = 1;
+    pr->line = sd_key_line(p, root, "pour");
+    if ((st = sd_check_map(p, m, SD_SEC_POUR, SD_KIND_ALL, "", path, pr->line)))
+        return st;
+    sd_v3d lo, hi;
+    if ((st = sd_grid_section_needs(p, path, pr->line, &lo, &hi)))
+        return st;
+    sd_get(p, m, SD_SEC_POUR, "material", path, &v);
+    if ((st = sd_material_ref(p, v.str, v.line, sd_kp(key, sizeof key, path, "material"), &pr->material)))
+        return st;
+    sd_get(p, m, SD_SEC_POUR, "radius", path, &v);
+    pr->radius = v.num;
+    sd_get(p, m, SD_SEC_POUR, "height", path, &v);
+    pr->height = v.num;
+    if (!(v.num - pr->radius >= lo.z && v.num + pr->radius <= hi.z))
+        return sd_fail(p, v.line, "pour.height",
+                       "expected a height that keeps the sheet inside the box (z of the centres in [%g, %g] m), "
+                       "got %g",
+                       lo.z + pr->radius, hi.z - pr->radius, v.num);
+    if (hi.x - lo.x < 2 * pr->radius || hi.y - lo.y < 2 * pr->radius)
+        return sd_fail(p, pr->line, "pour.radius", "the box is narrower than one poured sphere (radius %g m)",
+                       pr->radius);
+    sd_get(p, m, SD_SEC_POUR, "layers_per_second", path, &v);
+    pr->rate = v.num;
+    sd_get(p, m, SD_SEC_POUR, "vertical_speed", path, &v);
+    pr->vertical_speed = v.num;
+    sd_get(p, m, SD_SEC_POUR, "horizontal_speed", path, &v);
+    pr->horizontal_speed = v.num;
+    sd_get(p, m, SD_SEC_POUR, "start", path, &v);
+    pr->start = v.num;
+    sd_get(p, m, SD_SEC_POUR, "packing_fraction", path, &v);
+    pr->packing_fraction = v.num;
+    int has_count = sd_get(p, m, SD_SEC_POUR, "count", path, &v);
+    long long count = has_count ? v.integer : 0;
+    int has_fill = sd_get(p, m, SD_SEC_POUR, "fill_height", path, &v);
+    if (has_count == has_fill)
+        return sd_fail(p, pr->line, path, "pour needs exactly one of count and fill_height, got %s",
+                       has_count ? "both" : "neither");
+    if (has_fill) {
+        pr->fill_height = v.num;
+        if (lo.z + v.num > hi.z)
+            return sd_fail(p, v.line, "pour.fill_height", "expected a fill height within the box (at most %g m), got %g",
+                           hi.z - lo.z, v.num);
+        double sphere = 4.0 / 3.0 * 3.14159265358979323846 * pr->radius * pr->radius * pr->radius;
+        count = (long long)floor(pr->packing_fraction * (hi.x - lo.x) * (hi.y - lo.y) * v.num / sphere);
+        if (count < 1)
+            return sd_fail(p, v.line, "pour.fill_height", "fill height %g m holds no sphere of radius %g m", v.num,
+                           pr->radius);
+    }
+    if (count > 1000000000LL)
+        return sd_fail(p, pr->line, "pour.count", "expected at most 1e9 spheres, got %lld", count);
+    pr->count = (long)count;
+    return SD_OK;
+}
+
+static sd_status sd_parse_outlet(sd_parse *p, yaml_node_t *root)
+{
+    sd_scene_outlet *o = &p->s->outlet;
+    yaml_node_t *m = sd_map_get(p, root, "outlet");
+    const char *path = "outlet";
+    sd_value v;
+    sd_status st;
+    if (!m)
+        return SD_OK;
+    o->given = 1;
+    o->line = sd_key_line(p, root, "outlet");
+    if ((st = sd_check_map(p, m, SD_SEC_OUTLET, SD_KIND_ALL, "", path, o->line)))
+        return st;
+    sd_v3d lo, hi;
+    if ((st = sd_grid_section_needs(p, path, o->line, &lo, &hi)))
+        return st;
+    sd_get(p, m, SD_SEC_OUTLET, "min", path, &v);
+    o->lo[0] = v.v[0], o->lo[1] = v.v[1];
+    int line = v.line;
+    sd_get(p, m, SD_SEC_OUTLET, "max", path, &v);
+    o->hi[0] = v.v[0], o->hi[1] = v.v[1];
+    if (!(o->hi[0] > o->lo[0] && o->hi[1] > o->lo[1]))
+        return sd_fail(p, v.line, "outlet.max", "expected max > min on x and y, got min [%g, %g], max [%g, %g]",
+                       o->lo[0], o->lo[1], o->hi[0], o->hi[1]);
+    if (o->hi[0] <= lo.x || o->lo[0] >= hi.x || o->hi[1] <= lo.y || o->lo[1] >= hi.y)
+        return sd_fail(p, line, "outlet.min",
+                       "the hole [%g, %g] x [%g, %g] misses the box floor [%g, %g] x [%g, %g]", o->lo[0], o->hi[0],
+                       o->lo[1], o->hi[1], lo.x, hi.x, lo.y, hi.y);
+    sd_get(p, m, SD_SEC_OUTLET, "open_at", path, &v);
+    o->open_at = v.num;
     return SD_OK;
 }
 
@@ -1655,6 +2176,58 @@ static sd_status sd_check_laws(sd_parse *p)
                              "missing stiffness (N/m): the linear contact between '%s' and '%s' "
                              "needs it (or set stiffness in their interaction)",
                              m->name, s->materials[b].name);
+            } else if (law == SD_LAW_VOLUME && (use[a] & 1) && !(m->def.youngs_modulus > 0.0)) {
+                snprintf(key, sizeof key, "materials[%zu].youngs_modulus", a);
+                st = sd_fail(p, m->line, key,
+                             "missing youngs_modulus (Pa): the volume contact between '%s' and '%s' "
+                             "needs it (seed 000 eq. 13)",
+                             m->name, s->materials[b].name);
+            } else if (law == SD_LAW_VOLUME_LINEAR && !(m->def.volume_stiffness > 0.0) &&
+                       !(in && in->def.volume_stiffness > 0.0)) {
+                snprintf(key, sizeof key, "materials[%zu].volume_stiffness", a);
+                st = sd_fail(p, m->line, key,
+                             "missing volume_stiffness (N/m^3): the volume_linear contact between '%s' "
+                             "and '%s' needs it (or set volume_stiffness in their interaction)",
+                             m->name, s->materials[b].name);
+            }
+        }
+    }
+    /* The volume laws take sharp polyhedra only (the overlap volume exists
+     * for them); world/material.c checks again at prepare time. */
+    for (size_t g = 0; g < s->generator_count && st == SD_OK; ++g) {
+        const sd_scene_generator *gen = &s->generators[g];
+        size_t cnt = gen->kind == SD_GEN_LIST ? gen->list_count : 1;
+        for (size_t i = 0; i < cnt && st == SD_OK; ++i) {
+            int a = gen->kind == SD_GEN_LIST ? gen->list[i].material : gen->material;
+            int sh = (gen->kind == SD_GEN_LIST && gen->list_shape) ? gen->list_shape[i] : gen->shape;
+            const sd_scene_shape *ss = sh >= 0 ? &s->shapes[sh] : NULL;
+            if (ss && ss->kind == SD_SHAPE_POLYHEDRON && !(ss->rounding > 0) && !(ss->margin > 0))
+                continue;
+            for (size_t b = 0; b < nm && st == SD_OK; ++b) {
+                if (!use[b])
+                    continue;
+                const sd_scene_interaction *in = NULL;
+                for (size_t k = 0; k < s->interaction_count; ++k) {
+                    const sd_scene_interaction *c = &s->interactions[k];
+                    if ((c->mat_a == a && c->mat_b == (int)b) || (c->mat_a == (int)b && c->mat_b == a))
+                        in = c;
+                }
+                int law = (in && in->def.law >= 0) ? in->def.law : (int)s->world.law;
+                if (law != SD_LAW_VOLUME && law != SD_LAW_VOLUME_LINEAR)
+                    continue;
+                char key[96];
+                snprintf(key, sizeof key, "particles[%zu]", g);
+                char what[96];
+                if (ss)
+                    snprintf(what, sizeof what, "shape '%s'", ss->name);
+                else
+                    snprintf(what, sizeof what, "spheres");
+                st = sd_fail(p, gen->line, key,
+                             "%s (material '%s') meet material '%s' under the %s law, which takes "
+                             "sharp polyhedra only (type polyhedron, no rounding or margin); give this pair "
+                             "another law (interactions: contact_law hertz_mindlin or linear)",
+                             what, s->materials[a].name, s->materials[b].name,
+                             sd_contact_law_name((sd_contact_law)law));
             }
         }
     }
@@ -1702,13 +2275,16 @@ static sd_status sd_parse_root(sd_parse *p, yaml_node_t *root)
     sd_get(p, root, SD_SEC_ROOT, "shapes", "", &v);
     if ((st = sd_parse_shapes(p, v.node)))
         return st;
-    sd_get(p, root, SD_SEC_ROOT, "particles", "", &v);
-    if ((st = sd_parse_particles(p, v.node, sd_key_line(p, root, "particles"))))
-        return st;
+    /* particles may be left out when a pour fills the box (solver grid) */
+    if (sd_get(p, root, SD_SEC_ROOT, "particles", "", &v) || !sd_map_get(p, root, "pour"))
+        if ((st = sd_parse_particles(p, v.node, sd_key_line(p, root, "particles"))))
+            return st;
     sd_get(p, root, SD_SEC_ROOT, "walls", "", &v);
     if ((st = sd_parse_walls(p, v.node)))
         return st;
     if ((st = sd_parse_output(p, root, sd_map_get(p, root, "output") ? sd_key_line(p, root, "output") : 1)))
+        return st;
+    if ((st = sd_parse_pour(p, root)) || (st = sd_parse_outlet(p, root)))
         return st;
     return sd_check_laws(p);
 }
@@ -1788,8 +2364,12 @@ void sd_scene_free(sd_scene *s)
         sd_free(s->generators[i].list_orient);
         sd_free(s->generators[i].list_quat);
     }
-    for (size_t i = 0; i < s->shape_count; ++i)
+    for (size_t i = 0; i < s->shape_count; ++i) {
         sd_free(s->shapes[i].vertices);
+        sd_free(s->shapes[i].points);
+        sd_free(s->shapes[i].fourier_a);
+        sd_free(s->shapes[i].fourier_b);
+    }
     sd_free(s->shapes);
     sd_free(s->generators);
     sd_free(s->materials);

@@ -98,7 +98,8 @@ static void sd_vtk_appended_close(FILE *fp) { fprintf(fp, "\n  </AppendedData>\n
     X(SD_VF_ANGULAR_VELOCITY, "angular_velocity", "Float64", 3, 8)                                  \
     X(SD_VF_FORCE, "force", "Float64", 3, 8)                                                        \
     X(SD_VF_MATERIAL, "material", "Int32", 1, 4)                                                    \
-    X(SD_VF_ORIENTATION, "orientation", "Float64", 4, 8)
+    X(SD_VF_ORIENTATION, "orientation", "Float64", 4, 8)                                             \
+    X(SD_VF_AXIS, "axis", "Float64", 3, 8)
 
 typedef enum sd_vtk_field {
 #define SD_X_ENUM(e, name, type, comps, size) e,
@@ -120,6 +121,15 @@ static void sd_vtk_put_field(sd_bin *b, sd_vtk_field f, const sd_particle_state 
         for (int k = 0; k < 4; ++k)
             sd_bin_f64(b, p->quat[k]);
         break;
+    case SD_VF_AXIS: {
+        /* the body's x axis in the world frame, R(q) e_x: ParaView's Glyph
+         * filter orients glyphs by such a vector (in 2D it is (cos a, sin a, 0)
+         * for the rotation angle a about z) */
+        double w = p->quat[0], x = p->quat[1], y = p->quat[2], z = p->quat[3];
+        sd_v3d ax = {1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y + w * z), 2.0 * (x * z - w * y)};
+        sd_bin_v3(b, ax);
+        break;
+    }
     case SD_VF_COUNT: break;
     }
 }

@@ -119,10 +119,16 @@ void sd_mat3_sym_eigen(sd_mat3 a, sd_vec3 *w, sd_mat3 *v)
         if (off <= SD_R(1e-36) * dia || off == SD_R(0.0))
             break;
         static const int P[3] = {0, 0, 1}, Q[3] = {1, 2, 2};
+        int rotated = 0;
         for (int r = 0; r < 3; ++r) {
             int p = P[r], q = Q[r];
-            if (a.m[p][q] == SD_R(0.0))
+            /* an off-diagonal at the rounding level of the diagonal is noise:
+             * rotating it away would turn the frame of a body with equal
+             * moments (cube, regular solids) by an arbitrary angle, and put
+             * that rounding into every vertex and face plane */
+            if (sd_fabs(a.m[p][q]) <= SD_R(1e-15) * (sd_fabs(a.m[p][p]) + sd_fabs(a.m[q][q])))
                 continue;
+            rotated = 1;
             /* the rotation that zeroes a_pq (Rutishauser's stable form) */
             sd_real th = (a.m[q][q] - a.m[p][p]) / (SD_R(2.0) * a.m[p][q]);
             sd_real t = (th >= 0 ? SD_R(1.0) : SD_R(-1.0)) / (sd_fabs(th) + sd_sqrt(th * th + SD_R(1.0)));
@@ -143,6 +149,8 @@ void sd_mat3_sym_eigen(sd_mat3 a, sd_vec3 *w, sd_mat3 *v)
                 V.m[k][q] = s * vkp + c * vkq;
             }
         }
+        if (!rotated)
+            break;
     }
     /* ascending eigenvalues; each of the first two columns with its largest
      * component positive, the third their cross product: deterministic,
@@ -914,6 +922,129 @@ sd_status sd_shape_make(const sd_shape_def *def, sd_shape *out, sd_vec3 *verts_o
     default:
         return SD_FAIL("type", "unknown shape kind %d", def->kind);
     }
+}
+
+/* ---- welded faces and dual triangles (seed 000 §2.1, §2.3) ------------------ */
+
+sd_status sd_shape_faces(sd_shape *s, const sd_vec3 *verts, sd_plane *planes, size_t planes_cap, size_t *nplanes,
+                         sd_dtri *tris, size_t tris_cap, size_t *ntris, sd_error *err)
+{
+    *nplanes = *ntris = 0;
+    s->fcount = s->tcount = 0;
+    if (s->kind != SD_SHAPE_POLYHEDRON || s->vcount < 4)
+        return SD_OK;
+    const int nv = (int)s->vcount;
+    sd_vec3 *pts = sd_malloc((size_t)nv * sizeof *pts);
+    sd_hull_workspace *ws = sd_malloc(sizeof *ws);
+    sd_hull *h = sd_malloc(sizeof *h);
+    int *face = sd_malloc(SD_HULL_MAX_TRIS * sizeof *face);
+    int *queue = sd_malloc(SD_HULL_MAX_TRIS * sizeof *queue);
+    sd_vec3 *dual = sd_malloc(SD_HULL_MAX_TRIS * sizeof *dual); /* one per face: at most 2 nv - 4 */
+    sd_status st = SD_OK;
+    if (!pts || !ws || !h || !face || !queue || !dual) {
+        st = sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory welding a polyhedron's faces");
+        goto done;
+    }
+    sd_real bound = 0;
+    for (int k = 0; k < nv; ++k) {
+        pts[k] = verts[s->vstart + (uint32_t)k];
+        bound = sd_max(bound, sd_v3_norm(pts[k]));
+    }
+    if (sd_hull_build(pts, (size_t)nv, ws, h) != SD_HULL_OK) {
+        st = SD_FAIL("vertices", "the hull of the polyhedron's vertices failed while welding its faces");
+        goto done;
+    }
+    /* region growing: a face is a seed triangle and every triangle reachable
+     * through neighbours whose three vertices lie within tol of the seed's
+     * plane. Measured against the seed (not the neighbour), so a curved
+     * tessellation whose neighbours differ by less than tol cannot chain. */
+    const sd_real tol = SD_SHAPE_WELD_REL * bound;
+    for (int t = 0; t < h->ntri; ++t)
+        face[t] = -1;
+    int nf = 0;
+    for (int t0 = 0; t0 < h->ntri; ++t0) {
+        if (face[t0] >= 0)
+            continue;
+        if ((size_t)nf >= planes_cap) {
+            st = SD_FAIL("vertices", "more faces than the %zu planes there is room for", planes_cap);
+            goto done;
+        }
+        sd_vec3 n0 = h->normal[t0];
+        sd_real h0 = h->offset[t0];
+        int qn = 0;
+        face[t0] = nf;
+        queue[qn++] = t0;
+        sd_vec3 acc = sd_v3_zero();
+        for (int qi = 0; qi < qn; ++qi) {
+            int t = queue[qi];
+            sd_vec3 a = pts[h->tri[t][0]], b = pts[h->tri[t][1]], c = pts[h->tri[t][2]];
+            acc = sd_v3_add(acc, sd_v3_cross(sd_v3_sub(b, a), sd_v3_sub(c, a))); /* 2 x area x normal */
+            for (int k = 0; k < 3; ++k) {
+                int u = h->nbr[t][k];
+                if (u < 0 || face[u] >= 0 || !(sd_v3_dot(h->normal[u], n0) > 0))
+                    continue;
+                int ok = 1;
+                for (int j = 0; j < 3; ++j)
+                    ok &= sd_fabs(sd_v3_dot(n0, pts[h->tri[u][j]]) - h0) <= tol;
+                if (ok) {
+                    face[u] = nf;
+                    queue[qn++] = u;
+                }
+            }
+        }
+        sd_vec3 n = sd_v3_normalize(acc);
+        sd_real off = -SD_R(1e300);
+        for (int qi = 0; qi < qn; ++qi)
+            for (int j = 0; j < 3; ++j)
+                off = sd_max(off, sd_v3_dot(n, pts[h->tri[queue[qi]][j]]));
+        planes[nf].n = n;
+        planes[nf].h = off;
+        ++nf;
+    }
+    /* the dual: polar points about the centre of mass (the origin of the
+     * principal frame, strictly inside: every h > 0), seed 000 eqs. 4-5 */
+    for (int f = 0; f < nf; ++f) {
+        if (!(planes[f].h > 0)) {
+            st = SD_FAIL("vertices", "face %d of the polyhedron does not enclose its centre of mass", f);
+            goto done;
+        }
+        dual[f] = sd_v3_scale(planes[f].n, SD_R(1.0) / planes[f].h);
+    }
+    if (nf < 4 || sd_hull_build(dual, (size_t)nf, ws, h) != SD_HULL_OK || h->nvert != nf) {
+        st = SD_FAIL("vertices", "the polyhedron's face planes do not form a closed convex body (%d faces)", nf);
+        goto done;
+    }
+    if ((size_t)h->ntri > tris_cap || h->ntri > 65535) {
+        st = SD_FAIL("vertices", "the polyhedron has more vertices (%d) than there is room for", h->ntri);
+        goto done;
+    }
+    for (int t = 0; t < h->ntri; ++t) {
+        /* the vertex where the three planes meet (Cramer's rule; the
+         * unpolarisation of seed 000 eqs. 6-8 without the min of eq. 7) */
+        const sd_plane *a = &planes[h->tri[t][0]], *b = &planes[h->tri[t][1]], *c = &planes[h->tri[t][2]];
+        sd_vec3 bc = sd_v3_cross(b->n, c->n), ca = sd_v3_cross(c->n, a->n), ab = sd_v3_cross(a->n, b->n);
+        sd_real det = sd_v3_dot(a->n, bc);
+        sd_vec3 v = sd_v3_scale(
+            sd_v3_add(sd_v3_scale(bc, a->h), sd_v3_add(sd_v3_scale(ca, b->h), sd_v3_scale(ab, c->h))), SD_R(1.0) / det);
+        tris[t].v = v;
+        for (int k = 0; k < 3; ++k) {
+            tris[t].f[k] = (uint16_t)h->tri[t][k];
+            tris[t].nb[k] = (uint16_t)h->nbr[t][k];
+        }
+    }
+    *nplanes = (size_t)nf;
+    *ntris = (size_t)h->ntri;
+    s->fstart = s->tstart = 0;
+    s->fcount = (uint32_t)nf;
+    s->tcount = (uint32_t)h->ntri;
+done:
+    sd_free(pts);
+    sd_free(ws);
+    sd_free(h);
+    sd_free(face);
+    sd_free(queue);
+    sd_free(dual);
+    return st;
 }
 
 /* ---- report ---------------------------------------------------------------- */

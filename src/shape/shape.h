@@ -36,6 +36,35 @@ typedef enum sd_shape_kind {
 /* Most vertices a polyhedron template may have (fixed GPU workspaces). */
 #define SD_SHAPE_MAX_VERTICES 1024
 
+/* Most welded face planes per polyhedron that the exact overlap volume
+ * (geom/overlap.h) handles: its per-pair workspace is sized by it. A
+ * template with more faces is still a valid shape for the GJK laws;
+ * sd_overlap_polyhedra reports SD_OVERLAP_OVERFLOW for it (never a silent
+ * truncation), and sd_shape_faces says so when the template is built. */
+#ifndef SD_OVERLAP_MAX_PLANES
+#define SD_OVERLAP_MAX_PLANES 64
+#endif
+
+/* One welded face of a polyhedron template (seed 000 §2.1: coplanar
+ * triangles merged into one plane): the body is n . x <= h, principal frame. */
+typedef struct sd_plane {
+    sd_vec3 n; /* unit outward normal */
+    sd_real h; /* m, offset: the face is n . x = h */
+} sd_plane;
+
+/* One vertex of a polyhedron template seen from its face planes: the dual
+ * triangle (f[0], f[1], f[2]) of the polar dual hull (seed 000 §2.3). Three
+ * of the faces meeting at the vertex, counter-clockwise seen from outside;
+ * a vertex where k > 3 faces meet is k - 2 triangles at the same point.
+ * nb[k] is the dual triangle across the dual edge f[k] -> f[k+1], i.e. the
+ * vertex at the other end of the primal edge where faces f[k] and f[k+1]
+ * meet. Together they are the vertex/face adjacency of the template. */
+typedef struct sd_dtri {
+    sd_vec3 v;      /* m, principal frame: where planes f[0..2] meet */
+    uint16_t f[3];  /* face indices, 0 .. fcount - 1 */
+    uint16_t nb[3]; /* dual triangle indices, 0 .. tcount - 1 */
+} sd_dtri;
+
 typedef struct sd_shape {
     int kind;            /* sd_shape_kind */
     sd_real radius;      /* m, radius of the sphere swept over the core (>= 0) */
@@ -44,6 +73,8 @@ typedef struct sd_shape {
                             principal frame (cone: its base centre is at -h/4
                             on z so the centre of mass is the origin) */
     uint32_t vstart, vcount; /* polyhedron: vertices (principal frame) in the pool */
+    uint32_t fstart, fcount; /* polyhedron: welded face planes in the plane pool (core) */
+    uint32_t tstart, tcount; /* polyhedron: dual triangles (vertex/face adjacency) in their pool */
     sd_real bound;       /* m, bounding radius about the centre of mass, radius included */
     sd_real volume;      /* m^3, of the swept shape */
     sd_vec3 inertia;     /* m^5, principal second moments of the swept shape per
@@ -63,6 +94,9 @@ typedef struct sd_convex {
     const sd_vec3 *verts; /* the vertex pool (may be NULL without polyhedra) */
     sd_vec3 x;            /* m, centre of mass, world frame */
     sd_quat q;            /* principal frame to world frame */
+    /* last, so positional initialisers {shape, verts, x, q} stay valid */
+    const sd_plane *planes; /* the face-plane pool (NULL without polyhedra) */
+    const sd_dtri *dtris;   /* the dual-triangle pool (NULL without polyhedra) */
 } sd_convex;
 
 #endif

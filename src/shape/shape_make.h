@@ -56,6 +56,25 @@ sd_shape_def sd_shape_def_default(void);
 sd_status sd_shape_make(const sd_shape_def *def, sd_shape *out, sd_vec3 *verts_out, size_t verts_cap,
                         size_t *verts_used, sd_error *err);
 
+/* Welded face planes and the vertex/face adjacency of a polyhedron template
+ * (seed 000 §2.1), in its principal frame, from its hull vertices
+ * verts[s->vstart .. + s->vcount). Triangles of the hull whose vertices lie
+ * within SD_SHAPE_WELD_REL x (core bounding radius) of a seed triangle's
+ * plane are grown into one face (region growing from the seed, so a gently
+ * curved tessellation never chains into one face); each face gets the unit
+ * area-weighted normal of its triangles and the offset h = max n . v over its
+ * vertices, so every vertex satisfies every plane. The dual triangles are the
+ * hull of the polar points n_f / h_f about the centre of mass (seed 000
+ * eqs. 4-5), each with the vertex where its three planes meet. Writes
+ * planes[0 .. *nplanes) and tris[0 .. *ntris); s->fcount / s->tcount are set,
+ * fstart / tstart are 0 (the caller places them in its pools). Caps: at most
+ * 2 s->vcount planes and 4 s->vcount dual triangles are ever written. Other
+ * kinds get no planes. SD_ERR_INPUT for a template whose planes do not close
+ * (a bad hull), SD_ERR_MEMORY when an allocation fails. */
+#define SD_SHAPE_WELD_REL SD_R(1e-6)
+sd_status sd_shape_faces(sd_shape *s, const sd_vec3 *verts, sd_plane *planes, size_t planes_cap, size_t *nplanes,
+                         sd_dtri *tris, size_t tris_cap, size_t *ntris, sd_error *err);
+
 /* Scene names from the SD_SHAPE_KINDS list; from_name returns -1 if unknown. */
 const char *sd_shape_kind_name(int kind);
 int sd_shape_kind_from_name(const char *name);

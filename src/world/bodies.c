@@ -29,18 +29,29 @@ sd_shape_desc sd_shape_desc_default(void)
 
 int sd_world_find_shape(const sd_world *w, const char *name)
 {
+    if (w->dim2) {
+        for (size_t k = 0; k < w->shape2d_count; ++k)
+            if (name && strcmp(w->shape2d_names[k], name) == 0)
+                return (int)k;
+        return -1;
+    }
     for (size_t k = 0; k < w->shape_count; ++k)
         if (name && strcmp(w->shape_names[k], name) == 0)
             return (int)k;
     return -1;
 }
 
-size_t sd_world_shape_count(const sd_world *w) { return w->shape_count; }
+size_t sd_world_shape_count(const sd_world *w) { return w->dim2 ? w->shape2d_count : w->shape_count; }
 
 int sd_world_add_shape(sd_world *w, const char *name, const sd_shape_desc *desc, sd_error *err)
 {
     if (!desc || desc->cookie != SD_COOKIE) {
         sd_error_set(err, SD_ERR_INPUT, "", 0, "shapes", "shape desc not made by sd_shape_desc_default");
+        return -1;
+    }
+    if (w->dim2) {
+        sd_error_set(err, SD_ERR_INPUT, "", 0, "type", "shape kind '%s' is 3D; dimension 2 takes circle, ellipse, "
+                     "polygon, polybezier or fourier", desc->kind ? desc->kind : "");
         return -1;
     }
     if (!name || !name[0] || strlen(name) >= 64) {
@@ -102,6 +113,29 @@ int sd_world_add_shape(sd_world *w, const char *name, const sd_shape_desc *desc,
         return -1;
     s.vstart = (uint32_t)w->vert_count;
     s.vcount = (uint32_t)used;
+    if (s.kind == SD_SHAPE_POLYHEDRON) {
+        /* welded face planes and dual triangles (the exact overlap volume's
+         * input), next to the vertex pool: at most 2 vcount planes, 4 vcount
+         * dual triangles */
+        sd_plane *pl = sd_realloc(w->planes, (w->plane_count + 2 * used) * sizeof *pl);
+        if (pl)
+            w->planes = pl;
+        sd_dtri *dt = sd_realloc(w->dtris, (w->dtri_count + 4 * used) * sizeof *dt);
+        if (dt)
+            w->dtris = dt;
+        if (!pl || !dt) {
+            sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory adding shape '%s'", name);
+            return -1;
+        }
+        size_t np = 0, nt = 0;
+        if (sd_shape_faces(&s, w->verts, w->planes + w->plane_count, 2 * used, &np,
+                           w->dtris + w->dtri_count, 4 * used, &nt, err) != SD_OK)
+            return -1;
+        s.fstart = (uint32_t)w->plane_count;
+        s.tstart = (uint32_t)w->dtri_count;
+        w->plane_count += np;
+        w->dtri_count += nt;
+    }
     w->vert_count += used;
     /* where the centre of mass sits in the frame the shape was given in */
     w->shape_com[w->shape_count] = s.given_com;
@@ -114,6 +148,8 @@ int sd_world_add_shape(sd_world *w, const char *name, const sd_shape_desc *desc,
 
 sd_status sd_world_get_shape(const sd_world *w, size_t k, sd_shape_info *out)
 {
+    if (w->dim2)
+        return sd_world_get_shape2d(w, k, out);
     if (k >= w->shape_count)
         return SD_ERR_INPUT;
     const sd_shape *s = &w->shapes[k];
@@ -130,11 +166,15 @@ sd_status sd_world_get_shape(const sd_world *w, size_t k, sd_shape_info *out)
     out->center_of_mass.z = w->shape_com[k].z;
     out->rounding = (double)s->radius;
     out->vertex_count = s->vcount;
+    out->face_count = s->fcount;
+    out->overlap_face_limit = SD_OVERLAP_MAX_PLANES;
     return SD_OK;
 }
 
 sd_status sd_world_add_bodies(sd_world *w, size_t n, const sd_body_def *defs, sd_error *err)
 {
+    if (w->dim2)
+        return sd_world_add_bodies2d(w, n, defs, err);
     for (size_t k = 0; k < n; ++k) {
         const sd_body_def *d = &defs[k];
         if (d->shape < 0 || (size_t)d->shape >= w->shape_count)
@@ -182,6 +222,8 @@ sd_status sd_world_add_bodies(sd_world *w, size_t n, const sd_body_def *defs, sd
 
 size_t sd_world_narrow_stats(const sd_world *w, sd_narrow_stats *out, size_t max)
 {
+    if (w->dim2)
+        return sd_world_narrow_stats2d(w, out, max);
     size_t m = 0;
     for (int a = 0; a < SD_SHAPE_KIND_COUNT; ++a)
         for (int b = a; b < SD_SHAPE_KIND_COUNT; ++b) {
@@ -194,6 +236,8 @@ size_t sd_world_narrow_stats(const sd_world *w, sd_narrow_stats *out, size_t max
                 out[m].evaluations = t[0];
                 out[m].iterations = t[1];
                 out[m].support_calls = t[2];
+                out[m].contacts = 0;
+                out[m].contact_support_calls = 0;
             }
             ++m;
         }

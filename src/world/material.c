@@ -11,10 +11,79 @@
 #include <string.h>
 
 #include "core/alloc.h"
+#include "contact/law_volume.h"
 #include "core/error.h"
+#include "shape/shape_make.h"
+#include "grid/grid.h"
 #include "world/world.h"
 
 static double sd_mean(double a, double b) { return 0.5 * (a + b); }
+
+/* ---- damping of the volume laws (contact/law_volume.h) -------------------- */
+
+/* Normal force of the 1D model of a volume contact, in units where the
+ * elastic force is x^p and the mass 1: x^p plus the dashpot
+ * 2 zeta sqrt(F_e / x) x' of law_volume.h, never pulling (no tension). */
+static double sd_volume_model_force(double x, double v, double p, double zeta)
+{
+    if (x <= 0)
+        return 0;
+    double f = pow(x, p) + 2.0 * zeta * pow(x, 0.5 * (p - 1.0)) * v;
+    return f > 0 ? f : 0;
+}
+
+/* Rebound speed over impact speed of the 1D model (RK4). For p < 1 the
+ * dashpot diverges at x = 0 (integrably): the loss over the first 1e-7 is
+ * taken in closed form and the step is kept below the dashpot's time scale. */
+static double sd_volume_model_rebound(double p, double zeta)
+{
+    double q = 0.5 * (p + 1.0);
+    double x = 1e-7, v = 1.0 - 2.0 * zeta * pow(x, q) / q - pow(x, p + 1.0) / (p + 1.0);
+    double t = 0;
+    while (t < 60.0) {
+        double h = 2e-3;
+        if (p < 1 && zeta > 0)
+            h = fmin(h, 0.05 * pow(x, 0.5 * (1.0 - p)) / (2.0 * zeta));
+        h = fmax(h, 1e-9);
+        double k1x = v, k1v = -sd_volume_model_force(x, v, p, zeta);
+        double k2x = v + 0.5 * h * k1v, k2v = -sd_volume_model_force(x + 0.5 * h * k1x, k2x, p, zeta);
+        double k3x = v + 0.5 * h * k2v, k3v = -sd_volume_model_force(x + 0.5 * h * k2x, k3x, p, zeta);
+        double k4x = v + h * k3v, k4v = -sd_volume_model_force(x + h * k3x, k4x, p, zeta);
+        x += h / 6.0 * (k1x + 2 * k2x + 2 * k3x + k4x);
+        v += h / 6.0 * (k1v + 2 * k2v + 2 * k3v + k4v);
+        t += h;
+        if (x <= 0)
+            return v < 0 ? -v : 0;
+    }
+    return v < 0 ? -v : 0; /* still creeping out: e is ~0 at such damping */
+}
+
+/* zeta such that the 1D model of exponent p rebounds with e (bisection;
+ * the rebound falls as zeta grows). */
+static double sd_volume_calibrate_zeta(double e, double p)
+{
+    if (e >= 1.0)
+        return 0.0;
+    double lo = 0.0, hi = 0.5;
+    for (int k = 0; k < 60 && sd_volume_model_rebound(p, hi) > e; ++k)
+        hi *= 2.0;
+    for (int k = 0; k < 40; ++k) {
+        double mid = 0.5 * (lo + hi);
+        if (sd_volume_model_rebound(p, mid) > e)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+void sd_volume_zeta_table(double e, sd_real zeta[SD_VOLUME_ZETA_N])
+{
+    for (int k = 0; k < SD_VOLUME_ZETA_N; ++k)
+        zeta[k] = (sd_real)sd_volume_calibrate_zeta(e, (double)SD_VOLUME_P_MIN + k * (double)SD_VOLUME_P_STEP);
+}
+
+double sd_volume_rebound_model(double p, double zeta) { return sd_volume_model_rebound(p, zeta); }
 
 sd_status sd_world_mix_materials(sd_world *w, sd_error *err)
 {
@@ -23,6 +92,7 @@ sd_status sd_world_mix_materials(sd_world *w, sd_error *err)
     if (!mix)
         return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory");
     w->mix = mix;
+    w->has_volume_law = 0;
     for (size_t a = 0; a < nm; ++a)
         for (size_t b = 0; b < nm; ++b) {
             const sd_material_def *ma = &w->materials[a].def, *mb = &w->materials[b].def;
@@ -31,6 +101,10 @@ sd_status sd_world_mix_materials(sd_world *w, sd_error *err)
             double mur = sd_mean(ma->rolling_friction, mb->rolling_friction);
             double kn = (ma->stiffness > 0 && mb->stiffness > 0)
                             ? 2.0 * ma->stiffness * mb->stiffness / (ma->stiffness + mb->stiffness)
+                            : 0.0;
+            double kv = (ma->volume_stiffness > 0 && mb->volume_stiffness > 0)
+                            ? 2.0 * ma->volume_stiffness * mb->volume_stiffness /
+                                  (ma->volume_stiffness + mb->volume_stiffness)
                             : 0.0;
             /* viscous coefficients add like parallel dashpots halved, as k does */
             double eta = (ma->damping > 0 && mb->damping > 0) ? 2.0 * ma->damping * mb->damping / (ma->damping + mb->damping) : 0.0;
@@ -50,6 +124,8 @@ sd_status sd_world_mix_materials(sd_world *w, sd_error *err)
                     kn = it->def.stiffness;
                 if (it->def.damping >= 0)
                     eta = it->def.damping;
+                if (it->def.volume_stiffness > 0)
+                    kv = it->def.volume_stiffness;
                 if (it->def.law >= 0)
                     law = it->def.law;
             }
@@ -64,6 +140,26 @@ sd_status sd_world_mix_materials(sd_world *w, sd_error *err)
             p->kn = (sd_real)kn;
             p->eta = (sd_real)eta;
             p->kt_ratio = (sd_real)sd_mean(ma->tangential_stiffness_ratio, mb->tangential_stiffness_ratio);
+            /* volume laws: each body's own E and G enter eqs. 13 and 19 */
+            p->young_a = (sd_real)ma->youngs_modulus;
+            p->young_b = (sd_real)mb->youngs_modulus;
+            p->shear_a = (sd_real)(ma->youngs_modulus / (2.0 * (1.0 + ma->poisson_ratio)));
+            p->shear_b = (sd_real)(mb->youngs_modulus / (2.0 * (1.0 + mb->poisson_ratio)));
+            p->kv = (sd_real)kv;
+            if (law == SD_LAW_VOLUME || law == SD_LAW_VOLUME_LINEAR) {
+                w->has_volume_law = 1;
+                /* the calibration costs ~0.1 s: reuse it for an equal e */
+                int done = 0;
+                for (size_t q = 0; q < a * nm + b && !done; ++q) {
+                    const sd_pair_params *o = &mix[q];
+                    if ((o->law == SD_LAW_VOLUME || o->law == SD_LAW_VOLUME_LINEAR) && o->restitution == p->restitution) {
+                        memcpy(p->zeta, o->zeta, sizeof p->zeta);
+                        done = 1;
+                    }
+                }
+                if (!done)
+                    sd_volume_zeta_table(e, p->zeta);
+            }
             if (ma->youngs_modulus > 0 && mb->youngs_modulus > 0) {
                 double va = ma->poisson_ratio, vb = mb->poisson_ratio;
                 p->y_star = (sd_real)(1.0 / ((1 - va * va) / ma->youngs_modulus + (1 - vb * vb) / mb->youngs_modulus));
@@ -72,6 +168,46 @@ sd_status sd_world_mix_materials(sd_world *w, sd_error *err)
                 p->gt_over_gn = (sd_real)sqrt(4.0 * (double)p->g_star / (double)p->y_star);
             }
         }
+    return SD_OK;
+}
+
+/* The volume laws need the overlap volume, which exists for sharp polyhedra
+ * only (no rounding, no margin): a particle of any other shape whose
+ * material meets another one under a volume law is an error at prepare
+ * time, naming the shape and the two materials (no silent fallback). */
+static sd_status sd_world_check_volume_shapes(const sd_world *w, const char *used, sd_error *err)
+{
+    size_t nm = w->material_count;
+    const sd_particles *p = &w->p;
+    for (size_t k = 0; k < p->n; ++k) {
+        /* planar mode: shape indexes the 2D templates, none of them a polyhedron */
+        int a = p->material[k], s = w->dim2 ? -1 : p->shape[k];
+        int sharp = s >= 0 && w->shapes[s].kind == SD_SHAPE_POLYHEDRON && w->shapes[s].radius == 0;
+        if (sharp && w->shapes[s].fcount <= SD_OVERLAP_MAX_PLANES)
+            continue;
+        for (size_t b = 0; b < nm && b < 256; ++b) {
+            if (!used[b])
+                continue;
+            int law = w->mix[(size_t)a * nm + b].law;
+            if (law != SD_LAW_VOLUME && law != SD_LAW_VOLUME_LINEAR)
+                continue;
+            if (sharp) /* the overlap's fixed workspace (geom/overlap.h) holds this many faces per body */
+                return sd_error_set(err, SD_ERR_INPUT, "", 0, "contact_law",
+                                    "shape '%s' has %u faces, more than the %d the exact overlap volume of the %s "
+                                    "law takes (material '%s' meets '%s'); use fewer faces or another law",
+                                    w->shape_names[s], w->shapes[s].fcount, SD_OVERLAP_MAX_PLANES,
+                                    sd_contact_law_name((sd_contact_law)law), w->materials[a].name,
+                                    w->materials[b].name);
+            const char *what = s >= 0 ? w->shape_names[s] : (w->dim2 ? "(planar particle)" : "(plain sphere)");
+            const char *kind = s >= 0 ? sd_shape_kind_name(w->shapes[s].kind) : "sphere";
+            return sd_error_set(err, SD_ERR_INPUT, "", 0, "contact_law",
+                                "shape '%s' (%s%s, material '%s') meets material '%s' with the %s law, which "
+                                "needs sharp polyhedra (type polyhedron, no rounding or margin); give this pair "
+                                "another law (interactions[].contact_law: hertz_mindlin or linear)",
+                                what, kind, s >= 0 && w->shapes[s].radius > 0 ? ", rounded" : "",
+                                w->materials[a].name, w->materials[b].name, sd_contact_law_name((sd_contact_law)law));
+        }
+    }
     return SD_OK;
 }
 
@@ -84,9 +220,14 @@ sd_status sd_world_check_params(const sd_world *w, sd_error *err)
     for (size_t k = 0; k < w->p.n; ++k)
         if ((size_t)w->p.material[k] < sizeof used)
             used[w->p.material[k]] = 1;
+    char used_p[256]; /* by particles (walls need no modulus for the volume law) */
+    memcpy(used_p, used, sizeof used_p);
     for (size_t k = 0; k < w->wall_count; ++k)
         if ((size_t)w->walls[k].material < sizeof used)
             used[w->walls[k].material] = 1;
+    sd_status st = sd_world_check_volume_shapes(w, used, err);
+    if (st != SD_OK)
+        return st;
     for (size_t a = 0; a < nm && a < sizeof used; ++a)
         for (size_t b = a; b < nm && b < sizeof used; ++b) {
             if (!used[a] || !used[b])
@@ -97,6 +238,18 @@ sd_status sd_world_check_params(const sd_world *w, sd_error *err)
                                     "materials '%s' and '%s' meet with the linear law but no stiffness is set "
                                     "(set materials[].stiffness or interactions[].stiffness, N/m)",
                                     w->materials[a].name, w->materials[b].name);
+            if (p->law == SD_LAW_VOLUME_LINEAR && !(p->kv > 0))
+                return sd_error_set(err, SD_ERR_INPUT, "", 0, "volume_stiffness",
+                                    "materials '%s' and '%s' meet with the volume_linear law but no volume "
+                                    "stiffness is set (set materials[].volume_stiffness or "
+                                    "interactions[].volume_stiffness, N/m^3)",
+                                    w->materials[a].name, w->materials[b].name);
+            if (p->law == SD_LAW_VOLUME && (!(p->young_a > 0) || !(p->young_b > 0)) &&
+                (!(p->young_a > 0) ? used_p[a] : used_p[b]))
+                return sd_error_set(err, SD_ERR_INPUT, "", 0, "youngs_modulus",
+                                    "materials '%s' and '%s' meet with the volume law but a Young's modulus "
+                                    "is missing (set materials[].youngs_modulus, Pa)",
+                                    w->materials[a].name, w->materials[b].name);
             if (p->law == SD_LAW_HERTZ_MINDLIN && !(p->y_star > 0))
                 return sd_error_set(err, SD_ERR_INPUT, "", 0, "youngs_modulus",
                                     "materials '%s' and '%s' meet with the Hertz-Mindlin law but a Young's "
@@ -104,6 +257,41 @@ sd_status sd_world_check_params(const sd_world *w, sd_error *err)
                                     w->materials[a].name, w->materials[b].name);
         }
     return SD_OK;
+}
+
+/* Volume laws: a face landing flat, the stiffest contact (F = K d^p with
+ * p = 1/3, K = c A^(4/3), seed 000 eqs. 12-13; p = 1, K = k_V A for the
+ * linear law), of face area A = R^2 (R the bounding radius: a cube's face
+ * is 1.33 R^2, a dodecahedron's 0.88 R^2). c = E_a/R + E_b/R for two
+ * bodies, E_a/R against a wall (flat: R infinite). Undamped duration of a
+ * power-law impact at speed v:
+ *     2 (d_max / v) sqrt(pi) Gamma(1 + 1/q) / Gamma(1/2 + 1/q),
+ * q = p + 1, d_max = (q m v^2 / (2 K))^(1/q) (pi / omega for p = 1).
+ * For p = 1/3 it grows as v^(1/2): slow impacts are the shorter ones. */
+static double sd_volume_duration(const sd_pair_params *p, double m_star, double r, double v, int wall)
+{
+    double area = r * r;
+    double pw = p->law == SD_LAW_VOLUME ? 1.0 / 3.0 : 1.0;
+    double c = ((double)p->young_a + (wall ? 0.0 : (double)p->young_b)) / r;
+    double k = p->law == SD_LAW_VOLUME ? c * pow(area, 4.0 / 3.0) : (double)p->kv * area;
+    double q = pw + 1.0;
+    double dmax = pow(q * m_star * v * v / (2.0 * k), 1.0 / q);
+    return 2.0 * dmax / v * sqrt(SD_PI_D) * tgamma(1.0 + 1.0 / q) / tgamma(0.5 + 1.0 / q);
+}
+
+/* The volume law's face contact is stiffest at rest under a small load:
+ * F = K d^(1/3) has dF/dd = K^3 / (3 F^2), so a body of mass m resting on
+ * a face under its own weight (F = m g) vibrates at omega^2 = K^3 / (3
+ * (m g)^2 m). An explicit step needs omega dt < 2; the recommended step
+ * keeps omega dt <= 1. Above it lightly loaded resting contacts buzz with a
+ * small amplitude (the force-depth curve softens with depth, which bounds
+ * it) instead of settling; it is not a stability limit of the run. */
+static double sd_volume_rest_step(const sd_pair_params *p, double m, double r, double g)
+{
+    double k = (double)p->young_a / r * pow(r * r, 4.0 / 3.0); /* on a wall, face area R^2 */
+    double f = m * g;
+    double omega = sqrt(k * k * k / (3.0 * f * f * m));
+    return 1.0 / omega;
 }
 
 /* Contact duration of one contact between masses meeting at speed v. */
@@ -126,8 +314,8 @@ double sd_world_recommended_dt(const sd_world *w, double *contact_duration)
 {
     const sd_particles *p = &w->p;
     size_t nm = w->material_count;
-    double tc_min = INFINITY, rayleigh_min = INFINITY;
-    if (p->n == 0 || nm == 0) {
+    double tc_min = INFINITY, rayleigh_min = INFINITY, rest_min = INFINITY;
+    if ((p->n == 0 && !sd_grid_has_particles(w)) || nm == 0) {
         if (contact_duration)
             *contact_duration = INFINITY;
         return INFINITY;
@@ -156,6 +344,8 @@ double sd_world_recommended_dt(const sd_world *w, double *contact_duration)
         zlo = fmin(zlo, h);
         zhi = fmax(zhi, h);
     }
+    /* solver grid: its own particles and the ones it will pour (src/grid) */
+    sd_grid_dt_inputs(w, gdir, rmin, mmin, &vmax, &zlo, &zhi, &rsmall);
     double v = fmax(vmax, fmax(sqrt(2 * g * (zhi - zlo + 2 * rsmall)), 1e-3));
     for (size_t a = 0; a < nm && a < 256; ++a) {
         if (!isfinite(rmin[a]))
@@ -168,23 +358,29 @@ double sd_world_recommended_dt(const sd_world *w, double *contact_duration)
         }
         for (size_t b = 0; b < nm && b < 256; ++b) {
             const sd_pair_params *pp = &w->mix[a * nm + b];
-            if ((pp->law == SD_LAW_LINEAR && !(pp->kn > 0)) || (pp->law != SD_LAW_LINEAR && !(pp->y_star > 0)))
+            if ((pp->law == SD_LAW_LINEAR && !(pp->kn > 0)) || (pp->law == SD_LAW_HERTZ_MINDLIN && !(pp->y_star > 0)) ||
+                (pp->law == SD_LAW_VOLUME && !(pp->young_a > 0)) || (pp->law == SD_LAW_VOLUME_LINEAR && !(pp->kv > 0)))
                 continue;
             int wall_b = 0;
             for (size_t k = 0; k < w->wall_count; ++k)
                 wall_b |= w->walls[k].material == (int)b;
+            int vol = pp->law == SD_LAW_VOLUME || pp->law == SD_LAW_VOLUME_LINEAR;
+            if (pp->law == SD_LAW_VOLUME && g > 0 && isfinite(rmin[b]) && isfinite(mmin[a]))
+                rest_min = fmin(rest_min, sd_volume_rest_step(pp, mmin[a], fmin(rmin[a], rmin[b]), g));
             if (isfinite(rmin[b])) {
                 double ms = mmin[a] * mmin[b] / (mmin[a] + mmin[b]);
                 double rs = rmin[a] * rmin[b] / (rmin[a] + rmin[b]);
-                tc_min = fmin(tc_min, sd_contact_duration(pp, ms, rs, v));
+                tc_min = fmin(tc_min, vol ? sd_volume_duration(pp, ms, fmin(rmin[a], rmin[b]), v, 0)
+                                          : sd_contact_duration(pp, ms, rs, v));
             }
             if (wall_b)
-                tc_min = fmin(tc_min, sd_contact_duration(pp, mmin[a], rmin[a], v));
+                tc_min = fmin(tc_min, vol ? sd_volume_duration(pp, mmin[a], rmin[a], v, 1)
+                                          : sd_contact_duration(pp, mmin[a], rmin[a], v));
         }
     }
     if (contact_duration)
         *contact_duration = tc_min;
     /* resolve a contact in about 50 steps, and stay under 20 % of the
      * Rayleigh time for Hertz materials */
-    return fmin(tc_min / 50.0, 0.2 * rayleigh_min);
+    return fmin(fmin(tc_min / 50.0, 0.2 * rayleigh_min), rest_min);
 }

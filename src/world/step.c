@@ -16,6 +16,7 @@
 #include <math.h>
 
 #include "backend/cpu/loops.h"
+#include "backend/cpu/poly.h"
 #include "broad/cells.h"
 #include "core/error.h"
 #include "grid/grid.h"
@@ -39,10 +40,20 @@ static sd_status sd_world_pair_forces(sd_world *w, sd_error *err)
             return st;
     }
     sd_cpu_pair_forces(w);
+    if (w->dim2) { /* the planar mode: 2D shapes (2D GJK/EPA) and wall lines */
+        sd_cpu_convex2d_forces(w);
+        if (w->pairs.n > w->pairs.n_sphere)
+            sd_cpu_narrow2d_totals(w);
+        sd_cpu_wall_forces2d(w);
+        sd_cpu_wall_totals(w);
+        return SD_OK;
+    }
     sd_cpu_convex_forces(w);
     if (w->pairs.n > w->pairs.n_sphere)
         sd_cpu_narrow_totals(w);
     sd_cpu_wall_forces(w);
+    if (w->has_volume_law)
+        sd_cpu_poly_wall_forces(w); /* polyhedron walls under a volume law */
     sd_cpu_wall_totals(w);
     return SD_OK;
 }
@@ -96,15 +107,22 @@ sd_status sd_world_step(sd_world *w, long nsteps, sd_error *err)
         if (st != SD_OK)
             return st;
     }
-    if (nsteps > 0)
+    if (nsteps > 0) {
         sd_cpu_kick_drift(w);                        /* v(t + dt/2), x(t + dt) */
+        sd_status st = sd_world_walls_drift(w, w->time, err); /* moving walls to t + dt (servo.c) */
+        if (st != SD_OK)
+            return st;
+    }
     for (long s = 0; s < nsteps; ++s) {
         sd_status st = sd_world_pair_forces(w, err); /* per pair, at t + dt */
         if (st != SD_OK)
             return st;
-        if (s + 1 < nsteps)
+        if (s + 1 < nsteps) {
             sd_cpu_gather_kick_drift(w);             /* F, v(t + dt); next v(t + 3dt/2), x(t + 2dt) */
-        else
+            st = sd_world_walls_drift(w, w->time + (double)w->dt, err);
+            if (st != SD_OK)
+                return st;
+        } else
             sd_cpu_gather_kick(w);                   /* F(t + dt), v(t + dt) */
         w->step++;
         w->time = (double)w->step * (double)w->dt;

@@ -63,6 +63,7 @@ sd_interaction_def sd_interaction_def_default(void)
     d.rolling_friction = -1;
     d.stiffness = -1;
     d.damping = -1;
+    d.volume_stiffness = -1;
     d.law = -1;
     d.cookie = SD_COOKIE;
     return d;
@@ -149,9 +150,18 @@ sd_status sd_world_create(const sd_world_def *def, sd_world **out, sd_error *err
     *out = NULL;
     if (!def || def->cookie != SD_COOKIE)
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "", "world def not made by sd_world_def_default");
-    if (def->dimension != 3)
-        return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.dimension",
-                            "only dimension 3 is available (the planar mode is not built yet)");
+    if (def->dimension != 3 && def->dimension != 2)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.dimension", "expected 2 or 3, got %d",
+                            def->dimension);
+    if (def->dimension == 2 && def->gravity.z != 0)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.gravity",
+                            "dimension 2: gravity must lie in the x-y plane (z = 0), got z = %g", def->gravity.z);
+    if (def->dimension == 2 && def->solver == SD_SOLVER_GRID)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.solver",
+                            "dimension 2 runs on the cells solver only (the grid solver is for 3D spheres)");
+    if (!(def->local_damping >= 0 && def->local_damping < 1))
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.local_damping",
+                            "expected a local damping coefficient in [0, 1), got %g", def->local_damping);
     if (!(def->dt > 0) || !isfinite(def->dt))
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.dt", "expected a time step > 0, got %g", def->dt);
     if (def->law < 0 || def->law >= SD_LAW_COUNT)
@@ -165,6 +175,8 @@ sd_status sd_world_create(const sd_world_def *def, sd_world **out, sd_error *err
     w->threads = sd_pick_threads(def->threads);
     w->dt = (sd_real)def->dt;
     w->gravity = sd_v3((sd_real)def->gravity.x, (sd_real)def->gravity.y, (sd_real)def->gravity.z);
+    w->dim2 = def->dimension == 2;
+    w->local_damping = (sd_real)def->local_damping;
     *out = w;
     return SD_OK;
 }
@@ -185,6 +197,11 @@ void sd_world_destroy(sd_world *w)
     sd_free(w->shape_req);
     sd_free(w->shape_com);
     sd_free(w->verts);
+    sd_free(w->planes);
+    sd_free(w->dtris);
+    sd_free(w->shapes2d);
+    sd_free(w->shape2d_names);
+    sd_free(w->pool2d);
     sd_free(w);
 }
 
@@ -210,7 +227,7 @@ int sd_world_add_material(sd_world *w, const sd_material_def *d, sd_error *err)
         return -1;
     }
     if (d->youngs_modulus < 0 || d->friction < 0 || d->rolling_friction < 0 || d->stiffness < 0 || d->damping < 0 ||
-        !(d->tangential_stiffness_ratio > 0)) {
+        !(d->tangential_stiffness_ratio > 0) || d->volume_stiffness < 0) {
         sd_error_set(err, SD_ERR_INPUT, "", 0, "", "material '%s': moduli, stiffness and friction must be >= 0",
                      name);
         return -1;
@@ -277,6 +294,10 @@ sd_status sd_world_add_spheres(sd_world *w, size_t n, const sd_sphere_def *defs,
                                 d->material);
         if (!isfinite(d->position.x) || !isfinite(d->position.y) || !isfinite(d->position.z))
             return sd_error_set(err, SD_ERR_INPUT, "", 0, "position", "sphere %zu: position is not finite", k);
+        if (w->dim2 && (d->position.z != 0 || d->velocity.z != 0 || d->angular_velocity.x != 0 ||
+                        d->angular_velocity.y != 0))
+            return sd_error_set(err, SD_ERR_INPUT, "", 0, "position",
+                                "circle %zu: dimension 2 needs z = 0, velocity z = 0 and rotation about z only", k);
     }
     sd_particles *p = &w->p;
     if (sd_particles_reserve(p, p->n + n))
@@ -288,6 +309,11 @@ sd_status sd_world_add_spheres(sd_world *w, size_t n, const sd_sphere_def *defs,
         sd_real rho = (sd_real)w->materials[d->material].def.density;
         sd_real mass = rho * SD_R(4.0) / SD_R(3.0) * SD_PI * r * r * r;
         sd_real inertia = SD_R(0.4) * mass * r * r;
+        if (w->dim2) {
+            /* a circle, per unit thickness (1 m): m = rho pi r^2, polar moment m r^2 / 2 */
+            mass = rho * SD_PI * r * r;
+            inertia = SD_R(0.5) * mass * r * r;
+        }
         p->x[e] = sd_v3((sd_real)d->position.x, (sd_real)d->position.y, (sd_real)d->position.z);
         p->v[e] = sd_v3((sd_real)d->velocity.x, (sd_real)d->velocity.y, (sd_real)d->velocity.z);
         p->w[e] = sd_v3((sd_real)d->angular_velocity.x, (sd_real)d->angular_velocity.y,
@@ -327,6 +353,7 @@ static int sd_add_wall(sd_world *w, const sd_wall *proto, sd_error *err)
     }
     w->walls = wl;
     wl[w->wall_count] = *proto;
+    wl[w->wall_count].point_ref = proto->point;
     w->dirty = 1;
     w->prepared = 0;
     return (int)w->wall_count++;
@@ -339,6 +366,10 @@ int sd_world_add_plane(sd_world *w, const char *name, sd_v3d point, sd_v3d norma
     sd_vec3 nv = sd_v3((sd_real)normal.x, (sd_real)normal.y, (sd_real)normal.z);
     if (!(sd_v3_norm(nv) > 0)) {
         sd_error_set(err, SD_ERR_INPUT, "", 0, "normal", "plane normal must be non-zero");
+        return -1;
+    }
+    if (w->dim2 && normal.z != 0) {
+        sd_error_set(err, SD_ERR_INPUT, "", 0, "normal", "dimension 2: a plane wall is a line, its normal needs z = 0");
         return -1;
     }
     wl.kind = SD_WALL_PLANE;
@@ -358,6 +389,12 @@ int sd_world_add_box(sd_world *w, const char *name, sd_v3d lo, sd_v3d hi, unsign
         sd_error_set(err, SD_ERR_INPUT, "", 0, "max", "box max must exceed min on every axis");
         return -1;
     }
+    if (w->dim2 && !(lo.z < 0 && hi.z > 0)) {
+        sd_error_set(err, SD_ERR_INPUT, "", 0, "min", "dimension 2: a box must span z = 0 (its z faces are left out)");
+        return -1;
+    }
+    if (w->dim2)
+        open_faces |= SD_BOX_ZMIN | SD_BOX_ZMAX; /* the plane z = 0 has no z faces */
     wl.kind = SD_WALL_BOX;
     wl.lo = sd_v3((sd_real)lo.x, (sd_real)lo.y, (sd_real)lo.z);
     wl.hi = sd_v3((sd_real)hi.x, (sd_real)hi.y, (sd_real)hi.z);
@@ -370,7 +407,7 @@ int sd_world_add_box(sd_world *w, const char *name, sd_v3d lo, sd_v3d hi, unsign
 
 /* ---- queries ---------------------------------------------------------------------- */
 
-size_t sd_world_particle_count(const sd_world *w) { return w->p.n; }
+size_t sd_world_particle_count(const sd_world *w) { return sd_grid_particle_count(w) + w->p.n; }
 size_t sd_world_wall_count(const sd_world *w) { return w->wall_count; }
 long sd_world_step_count(const sd_world *w) { return w->step; }
 double sd_world_time(const sd_world *w) { return w->time; }
@@ -386,6 +423,10 @@ static sd_v3d sd_v3d_of(sd_vec3 v)
 sd_status sd_world_get_particle(const sd_world *w, size_t k, sd_particle_state *out)
 {
     const sd_particles *p = &w->p;
+    size_t gn = sd_grid_particle_count(w); /* solver grid: its own state first (src/grid) */
+    if (k < gn)
+        return sd_grid_get_particle(w, k, out);
+    k -= gn;
     if (k >= p->n)
         return SD_ERR_INPUT;
     out->id = p->id[k];
@@ -407,9 +448,12 @@ sd_status sd_world_get_particle(const sd_world *w, size_t k, sd_particle_state *
 
 size_t sd_world_find_particle(const sd_world *w, uint64_t id)
 {
+    size_t gk = sd_grid_find_particle(w, id), gn = sd_grid_particle_count(w);
+    if (gk != (size_t)-1)
+        return gk;
     for (size_t k = 0; k < w->p.n; ++k)
         if (w->p.id[k] == id)
-            return k;
+            return gn + k;
     return (size_t)-1;
 }
 

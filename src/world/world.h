@@ -16,6 +16,7 @@
 #include "contact/params.h"
 #include "core/quat.h"
 #include "shape/shape.h"
+#include "shape/shape2d.h"
 
 /* X(type, name, unit, meaning) — hot per-step fields first. */
 #define SD_PARTICLE_FIELDS(X)                                                           \
@@ -61,6 +62,13 @@ typedef struct sd_wall {
     unsigned open_faces;
     int material;
     sd_vec3 force, torque;  /* on the wall, last step */
+    /* motion (dynamics/servo.h, world/servo.c): prescribed or servo-controlled */
+    sd_wall_motion_def motion;
+    int moving;             /* a motion was set */
+    sd_vec3 velocity;       /* m/s, in use this step */
+    sd_vec3 point_ref;      /* m, point at the last pair-list rebuild */
+    sd_real stiffness;      /* N/m, sum of the normal stiffness of its contacts, last step */
+    sd_real servo_i;        /* m/s, integral term of the servo (dynamics/servo.h) */
 } sd_wall;
 
 /* Below this many particles the CPU loops run serially. */
@@ -68,6 +76,10 @@ typedef struct sd_wall {
 
 struct sd_world {
     sd_world_def def;
+    int dim2;              /* the planar mode (def.dimension == 2) */
+    sd_real local_damping; /* -, seed 002 local damping coefficient alpha */
+    int walls_moving;      /* some wall has a motion set */
+    sd_vec3 biaxial_ref;   /* m, reference (width, height) of the biaxial box; z = 1 once set */
     int threads;
     int parallel;          /* run the CPU loops on threads (decided at rebuilds) */
     sd_real dt;
@@ -85,6 +97,7 @@ struct sd_world {
     sd_interaction *interactions;
     /* mixed parameters, index (a * nm + b); walls use their own material */
     sd_pair_params *mix;
+    int has_volume_law;    /* some pair of materials uses a volume law (material.c) */
 
     size_t wall_count;
     sd_wall *walls;
@@ -97,9 +110,23 @@ struct sd_world {
     sd_vec3 *shape_com;       /* m, centre of mass in the frame the shape was given in */
     size_t vert_count;
     sd_vec3 *verts;
+    size_t plane_count;       /* polyhedron face planes (sd_shape fstart/fcount) */
+    sd_plane *planes;
+    size_t dtri_count;        /* polyhedron dual triangles (sd_shape tstart/tcount) */
+    sd_dtri *dtris;
     int has_shapes;           /* some particle is not a plain sphere */
     /* narrow-phase totals per pair of shape kinds (sorted), since creation */
     long long narrow[SD_SHAPE_KIND_COUNT][SD_SHAPE_KIND_COUNT][3];
+
+    /* planar mode: 2D shape templates and their pool of reals (shape/shape2d.h) */
+    size_t shape2d_count;
+    sd_shape2d *shapes2d;
+    char (*shape2d_names)[64];
+    size_t pool2d_count;
+    sd_real *pool2d;
+    /* 2D narrow-phase totals per pair of 2D kinds (sorted): evaluations,
+     * contacts among them, support calls, support calls of the contacts */
+    long long narrow2d[SD_SHAPE2D_KIND_COUNT][SD_SHAPE2D_KIND_COUNT][4];
 
     sd_pair_list pairs;       /* particle-particle candidates */
     sd_wall_pair_list wpairs; /* particle-wall candidates */
@@ -116,9 +143,27 @@ void sd_particles_free(sd_particles *p);
 /* Reorders every field: new[k] = old[perm[k]]; scratch holds n * 32 bytes. */
 void sd_particles_permute(sd_particles *p, const uint32_t *perm, void *scratch);
 
+/* servo.c: moves the walls that have a motion over one step starting at
+ * time t (fails when a servo wall has no opposite walls to measure its
+ * length); 1 when a wall moved more than half the skin since the last
+ * rebuild; marks the wall positions at a rebuild. */
+sd_status sd_world_walls_drift(sd_world *w, double t, sd_error *err);
+int sd_world_walls_moved(const sd_world *w);
+void sd_world_walls_mark(sd_world *w);
+
+/* bodies2d.c: the planar mode's halves of the shape and body functions of
+ * bodies.c (which call them when w->dim2). */
+sd_status sd_world_get_shape2d(const sd_world *w, size_t k, sd_shape_info *out);
+sd_status sd_world_add_bodies2d(sd_world *w, size_t n, const sd_body_def *defs, sd_error *err);
+size_t sd_world_narrow_stats2d(const sd_world *w, sd_narrow_stats *out, size_t max);
+
 /* material.c: fills w->mix; fails for a linear law without stiffness etc. */
 sd_status sd_world_mix_materials(sd_world *w, sd_error *err);
 /* Fails when a pair of materials that can meet lacks what its law needs. */
 sd_status sd_world_check_params(const sd_world *w, sd_error *err);
+/* Volume laws: the damping ratios zeta(e, p) of contact/law_volume.h, and
+ * the rebound of their 1D model (for tests). */
+void sd_volume_zeta_table(double e, sd_real zeta[SD_VOLUME_ZETA_N]);
+double sd_volume_rebound_model(double p, double zeta);
 
 #endif

@@ -159,5 +159,30 @@ int main(void)
         CHECK(p.position.z > 0.045);
         sd_world_destroy(w);
     }
+    /* an outlet that opens later (outlet.open_at): the particle over the
+     * hole rests on the floor until then, and leaves after */
+    {
+        sd_world *w = world(SD_SOLVER_GRID, 1e-4, -9.8, 1);
+        CHECK(sd_grid_set_outlet_at(w, 0.4, 0.6, 0.0, 1.0, 0.25, &err) == SD_OK);
+        add(w, 0.5, 0.5, 0.06, 0.05, 0, 0);
+        CHECK(sd_world_step(w, 2000, &err) == SD_OK); /* 0.2 s: still closed */
+        sd_grid_get_info(w, &gi);
+        CHECK(sd_world_particle_count(w) == 1 && gi.removed == 0 && !gi.outlet_open);
+        CHECK(sd_world_step(w, 3000, &err) == SD_OK); /* opens at 0.25 s */
+        sd_grid_get_info(w, &gi);
+        printf("outlet opening at 0.25 s: open %d, removed %zu through it, discharged mass %.4g kg\n", gi.outlet_open,
+               gi.removed_outlet, gi.removed_mass);
+        CHECK(gi.outlet_open && gi.removed_outlet == 1 && sd_world_particle_count(w) == 0);
+        double m1 = 2700 * 4.0 / 3.0 * 3.14159265358979 * 0.05 * 0.05 * 0.05;
+        CHECK_NEAR("discharged mass (kg), rho 4/3 pi R^3", gi.removed_mass, m1, 1e-9 * m1);
+        sd_world_destroy(w);
+    }
+    /* out-of-range opening time: an error value, nothing changed */
+    {
+        sd_world *w = world(SD_SOLVER_GRID, 1e-4, -9.8, 1);
+        CHECK(sd_grid_set_outlet_at(w, 0.4, 0.6, 0.0, 1.0, -1.0, &err) == SD_ERR_INPUT);
+        CHECK(sd_grid_set_outlet_at(w, 0.6, 0.4, 0.0, 1.0, 0.0, &err) == SD_ERR_INPUT);
+        sd_world_destroy(w);
+    }
     return sd_test_summary();
 }

@@ -762,6 +762,12 @@ typedef struct bad_case {
     "particles:\n  - generator: list\n    material: glass\n    spheres:\n"                          \
     "      - {position: [0, 0, 0.01], radius: 0.001}\n"                                             \
     "      - {position: [0.003, 0, 0.01], radius: 0.001}\n" /* 8-13 */
+/* the planar mode: two lines after SIM, and circles at z = 0 */
+#define P2 "  dimension: 2\n  gravity: [0, -9.81, 0]\n" /* 4-5, MAT 6-9 */
+#define PARTS2                                                                                     \
+    "particles:\n  - generator: list\n    material: glass\n    spheres:\n"                          \
+    "      - {position: [0, 0, 0], radius: 0.001}\n"                                                 \
+    "      - {position: [0.003, 0, 0], radius: 0.001}\n" /* 10-15 (after shapes: 2 lines later each) */
 
 /* One box shape, lines 8-9, for the shape cases. */
 #define CUBE "shapes:\n  - {name: cube, type: box, size: 0.001}\n"
@@ -795,8 +801,50 @@ static const bad_case bad_cases[] = {
      "simulation.steps", "expected an integer >= 0, got 2.5", 0},
     {"duplicate key", "simulation:\n  dt: 1e-6\n  dt: 2e-6\n  steps: 1\n" MAT PARTS, NULL, 3,
      "simulation.dt", "duplicate key", 0},
-    {"planar mode", SIM "  dimension: 2\n" MAT PARTS, NULL, 4, "simulation.dimension",
-     "planar mode not available yet", 0},
+    {"planar mode, default gravity", SIM "  dimension: 2\n" MAT PARTS, NULL, 1, "simulation.gravity",
+     "dimension 2 needs gravity in the x-y plane", 0},
+    {"dimension 4", SIM "  dimension: 4\n" MAT PARTS, NULL, 4, "simulation.dimension", "expected 2 or 3, got 4", 0},
+    {"local damping 1", SIM "  local_damping: 1\n" MAT PARTS, NULL, 4, "simulation.local_damping",
+     "expected a coefficient in [0, 1)", 0},
+    {"circle in 3D", SIM MAT "shapes:\n  - name: a\n    type: circle\n    radius: 0.001\n" PARTS, NULL, 10,
+     "shapes[0].type", "is planar (2D), but simulation.dimension is 3", 0},
+    {"planar scene", SIM P2 MAT
+     "shapes:\n  - name: e\n    type: ellipse\n    axes: [0.0012, 0.0008]\n"
+     "  - name: f\n    type: fourier\n    fourier_a: [0.002, 0, 0.0001]\n    fourier_b: [0, 0.00005]\n"
+     "  - name: b\n    type: polybezier\n    rounding: 0.0001\n"
+     "    points: [[0.001, 0], [0.001, 0.0005], [0.0005, 0.001], [0, 0.001], [-0.0005, 0.001], [-0.001, 0.0005],\n"
+     "             [-0.001, 0], [-0.001, -0.0005], [-0.0005, -0.001], [0, -0.001], [0.0005, -0.001], [0.001, -0.0005]]\n"
+     "particles:\n  - generator: list\n    material: glass\n    spheres:\n"
+     "      - {position: [0, 0.002, 0], radius: 0.001}\n      - {position: [0.003, 0.002, 0], shape: e}\n"
+     "      - {position: [0.006, 0.002, 0], shape: f}\n      - {position: [0.009, 0.002, 0], shape: b}\n"
+     "walls:\n  - {type: plane, material: glass, point: [0, 0, 0], normal: [0, 1, 0]}\n"
+     "  - {name: top, type: plane, material: glass, point: [0, 0.01, 0], normal: [0, -1, 0], servo_stress: 1000}\n"
+     "  - {type: plane, material: glass, point: [-0.002, 0, 0], normal: [1, 0, 0], velocity: [0.1, 0, 0], "
+     "move_start: 0.001, move_end: 0.002}\n"
+     "  - {type: plane, material: glass, point: [0.011, 0, 0], normal: [-1, 0, 0]}\n",
+     NULL, 0, "", "", 0},
+    {"box shape in 2D", SIM P2 MAT "shapes:\n  - name: a\n    type: box\n    size: 0.001\n" PARTS2, NULL, 12,
+     "shapes[0].type", "is 3D, but simulation.dimension is 2", 0},
+    {"non-convex Fourier shape", SIM P2 MAT "shapes:\n  - name: f\n    type: fourier\n    fourier_a: [0.002, 0, 0.001]\n"
+     PARTS2, NULL, 11, "shapes[0]", "conve", 0},
+    {"polybezier of 4 points", SIM P2 MAT "shapes:\n  - name: b\n    type: polybezier\n"
+     "    points: [[0, 0], [1, 0], [1, 1], [0, 1]]\n" PARTS2, NULL, 13, "shapes[0].points", "3m control points", 0},
+    {"fourier_b too long", SIM P2 MAT "shapes:\n  - name: f\n    type: fourier\n    fourier_a: [0.002, 0]\n"
+     "    fourier_b: [0, 0]\n" PARTS2, NULL, 14, "shapes[0].fourier_b", "one fewer than fourier_a", 0},
+    {"ellipse axes of 3", SIM P2 MAT "shapes:\n  - name: e\n    type: ellipse\n    axes: [1, 1, 1]\n" PARTS2, NULL, 13,
+     "shapes[0].axes", "expected a list of 2 numbers", 0},
+    {"plane normal out of the plane", SIM P2 MAT PARTS2 "walls:\n  - type: plane\n    material: glass\n"
+     "    point: [0, 0, 0]\n    normal: [0, 1, 1]\n", NULL, 17, "walls[0].normal", "normal needs z = 0", 0},
+    {"servo ends before it starts", SIM P2 MAT PARTS2 "walls:\n  - type: plane\n    material: glass\n"
+     "    point: [0, -0.01, 0]\n    normal: [0, 1, 0]\n    servo_stress: 1000\n    servo_start: 2\n"
+     "    servo_end: 1\n", NULL, 23, "walls[0].servo_end", "expected servo_end > servo_start", 0},
+    {"servo on a box", SIM P2 MAT PARTS2 "walls:\n  - type: box\n    material: glass\n"
+     "    min: [-1, -1, -1]\n    max: [1, 1, 1]\n    servo_stress: 1000\n", NULL, 21, "walls[0].servo_stress",
+     "does not apply to a box wall", 0},
+    {"wall velocity out of the plane", SIM P2 MAT PARTS2 "walls:\n  - type: plane\n    material: glass\n"
+     "    point: [0, -0.01, 0]\n    normal: [0, 1, 0]\n    velocity: [0, 0, 1]\n", NULL, 21, "walls[0].velocity",
+     "velocity with z = 0", 0},
+    {"3D sphere position in 2D", SIM P2 MAT PARTS, NULL, 14, "particles[0].spheres[0]", "plane z = 0", 0},
     {"gravity of length 2", SIM "  gravity: [0, -9.81]\n" MAT PARTS, NULL, 4, "simulation.gravity",
      "expected a list of 3 numbers", 0},
     {"unknown contact law", SIM "  contact_law: hooke\n" MAT PARTS, NULL, 4,
@@ -874,7 +922,10 @@ static const bad_case bad_cases[] = {
                                                   "    max: [0.0035, 0.002, 0.02]\n    material: glass\n",
      NULL, 13, "particles[0].spheres[1]", "closed xmax face", 0},
     {"unknown shape type", SIM MAT "shapes:\n  - name: a\n    type: torus\n" PARTS, NULL, 10,
-     "shapes[0].type", "expected one of sphere, box, cylinder, cone, ellipsoid, polyhedron, got torus", 0},
+     "shapes[0].type",
+     "expected one of sphere, box, cylinder, cone, ellipsoid, polyhedron, circle, ellipse, polygon, polybezier, "
+     "fourier, got torus",
+     0},
     {"shape without a size", SIM MAT "shapes:\n  - name: cube\n    type: box\n" PARTS, NULL, 9,
      "shapes[0].size", "missing required key 'size'", 0},
     {"cylinder with diameter only", SIM MAT "shapes:\n  - name: rod\n    type: cylinder\n"

@@ -179,7 +179,7 @@ static void check_shape(const char *label, sd_shape s, double res, sd_rng *rng)
     sd_quat q = sd_quat_normalize(sd_quat_make(sd_rng_range(rng, -1, 1), sd_rng_range(rng, -1, 1),
                                                sd_rng_range(rng, -1, 1), sd_rng_range(rng, -1, 1)));
     sd_vec3 x = sd_v3(sd_rng_range(rng, -5, 5), sd_rng_range(rng, -5, 5), sd_rng_range(rng, -5, 5));
-    sd_convex body = {&s, pool, x, q};
+    sd_convex body = {&s, pool, x, q, NULL, NULL};
     for (int k = 0; k < 200 + 6; ++k) {
         sd_vec3 d = k < 200 ? rand_dir(rng)
                             : sd_v3(k == 200   ? 1

@@ -10,10 +10,12 @@
  * amplify them past 1e-9 whatever the solvers; over 0.2 s they stay ~1e-12).
  *  1. over the first 1,000 steps, while no two particles compete for a cell,
  *     every position agrees to 1e-9 relative to the box size and every
- *     velocity to 1e-9 relative to the fastest particle;
+ *     velocity to 1e-9 relative to the fastest particle, and the force each
+ *     solver reports on the box wall agrees to 1e-9 of the bed's weight;
  *  2. after settling, both packings have the same packing fraction within 1 %;
- *  3. the grid solver reports no conflicts, no lost particle, and the same
- *     bits with 1 and 2 threads.
+ *  3. the grid solver reports no conflicts, no lost particle, no contact
+ *     without a history slot, and the same bits with 1 and 2 threads (its
+ *     loops forced threaded: this scene is below SD_GRID_PARALLEL_MIN).
  */
 #include <string.h>
 
@@ -133,6 +135,22 @@ int main(void)
     CHECK_NEAR("max velocity difference / fastest speed", ev / vmax, 0.0, 1e-9);
     CHECK(gi.conflicts == 0);
     CHECK(sc.contacts == sg.contacts && sc.wall_contacts == sg.wall_contacts);
+    /* the force on each wall, reported by both solvers (sd_world_get_wall:
+     * stats.csv and summary.txt read the same), against the bed's weight
+     * as the scale */
+    double weight = 0;
+    for (int id = 0; id < n; ++id)
+        weight += get(wc, (uint64_t)id).mass * 9.81;
+    for (size_t k = 0; k < sd_world_wall_count(wc); ++k) {
+        sd_wall_info a, b;
+        sd_world_get_wall(wc, k, &a);
+        sd_world_get_wall(wg, k, &b);
+        double df = fabs(a.force.x - b.force.x) + fabs(a.force.y - b.force.y) + fabs(a.force.z - b.force.z);
+        printf("wall %zu force: cells (%.6g, %.6g, %.6g) N, grid (%.6g, %.6g, %.6g) N\n", k, a.force.x, a.force.y,
+               a.force.z, b.force.x, b.force.y, b.force.z);
+        CHECK_NEAR("wall force difference / bed weight", df / weight, 0.0, 1e-9);
+        CHECK(fabs(a.force.z) + fabs(b.force.z) > 0); /* the floor carries load by now */
+    }
 
     /* 2. settle (1.8 s in all) and compare the packings */
     sd_test_require(sd_world_step(wc, 8000, &err) == SD_OK, "cells settle", &err);
@@ -144,14 +162,17 @@ int main(void)
            sg.kinetic_translational);
     CHECK_REL("packing fraction, grid vs cells", pg, pc, 0.01);
     sd_grid_get_info(wg, &gi);
-    printf("grid: cell %.3g m, reach %d, %ld x %ld x %ld cells, conflicts %ld, slot overflows %ld, removed %zu\n",
-           gi.cell, gi.reach, gi.nx, gi.ny, gi.nz, gi.conflicts, gi.slot_overflows, gi.removed);
+    printf("grid: cell %.3g m, reach %d, %ld x %ld x %ld cells, conflicts %ld, slot overflows %ld (most slots "
+           "held by one particle %d of %d), removed %zu, solver bytes %zu (%.0f per particle)\n",
+           gi.cell, gi.reach, gi.nx, gi.ny, gi.nz, gi.conflicts, gi.slot_overflows, gi.slots_used_max, SD_GRID_SLOTS,
+           gi.removed, gi.bytes, (double)gi.bytes / (double)n);
     CHECK(sd_world_particle_count(wg) == (size_t)n && gi.removed == 0);
     CHECK(gi.slot_overflows == 0);
 
-    /* 3. the same bits with 1 and 2 threads (500 steps, 1,000 particles in
-     * parallel loops: above SD_PARALLEL_MIN_PARTICLES) */
+    /* 3. the same bits with 1 and 2 threads (500 steps, the 2-thread world's
+     * loops threaded although it is below SD_GRID_PARALLEL_MIN) */
     sd_world *w1 = make(SD_SOLVER_GRID, 1), *w2 = make(SD_SOLVER_GRID, 2);
+    sd_test_require(sd_grid_set_parallel_min(w2, 1) == SD_OK, "threaded loops", &err);
     sd_world_step(w1, 500, &err);
     sd_world_step(w2, 500, &err);
     int same = 1;

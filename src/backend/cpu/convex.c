@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "backend/cpu/loops.h"
+#include "backend/cpu/poly.h"
 
 #include "contact/pair_convex.h"
 
@@ -24,6 +25,8 @@ static sd_convex sd_convex_of(const sd_world *w, size_t k, sd_shape *tmp)
         c.shape = tmp;
     }
     c.verts = w->verts;
+    c.planes = w->planes;
+    c.dtris = w->dtris;
     c.x = p->x[k];
     c.q = p->q[k];
     return c;
@@ -43,8 +46,16 @@ void sd_cpu_convex_forces(sd_world *w)
     sd_pair_list *l = &w->pairs;
     size_t n0 = l->n_sphere, n = l->n, nm = w->material_count;
     sd_real dt = w->dt;
-SD_PARALLEL_FOR_DYNAMIC
+SD_PRAGMA(omp parallel num_threads(w->threads) if (w->parallel))
+    {
+    /* one overlap workspace per thread, for the volume-law pairs (poly.c) */
+    sd_overlap_workspace ws;
+SD_PRAGMA(omp for schedule(dynamic, 64))
     for (size_t e = n0; e < n; ++e) {
+        if (w->has_volume_law && sd_cpu_pair_is_volume(w, e)) {
+            sd_cpu_poly_pair(w, e, &ws);
+            continue;
+        }
         uint32_t i = l->i[e], j = l->j[e];
         sd_shape si, sj;
         sd_convex ci = sd_convex_of(w, i, &si), cj = sd_convex_of(w, j, &sj);
@@ -64,6 +75,7 @@ SD_PARALLEL_FOR_DYNAMIC
         l->energy[e] = r.energy;
         l->iters[e] = ns.iterations;
         l->supports[e] = ns.supports;
+    }
     }
 }
 

@@ -4,6 +4,7 @@
  * result is the same bits for any number of threads (DESIGN.md rule 4).
  */
 #include "backend/cpu/loops.h"
+#include "backend/cpu/poly.h"
 
 #include "contact/pair.h"
 #include "contact/pair_convex.h"
@@ -48,16 +49,30 @@ static int sd_wall_feature_plane(const sd_wall *wl, int face, sd_vec3 x, sd_vec3
     return 1;
 }
 
-/* Half kick of particle k with its current force and torque. */
+/* Half kick of particle k with its current force and torque: the planar
+ * mode, local damping (seed 002) or the plain 3D kick. The branch is the
+ * same for every particle of a world, so it costs nothing in the loop. */
 static SD_HOT void sd_kick_one(sd_particles *p, size_t k, sd_vec3 g, sd_real h)
 {
     sd_integrate_kick(&p->v[k], &p->w[k], p->q[k], p->f[k], p->t[k], p->inv_mass[k], p->inv_inertia[k], g, h);
 }
 
-/* Half kick then drift of particle k (a fixed body does not move). */
-static SD_HOT void sd_kick_drift_one(sd_particles *p, size_t k, sd_vec3 g, sd_real h, sd_real dt)
+static SD_HOT void sd_kick_any(const sd_world *w, sd_particles *p, size_t k, sd_vec3 g, sd_real h)
 {
-    sd_kick_one(p, k, g, h);
+    if (w->dim2)
+        sd_integrate_kick2d(&p->v[k], &p->w[k], p->f[k], p->t[k], p->inv_mass[k], p->inv_inertia[k].z, g, h,
+                            w->local_damping);
+    else if (w->local_damping > SD_R(0.0))
+        sd_integrate_kick_damped(&p->v[k], &p->w[k], p->q[k], p->f[k], p->t[k], p->inv_mass[k], p->inv_inertia[k],
+                                 g, h, w->local_damping);
+    else
+        sd_kick_one(p, k, g, h);
+}
+
+/* Half kick then drift of particle k (a fixed body does not move). */
+static SD_HOT void sd_kick_drift_one(const sd_world *w, sd_particles *p, size_t k, sd_vec3 g, sd_real h, sd_real dt)
+{
+    sd_kick_any(w, p, k, g, h);
     if (p->inv_mass[k] > 0)
         sd_integrate_drift(&p->x[k], &p->q[k], p->v[k], p->w[k], dt);
 }
@@ -70,7 +85,7 @@ void sd_cpu_kick_drift(sd_world *w)
     sd_vec3 g = w->gravity;
 SD_PARALLEL_FOR
     for (size_t k = 0; k < n; ++k)
-        sd_kick_drift_one(p, k, g, h, dt);
+        sd_kick_drift_one(w, p, k, g, h, dt);
 }
 
 void sd_cpu_kick(sd_world *w)
@@ -81,7 +96,7 @@ void sd_cpu_kick(sd_world *w)
     sd_vec3 g = w->gravity;
 SD_PARALLEL_FOR
     for (size_t k = 0; k < n; ++k)
-        sd_kick_one(p, k, g, h);
+        sd_kick_any(w, p, k, g, h);
 }
 
 void sd_cpu_pair_forces(sd_world *w)
@@ -123,9 +138,14 @@ void sd_cpu_wall_forces(sd_world *w)
     sd_real dt = w->dt;
 SD_PARALLEL_FOR
     for (size_t e = 0; e < n; ++e) {
+        if (w->has_volume_law && sd_cpu_wall_pair_is_volume(w, e))
+            continue; /* polyhedra under a volume law: poly.c */
         uint32_t i = l->i[e];
         const sd_wall *wl = &w->walls[l->wall[e]];
         sd_body a = sd_body_of(p, i);
+        /* a moving wall (servo.c): the law sees only the relative velocity,
+         * so the body's velocity is taken relative to the wall */
+        a.v = sd_v3_sub(a.v, wl->velocity);
         sd_contact_geom g;
         int touching;
         sd_real r_star = a.radius;
@@ -134,6 +154,8 @@ SD_PARALLEL_FOR
             sd_convex c;
             c.shape = &w->shapes[p->shape[i]];
             c.verts = w->verts;
+            c.planes = w->planes;
+            c.dtris = w->dtris;
             c.x = a.x;
             c.q = p->q[i];
             sd_vec3 p0, nw;
@@ -201,11 +223,11 @@ void sd_cpu_gather_kick_drift(sd_world *w)
 SD_PARALLEL_FOR
     for (size_t k = 0; k < n; ++k) {
         sd_gather_one(w, k, &p->f[k], &p->t[k]);
-        sd_kick_one(p, k, g, h); /* end of this step: v(t + dt) */
+        sd_kick_any(w, p, k, g, h); /* end of this step: v(t + dt) */
         /* start of the next: the same kick again, then the drift (a particle
          * may move before the others are gathered: gathering reads only the
          * pair forces, never another particle's state) */
-        sd_kick_drift_one(p, k, g, h, dt);
+        sd_kick_drift_one(w, p, k, g, h, dt);
     }
 }
 
@@ -218,7 +240,7 @@ void sd_cpu_gather_kick(sd_world *w)
 SD_PARALLEL_FOR
     for (size_t k = 0; k < n; ++k) {
         sd_gather_one(w, k, &p->f[k], &p->t[k]);
-        sd_kick_one(p, k, g, h);
+        sd_kick_any(w, p, k, g, h);
     }
 }
 

@@ -42,6 +42,11 @@ void sd_cpu_gather_kick(sd_world *w);
  * the next step, in one pass (the same operations in the same order as the
  * separate loops, so the same bits). */
 void sd_cpu_gather_kick_drift(sd_world *w);
+/* Planar mode (pairs2d.c): pairs that involve a 2D shape template, their
+ * narrow-phase statistics, and every particle against the walls. */
+void sd_cpu_convex2d_forces(sd_world *w);
+void sd_cpu_narrow2d_totals(sd_world *w);
+void sd_cpu_wall_forces2d(sd_world *w);
 /* Total force and torque on each wall, summed in pair order. */
 void sd_cpu_wall_totals(sd_world *w);
 
