@@ -94,54 +94,42 @@ typedef struct sd_overlap {
 /* A hint must lie this far (relative to L) inside every plane to skip GJK. */
 #define SD_OVERLAP_HINT_REL SD_R(1e-9)
 
+/* Triangle and plane indices in the workspace (MAX_TRIS <= 65535). */
+typedef uint16_t sd_ovl_idx;
+
+/* One dual triangle of the hull being built: its planes, its neighbours and
+ * the edge of each neighbour that leads back (as sd_dtri). */
+typedef struct sd_ovl_tri {
+    sd_ovl_idx f[3];
+    sd_ovl_idx nb[3];
+    uint8_t nk[3];
+} sd_ovl_tri;
+
 typedef struct sd_overlap_workspace {
     /* planes, world orientation, offsets relative to x_A: A's first, then B's */
     sd_vec3 pn[SD_OVERLAP_MAX_DUAL];
     sd_real ph[SD_OVERLAP_MAX_DUAL];
     unsigned char shared[SD_OVERLAP_MAX_DUAL]; /* coincides with a plane of the other body */
-    unsigned char done[SD_OVERLAP_MAX_DUAL];   /* face already summed (output pass) */
+    unsigned char done[SD_OVERLAP_MAX_DUAL];   /* face present (output pass) */
+    int hmark[SD_OVERLAP_MAX_DUAL];            /* g + 1: already a horizon vertex while inserting g */
     int order[SD_OVERLAP_MAX_DUAL];            /* B's planes in insertion order */
-    /* dual triangles: vertex (relative to x_A), planes, neighbours */
+    sd_real fa[SD_OVERLAP_MAX_DUAL];           /* output pass: twice the signed area of each face */
+    sd_vec3 fm[SD_OVERLAP_MAX_DUAL];           /* output pass: six times its first moment about m, less the o_p part */
+    /* dual triangles, slots [0, nlive) all live (kept compact): vertex
+     * (relative to x_A), planes and neighbours */
     sd_vec3 w[SD_OVERLAP_MAX_TRIS];
     sd_real s[SD_OVERLAP_MAX_TRIS]; /* signed distance beyond the plane being inserted */
-    int f[SD_OVERLAP_MAX_TRIS][3];
-    int nb[SD_OVERLAP_MAX_TRIS][3];
-    unsigned char state[SD_OVERLAP_MAX_TRIS]; /* 0 free, 1 live, 2 visible */
-    int free_next[SD_OVERLAP_MAX_TRIS];
-    int hor_t[3 * SD_OVERLAP_MAX_TRIS], hor_e[3 * SD_OVERLAP_MAX_TRIS]; /* up to 3 per visible triangle */
-    int vis[SD_OVERLAP_MAX_TRIS];
-    int ha[SD_OVERLAP_MAX_TRIS], hb[SD_OVERLAP_MAX_TRIS], hu[SD_OVERLAP_MAX_TRIS]; /* horizon loop edges */
-    sd_vec3 hw[SD_OVERLAP_MAX_TRIS];                                               /* their new vertices */
-    int newt[SD_OVERLAP_MAX_TRIS];
-    int nslots, free_head, nlive;
+    sd_ovl_tri tri[SD_OVERLAP_MAX_TRIS];
+    sd_ovl_idx vis[SD_OVERLAP_MAX_TRIS]; /* visible triangles, ascending */
+    /* the horizon loop: new triangles (planes, kept neighbour and its edge) and their vertices */
+    sd_ovl_tri ht[SD_OVERLAP_MAX_TRIS];
+    sd_vec3 hw[SD_OVERLAP_MAX_TRIS];
+    sd_ovl_idx hslot[SD_OVERLAP_MAX_TRIS];
+    int nlive;
 } sd_overlap_workspace;
 
 /* internal result of one build attempt */
 enum { SD_OVL_BUILT = 0, SD_OVL_EMPTY, SD_OVL_INCONSISTENT, SD_OVL_FULL };
-
-SD_HD static SD_INLINE int sd_overlap_tri_new(sd_overlap_workspace *ws)
-{
-    int t;
-    if (ws->free_head >= 0) {
-        t = ws->free_head;
-        ws->free_head = ws->free_next[t];
-    } else {
-        if (ws->nslots >= SD_OVERLAP_MAX_TRIS)
-            return -1;
-        t = ws->nslots++;
-    }
-    ws->state[t] = 1;
-    ws->nlive++;
-    return t;
-}
-
-SD_HD static SD_INLINE void sd_overlap_tri_free(sd_overlap_workspace *ws, int t)
-{
-    ws->state[t] = 0;
-    ws->free_next[t] = ws->free_head;
-    ws->free_head = t;
-    ws->nlive--;
-}
 
 SD_HD static SD_INLINE int sd_overlap_next(int k)
 {
@@ -149,24 +137,25 @@ SD_HD static SD_INLINE int sd_overlap_next(int k)
 }
 
 /* Inserts plane g (Algorithm V in the primal form of the predicate):
- * marks the visible dual triangles (vertices beyond g), orders the edges
+ * marks the visible dual triangles (vertices beyond g), walks the edges
  * between visible and kept triangles into the horizon loop, and replaces
- * the visible triangles by a fan from the horizon to g. */
+ * the visible triangles by a fan from the horizon to g. The live
+ * triangles stay in slots [0, nlive): the fan reuses the visible slots,
+ * appends what it needs more, and the last live triangles fill the slots
+ * left over (their neighbours' links follow through the twin edges). */
 SD_HD static SD_INLINE int sd_overlap_insert(sd_overlap_workspace *ws, int g, int na, sd_real eps)
 {
     const sd_vec3 n = ws->pn[g];
     const sd_real h = ws->ph[g];
+    const int nlive = ws->nlive;
     int nv = 0, near = 0;
-    /* branch-free: free slots (state 0) hold stale but finite vertices, are
-     * measured too and never marked */
-    for (int t = 0; t < ws->nslots; ++t) {
+    /* branch-free; "visible" is s > eps, here and below */
+    for (int t = 0; t < nlive; ++t) {
         sd_real s = sd_v3_dot(n, ws->w[t]) - h;
-        int live = ws->state[t] != 0, beyond = live & (s > eps);
         ws->s[t] = s;
-        ws->state[t] = (unsigned char)(ws->state[t] + beyond);
-        ws->vis[nv] = t;
-        nv += beyond;
-        near |= live & (s >= -eps);
+        ws->vis[nv] = (sd_ovl_idx)t;
+        nv += s > eps;
+        near |= s >= -eps;
     }
     if (nv == 0) {
         /* cuts nothing. Touching the polytope: is it one of A's planes
@@ -179,79 +168,97 @@ SD_HD static SD_INLINE int sd_overlap_insert(sd_overlap_workspace *ws, int g, in
                 }
         return SD_OVL_BUILT;
     }
-    if (nv == ws->nlive)
+    if (nv == nlive)
         return SD_OVL_EMPTY; /* every vertex beyond g: A ∩ B is empty */
-    /* horizon: edges from a visible triangle to a kept one */
-    int nhor = 0;
+    /* horizon: edges from a visible triangle to a kept one; the first (in
+     * slot order) starts the loop */
+    int nhor = 0, t0 = -1, k0 = 0;
     for (int i = 0; i < nv; ++i) {
-        int t = ws->vis[i];
+        const sd_ovl_tri *tr = &ws->tri[ws->vis[i]];
         for (int k = 0; k < 3; ++k) {
-            ws->hor_t[nhor] = t;
-            ws->hor_e[nhor] = k;
-            nhor += ws->state[ws->nb[t][k]] != 2;
+            int kept = !(ws->s[tr->nb[k]] > eps);
+            if (kept && t0 < 0) {
+                t0 = ws->vis[i];
+                k0 = k;
+            }
+            nhor += kept;
         }
     }
     if (nhor < 3)
         return SD_OVL_INCONSISTENT;
-    if (nhor > SD_OVERLAP_MAX_TRIS)
-        return SD_OVL_FULL; /* more new triangles than slots, whatever is freed */
-    /* one closed loop: each edge a -> b is followed by the only edge that
-     * starts at b. A second loop or a pinched vertex (the visible set is
-     * not a disc: rounding on nearly degenerate input) is refused. */
-    for (int e = 0; e + 1 < nhor; ++e) {
-        int b = ws->f[ws->hor_t[e]][sd_overlap_next(ws->hor_e[e])];
-        int found = -1;
-        for (int c = e + 1; c < nhor; ++c)
-            if (ws->f[ws->hor_t[c]][ws->hor_e[c]] == b) {
-                if (found >= 0)
-                    return SD_OVL_INCONSISTENT;
-                found = c;
-            }
-        if (found < 0)
-            return SD_OVL_INCONSISTENT;
-        int tt = ws->hor_t[e + 1], te = ws->hor_e[e + 1];
-        ws->hor_t[e + 1] = ws->hor_t[found];
-        ws->hor_e[e + 1] = ws->hor_e[found];
-        ws->hor_t[found] = tt;
-        ws->hor_e[found] = te;
-    }
-    if (ws->f[ws->hor_t[nhor - 1]][sd_overlap_next(ws->hor_e[nhor - 1])] != ws->f[ws->hor_t[0]][ws->hor_e[0]])
-        return SD_OVL_INCONSISTENT;
-    /* new vertices: plane g crosses the primal edge from the visible vertex
+    if (nhor > SD_OVERLAP_MAX_TRIS || nlive - nv + nhor > SD_OVERLAP_MAX_TRIS)
+        return SD_OVL_FULL;
+    /* one closed loop: after the edge a -> b, turn about b through visible
+     * triangles to the next edge to a kept one. A second loop (fewer edges
+     * walked than counted) or a pinched vertex (b met twice: the visible
+     * set is not a disc, rounding on nearly degenerate input) is refused.
+     * New vertices: plane g crosses the primal edge from the visible vertex
      * w_t to the kept vertex w_u (both on the line where planes a and b
-     * meet); λ in [0, 1] keeps it on that edge whatever the rounding */
-    for (int e = 0; e < nhor; ++e) {
-        int t = ws->hor_t[e], k = ws->hor_e[e];
-        int u = ws->nb[t][k];
-        ws->ha[e] = ws->f[t][k];
-        ws->hb[e] = ws->f[t][sd_overlap_next(k)];
-        ws->hu[e] = u;
-        sd_real st = ws->s[t], su = ws->s[u];
-        sd_real lam = -su / (st - su); /* st > eps >= su */
-        lam = sd_clamp(lam, SD_R(0.0), SD_R(1.0));
-        ws->hw[e] = sd_v3_madd(ws->w[u], lam, sd_v3_sub(ws->w[t], ws->w[u]));
+     * meet); λ in [0, 1] keeps it on that edge whatever the rounding. */
+    {
+        int t = t0, k = k0, e = 0, steps = 0;
+        const int limit = 3 * nv;
+        do {
+            const sd_ovl_tri *tr = &ws->tri[t];
+            int a = tr->f[k], kn = sd_overlap_next(k);
+            if (e >= nhor || ws->hmark[a] == g + 1)
+                return SD_OVL_INCONSISTENT;
+            ws->hmark[a] = g + 1;
+            int u = tr->nb[k];
+            sd_ovl_tri *nt = &ws->ht[e];
+            nt->f[0] = (sd_ovl_idx)a;
+            nt->f[1] = tr->f[kn];
+            nt->f[2] = (sd_ovl_idx)g;
+            nt->nb[0] = (sd_ovl_idx)u;
+            nt->nk[0] = tr->nk[k];
+            nt->nk[1] = 2;
+            nt->nk[2] = 1;
+            sd_real st = ws->s[t], su = ws->s[u];
+            sd_real lam = -su / (st - su); /* st > eps >= su */
+            lam = sd_clamp(lam, SD_R(0.0), SD_R(1.0));
+            ws->hw[e] = sd_v3_madd(ws->w[u], lam, sd_v3_sub(ws->w[t], ws->w[u]));
+            ++e;
+            /* turn about b = f[kn] */
+            k = kn;
+            while (ws->s[ws->tri[t].nb[k]] > eps) {
+                if (++steps > limit)
+                    return SD_OVL_INCONSISTENT;
+                int j = ws->tri[t].nk[k];
+                t = ws->tri[t].nb[k];
+                k = sd_overlap_next(j);
+            }
+        } while (t != t0 || k != k0);
+        if (e != nhor)
+            return SD_OVL_INCONSISTENT;
     }
-    for (int i = 0; i < nv; ++i)
-        sd_overlap_tri_free(ws, ws->vis[i]);
+    /* slots: the visible ones first (ascending), then appended */
+    for (int e = 0; e < nhor; ++e)
+        ws->hslot[e] = e < nv ? ws->vis[e] : (sd_ovl_idx)(nlive + (e - nv));
     for (int e = 0; e < nhor; ++e) {
-        int t = sd_overlap_tri_new(ws);
-        if (t < 0)
-            return SD_OVL_FULL;
-        ws->newt[e] = t;
-        ws->f[t][0] = ws->ha[e];
-        ws->f[t][1] = ws->hb[e];
-        ws->f[t][2] = g;
+        int t = ws->hslot[e];
+        sd_ovl_tri nt = ws->ht[e];
+        nt.nb[1] = ws->hslot[e + 1 < nhor ? e + 1 : 0];
+        nt.nb[2] = ws->hslot[e > 0 ? e - 1 : nhor - 1];
+        ws->tri[t] = nt;
         ws->w[t] = ws->hw[e];
-        int u = ws->hu[e];
-        ws->nb[t][0] = u;
-        for (int m = 0; m < 3; ++m)
-            if (ws->f[u][m] == ws->hb[e] && ws->f[u][sd_overlap_next(m)] == ws->ha[e])
-                ws->nb[u][m] = t;
+        sd_ovl_tri *ut = &ws->tri[nt.nb[0]];
+        ut->nb[nt.nk[0]] = (sd_ovl_idx)t;
+        ut->nk[nt.nk[0]] = 0;
     }
-    for (int e = 0; e < nhor; ++e) {
-        ws->nb[ws->newt[e]][1] = ws->newt[e + 1 < nhor ? e + 1 : 0];
-        ws->nb[ws->newt[e]][2] = ws->newt[e > 0 ? e - 1 : nhor - 1];
+    int nl = nlive - nv + nhor;
+    /* visible slots left over (the largest, as vis ascends): fill each
+     * with the last live triangle */
+    for (int i = nv - 1, last = nlive; i >= nhor; --i) {
+        int hole = ws->vis[i];
+        --last;
+        if (last == hole)
+            continue;
+        ws->w[hole] = ws->w[last];
+        ws->tri[hole] = ws->tri[last];
+        for (int k = 0; k < 3; ++k)
+            ws->tri[ws->tri[hole].nb[k]].nb[ws->tri[hole].nk[k]] = (sd_ovl_idx)hole;
     }
+    ws->nlive = nl;
     return SD_OVL_BUILT;
 }
 
@@ -262,19 +269,19 @@ SD_HD static SD_INLINE int sd_overlap_build(const sd_convex *a, const sd_mat3 *R
     const sd_shape *sa = a->shape;
     const int nt = (int)sa->tcount;
     const sd_dtri *dt = a->dtris + sa->tstart;
-    ws->nslots = nt;
-    ws->free_head = -1;
     ws->nlive = nt;
     for (int t = 0; t < nt; ++t) {
         ws->w[t] = sd_mat3_mulv(*Ra, dt[t].v);
-        ws->state[t] = 1;
         for (int k = 0; k < 3; ++k) {
-            ws->f[t][k] = dt[t].f[k];
-            ws->nb[t][k] = dt[t].nb[k];
+            ws->tri[t].f[k] = dt[t].f[k];
+            ws->tri[t].nb[k] = dt[t].nb[k];
+            ws->tri[t].nk[k] = dt[t].nk[k];
         }
     }
-    for (int p = 0; p < na + nbp; ++p)
+    for (int p = 0; p < na + nbp; ++p) {
         ws->shared[p] = 0;
+        ws->hmark[p] = 0;
+    }
     /* a plane at least A's bounding radius from x_A cuts nothing and cannot
      * coincide with a face of A: one comparison instead of a scan. The
      * others go in nearest x_A first (deepest cut, insertion sort, ties by
@@ -300,78 +307,71 @@ SD_HD static SD_INLINE int sd_overlap_build(const sd_convex *a, const sd_mat3 *R
     return SD_OVL_BUILT;
 }
 
-/* Volume, area vectors and moments of the built intersection (faces from
- * the triangles around each dual point, in their cyclic order). */
+/* Volume, area vectors and moments of the built intersection. Every dual
+ * edge (t, k) is the primal edge from w_t to w_u, u = nb[t][k], on face
+ * p = f[t][k]; following them around p walks p's boundary (the same sense
+ * for every face), so one pass over the edges, each independent of the
+ * others, sums every face as a fan of triangles from o_p, the foot of the
+ * perpendicular from the mean vertex m onto the plane: with r = w − m,
+ * o_p − m = d_p n_p (d_p the pyramid height, eq. 9), n_p · ((o_p − m) × e) = 0,
+ * so the fan triangle on edge e = w_u − w_t has area a_e = ½ n_p · (r_t × e)
+ * and centroid (d_p n_p + 2 r_t + e) / 3 about m. */
 SD_HD static SD_INLINE void sd_overlap_measure(sd_overlap_workspace *ws, int na, int np, const sd_convex *a,
                                                const sd_convex *b, sd_overlap *out)
 {
+    const int nl = ws->nlive;
     sd_vec3 m = sd_v3_zero();
-    int nl = 0;
-    for (int t = 0; t < ws->nslots; ++t)
-        if (ws->state[t]) {
-            m = sd_v3_add(m, ws->w[t]);
-            ++nl;
-        }
+    for (int t = 0; t < nl; ++t)
+        m = sd_v3_add(m, ws->w[t]);
     m = sd_v3_scale(m, SD_R(1.0) / (sd_real)nl);
-    for (int p = 0; p < np; ++p)
+    for (int p = 0; p < np; ++p) {
         ws->done[p] = 0;
+        ws->fa[p] = SD_R(0.0);
+        ws->fm[p] = sd_v3_zero();
+    }
+    for (int t = 0; t < nl; ++t) {
+        const sd_vec3 wt = ws->w[t], rt = sd_v3_sub(wt, m);
+        const sd_ovl_tri *tr = &ws->tri[t];
+        for (int k = 0; k < 3; ++k) {
+            int p = tr->f[k];
+            sd_vec3 e = sd_v3_sub(ws->w[tr->nb[k]], wt);
+            sd_real a2 = sd_v3_dot(ws->pn[p], sd_v3_cross(rt, e)); /* 2 a_e */
+            ws->done[p] = 1;
+            ws->fa[p] += a2;
+            ws->fm[p] = sd_v3_madd(ws->fm[p], a2, sd_v3_madd(e, SD_R(2.0), rt));
+        }
+    }
     sd_real V = SD_R(0.0);
     sd_vec3 C = sd_v3_zero(), SA = sd_v3_zero(), SB = sd_v3_zero(), TA = sd_v3_zero(), TB = sd_v3_zero();
     int nfaces = 0;
-    for (int t0 = 0; t0 < ws->nslots; ++t0) {
-        if (!ws->state[t0])
+    for (int p = 0; p < np; ++p) {
+        if (!ws->done[p])
             continue;
-        for (int k0 = 0; k0 < 3; ++k0) {
-            int p = ws->f[t0][k0];
-            if (ws->done[p])
-                continue;
-            ws->done[p] = 1;
-            ++nfaces;
-            const sd_vec3 n = ws->pn[p];
-            /* walk the triangles around dual point p: each is one corner of
-             * face p; fan triangles from the first corner */
-            sd_vec3 w0 = ws->w[t0], wp = w0;
-            sd_real area = SD_R(0.0);
-            sd_vec3 mom = sd_v3_zero();
-            int t = t0, k = k0, count = 0;
-            for (;;) {
-                int u = ws->nb[t][k];
-                int j = 0;
-                while (j < 2 && ws->f[u][j] != p)
-                    ++j;
-                t = u;
-                k = j;
-                if (t == t0 || ++count > SD_OVERLAP_MAX_TRIS)
-                    break;
-                sd_vec3 wc = ws->w[t];
-                if (count >= 2) {
-                    sd_real ai = SD_R(0.5) * sd_v3_dot(n, sd_v3_cross(sd_v3_sub(wp, w0), sd_v3_sub(wc, w0)));
-                    area += ai;
-                    mom = sd_v3_madd(mom, ai / SD_R(3.0), sd_v3_add(w0, sd_v3_add(wp, wc)));
-                }
-                wp = wc;
-            }
-            /* the walk's sense is the same for every face of a hull; taking
-             * the sign per face keeps a_f >= 0 whatever it is */
-            if (area < SD_R(0.0)) {
-                area = -area;
-                mom = sd_v3_neg(mom);
-            }
-            /* pyramid from m on face p: height d_f, volume d_f a_f / 3 (eq. 9),
-             * centroid m + 3/4 (c_f - m) */
-            sd_real d = sd_v3_dot(n, sd_v3_sub(w0, m));
-            V += d * area / SD_R(3.0);
-            C = sd_v3_add(C, sd_v3_scale(sd_v3_add(sd_v3_scale(m, SD_R(0.25) * area), sd_v3_scale(mom, SD_R(0.75))),
-                                         d / SD_R(3.0)));
-            if (ws->shared[p])
-                continue;
-            if (p < na) {
-                SA = sd_v3_madd(SA, area, n);
-                TA = sd_v3_add(TA, sd_v3_cross(mom, n));
-            } else {
-                SB = sd_v3_madd(SB, area, n);
-                TB = sd_v3_add(TB, sd_v3_cross(mom, n));
-            }
+        ++nfaces;
+        const sd_vec3 n = ws->pn[p];
+        const sd_real d = ws->ph[p] - sd_v3_dot(n, m);
+        sd_real area = SD_R(0.5) * ws->fa[p];
+        /* first moment of the face about m, then about x_A */
+        sd_vec3 mom = sd_v3_madd(sd_v3_scale(ws->fm[p], SD_R(1.0) / SD_R(6.0)), area * d / SD_R(3.0), n);
+        /* taking the sign per face keeps a_f >= 0 whatever the sense */
+        if (area < SD_R(0.0)) {
+            area = -area;
+            mom = sd_v3_neg(mom);
+        }
+        mom = sd_v3_madd(mom, area, m);
+        /* pyramid from m on face p: height d_f, volume d_f a_f / 3 (eq. 9),
+         * centroid m + 3/4 (c_f - m) */
+        V += d * area / SD_R(3.0);
+        C = sd_v3_add(C, sd_v3_scale(sd_v3_add(sd_v3_scale(m, SD_R(0.25) * area), sd_v3_scale(mom, SD_R(0.75))),
+                                     d / SD_R(3.0)));
+        if (ws->shared[p])
+            continue;
+        if (p < na) {
+            SA = sd_v3_madd(SA, area, n);
+            TA = sd_v3_add(TA, sd_v3_cross(mom, n));
+        } else {
+            SB = sd_v3_madd(SB, area, n);
+            TB = sd_v3_add(TB, sd_v3_cross(mom, n));
         }
     }
     out->faces = nfaces;

@@ -1032,6 +1032,19 @@ sd_status sd_shape_faces(sd_shape *s, const sd_vec3 *verts, sd_plane *planes, si
             tris[t].nb[k] = (uint16_t)h->nbr[t][k];
         }
     }
+    /* twins: edge f[k] -> f[k+1] of t is f[k+1] -> f[k] in nb[k] */
+    for (int t = 0; t < h->ntri; ++t)
+        for (int k = 0; k < 3; ++k) {
+            const sd_dtri *u = &tris[tris[t].nb[k]];
+            int j = 0;
+            while (j < 3 && !(u->f[j] == tris[t].f[(k + 1) % 3] && u->f[(j + 1) % 3] == tris[t].f[k]))
+                ++j;
+            if (j == 3) {
+                st = SD_FAIL("vertices", "the polyhedron's dual hull is not consistently oriented");
+                goto done;
+            }
+            tris[t].nk[k] = (uint8_t)j;
+        }
     *nplanes = (size_t)nf;
     *ntris = (size_t)h->ntri;
     s->fstart = s->tstart = 0;

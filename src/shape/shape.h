@@ -58,11 +58,14 @@ typedef struct sd_plane {
  * a vertex where k > 3 faces meet is k - 2 triangles at the same point.
  * nb[k] is the dual triangle across the dual edge f[k] -> f[k+1], i.e. the
  * vertex at the other end of the primal edge where faces f[k] and f[k+1]
- * meet. Together they are the vertex/face adjacency of the template. */
+ * meet. Together they are the vertex/face adjacency of the template.
+ * nk[k] is the edge of nb[k] that leads back (nb[nb[k]].nb[nk[k]] is this
+ * triangle), so a walk over the adjacency never searches. */
 typedef struct sd_dtri {
     sd_vec3 v;      /* m, principal frame: where planes f[0..2] meet */
     uint16_t f[3];  /* face indices, 0 .. fcount - 1 */
     uint16_t nb[3]; /* dual triangle indices, 0 .. tcount - 1 */
+    uint8_t nk[3];  /* edge index (0..2) of the twin dual edge in nb[k] */
 } sd_dtri;
 
 typedef struct sd_shape {

@@ -41,6 +41,16 @@ int sd_world_find_shape(const sd_world *w, const char *name)
     return -1;
 }
 
+/* A new shape's name: 1 to 63 characters, not taken (3D and 2D shapes). */
+sd_status sd_world_check_shape_name(const sd_world *w, const char *name, sd_error *err)
+{
+    if (!name || !name[0] || strlen(name) >= 64)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "name", "a shape needs a name of 1 to 63 characters");
+    if (sd_world_find_shape(w, name) >= 0)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "name", "shape '%s' defined twice", name);
+    return SD_OK;
+}
+
 size_t sd_world_shape_count(const sd_world *w) { return w->dim2 ? w->shape2d_count : w->shape_count; }
 
 int sd_world_add_shape(sd_world *w, const char *name, const sd_shape_desc *desc, sd_error *err)
@@ -54,14 +64,8 @@ int sd_world_add_shape(sd_world *w, const char *name, const sd_shape_desc *desc,
                      "polygon, polybezier or fourier", desc->kind ? desc->kind : "");
         return -1;
     }
-    if (!name || !name[0] || strlen(name) >= 64) {
-        sd_error_set(err, SD_ERR_INPUT, "", 0, "name", "a shape needs a name of 1 to 63 characters");
+    if (sd_world_check_shape_name(w, name, err) != SD_OK)
         return -1;
-    }
-    if (sd_world_find_shape(w, name) >= 0) {
-        sd_error_set(err, SD_ERR_INPUT, "", 0, "name", "shape '%s' defined twice", name);
-        return -1;
-    }
     int kind = sd_shape_kind_from_name(desc->kind);
     if (kind < 0 || kind >= SD_SHAPE_KIND_COUNT) {
         sd_error_set(err, SD_ERR_INPUT, "", 0, "type", "unknown shape kind '%s'", desc->kind ? desc->kind : "");

@@ -50,14 +50,8 @@ int sd_world_add_shape2d(sd_world *w, const char *name, const sd_shape2d_def *de
                      def->kind ? def->kind : "");
         return -1;
     }
-    if (!name || !name[0] || strlen(name) >= 64) {
-        sd_error_set(err, SD_ERR_INPUT, "", 0, "name", "a shape needs a name of 1 to 63 characters");
+    if (sd_world_check_shape_name(w, name, err) != SD_OK)
         return -1;
-    }
-    if (sd_world_find_shape(w, name) >= 0) {
-        sd_error_set(err, SD_ERR_INPUT, "", 0, "name", "shape '%s' defined twice", name);
-        return -1;
-    }
     int kind = sd_shape2d_kind_from_name(def->kind);
     if (kind < 0) {
         sd_error_set(err, SD_ERR_INPUT, "", 0, "type", "unknown 2D shape kind '%s'", def->kind ? def->kind : "");

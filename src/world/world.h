@@ -151,6 +151,9 @@ sd_status sd_world_walls_drift(sd_world *w, double t, sd_error *err);
 int sd_world_walls_moved(const sd_world *w);
 void sd_world_walls_mark(sd_world *w);
 
+/* A new shape's name is valid and free (bodies.c). */
+sd_status sd_world_check_shape_name(const sd_world *w, const char *name, sd_error *err);
+
 /* bodies2d.c: the planar mode's halves of the shape and body functions of
  * bodies.c (which call them when w->dim2). */
 sd_status sd_world_get_shape2d(const sd_world *w, size_t k, sd_shape_info *out);

@@ -25,54 +25,39 @@ static SD_HOT sd_body sd_sphere_body(const sd_particles *p, size_t k)
     return b;
 }
 
-/* The plane of a wall feature: the plane wall itself, or a closed box face
- * (inward normal). Returns 0 when x does not project inside the face's
- * rectangle: a shape beside a box face meets it only through the
- * neighbouring face (box rims are not resolved for shapes). */
-static int sd_wall_feature_plane(const sd_wall *wl, int face, sd_vec3 x, sd_vec3 *p0, sd_vec3 *n)
-{
-    if (wl->kind == SD_WALL_PLANE) {
-        *p0 = wl->point;
-        *n = wl->normal;
-        return 1;
-    }
-    int axis = face / 2;
-    sd_real lo[3] = {wl->lo.x, wl->lo.y, wl->lo.z}, hi[3] = {wl->hi.x, wl->hi.y, wl->hi.z}, c[3] = {x.x, x.y, x.z};
-    for (int k = 0; k < 3; ++k)
-        if (k != axis && (c[k] < lo[k] || c[k] > hi[k]))
-            return 0;
-    sd_real nn[3] = {0, 0, 0}, pp[3] = {c[0], c[1], c[2]};
-    nn[axis] = (face & 1) ? SD_R(-1.0) : SD_R(1.0);
-    pp[axis] = (face & 1) ? hi[axis] : lo[axis];
-    *p0 = sd_v3(pp[0], pp[1], pp[2]);
-    *n = sd_v3(nn[0], nn[1], nn[2]);
-    return 1;
-}
-
-/* Half kick of particle k with its current force and torque: the planar
- * mode, local damping (seed 002) or the plain 3D kick. The branch is the
- * same for every particle of a world, so it costs nothing in the loop. */
+/* Half kick of particle k with its current force and torque. */
 static SD_HOT void sd_kick_one(sd_particles *p, size_t k, sd_vec3 g, sd_real h)
 {
     sd_integrate_kick(&p->v[k], &p->w[k], p->q[k], p->f[k], p->t[k], p->inv_mass[k], p->inv_inertia[k], g, h);
 }
 
-static SD_HOT void sd_kick_any(const sd_world *w, sd_particles *p, size_t k, sd_vec3 g, sd_real h)
+/* The kick of a world: the plain 3D kick, local damping (seed 002) or the
+ * planar mode. It is the same for every particle of a world, so the loops
+ * choose it once and run a copy specialised for it (a mode read inside the
+ * loop through the world pointer cost the sphere step about 13 %). */
+enum { SD_KICK_PLAIN, SD_KICK_DAMPED, SD_KICK_PLANAR };
+
+static int sd_kick_mode_of(const sd_world *w)
 {
-    if (w->dim2)
-        sd_integrate_kick2d(&p->v[k], &p->w[k], p->f[k], p->t[k], p->inv_mass[k], p->inv_inertia[k].z, g, h,
-                            w->local_damping);
-    else if (w->local_damping > SD_R(0.0))
+    return w->dim2 ? SD_KICK_PLANAR : (w->local_damping > SD_R(0.0) ? SD_KICK_DAMPED : SD_KICK_PLAIN);
+}
+
+static SD_HOT void sd_kick_any(int mode, sd_real alpha, sd_particles *p, size_t k, sd_vec3 g, sd_real h)
+{
+    if (mode == SD_KICK_PLANAR)
+        sd_integrate_kick2d(&p->v[k], &p->w[k], p->f[k], p->t[k], p->inv_mass[k], p->inv_inertia[k].z, g, h, alpha);
+    else if (mode == SD_KICK_DAMPED)
         sd_integrate_kick_damped(&p->v[k], &p->w[k], p->q[k], p->f[k], p->t[k], p->inv_mass[k], p->inv_inertia[k],
-                                 g, h, w->local_damping);
+                                 g, h, alpha);
     else
         sd_kick_one(p, k, g, h);
 }
 
 /* Half kick then drift of particle k (a fixed body does not move). */
-static SD_HOT void sd_kick_drift_one(const sd_world *w, sd_particles *p, size_t k, sd_vec3 g, sd_real h, sd_real dt)
+static SD_HOT void sd_kick_drift_one(int mode, sd_real alpha, sd_particles *p, size_t k, sd_vec3 g, sd_real h,
+                                     sd_real dt)
 {
-    sd_kick_any(w, p, k, g, h);
+    sd_kick_any(mode, alpha, p, k, g, h);
     if (p->inv_mass[k] > 0)
         sd_integrate_drift(&p->x[k], &p->q[k], p->v[k], p->w[k], dt);
 }
@@ -83,9 +68,11 @@ void sd_cpu_kick_drift(sd_world *w)
     size_t n = p->n;
     sd_real h = SD_R(0.5) * w->dt, dt = w->dt;
     sd_vec3 g = w->gravity;
+    int mode = sd_kick_mode_of(w);
+    sd_real alpha = w->local_damping;
 SD_PARALLEL_FOR
     for (size_t k = 0; k < n; ++k)
-        sd_kick_drift_one(w, p, k, g, h, dt);
+        sd_kick_drift_one(mode, alpha, p, k, g, h, dt);
 }
 
 void sd_cpu_kick(sd_world *w)
@@ -94,9 +81,11 @@ void sd_cpu_kick(sd_world *w)
     size_t n = p->n;
     sd_real h = SD_R(0.5) * w->dt;
     sd_vec3 g = w->gravity;
+    int mode = sd_kick_mode_of(w);
+    sd_real alpha = w->local_damping;
 SD_PARALLEL_FOR
     for (size_t k = 0; k < n; ++k)
-        sd_kick_any(w, p, k, g, h);
+        sd_kick_any(mode, alpha, p, k, g, h);
 }
 
 void sd_cpu_pair_forces(sd_world *w)
@@ -214,20 +203,34 @@ SD_PARALLEL_FOR
         sd_gather_one(w, k, &p->f[k], &p->t[k]);
 }
 
+/* One particle of the fused pass: gather, the kick that ends this step
+ * (v(t + dt)), then the kick and drift that start the next (a particle may
+ * move before the others are gathered: gathering reads only the pair
+ * forces, never another particle's state). */
+static SD_HOT void sd_gather_kick_drift_one(const sd_world *w, int mode, sd_real alpha, sd_particles *p, size_t k,
+                                            sd_vec3 g, sd_real h, sd_real dt)
+{
+    sd_gather_one(w, k, &p->f[k], &p->t[k]);
+    sd_kick_any(mode, alpha, p, k, g, h);
+    sd_kick_drift_one(mode, alpha, p, k, g, h, dt);
+}
+
 void sd_cpu_gather_kick_drift(sd_world *w)
 {
     sd_particles *p = &w->p;
     size_t n = p->n;
     sd_real h = SD_R(0.5) * w->dt, dt = w->dt;
     sd_vec3 g = w->gravity;
+    int mode = sd_kick_mode_of(w);
+    sd_real alpha = w->local_damping;
+    if (mode == SD_KICK_PLAIN) { /* the common case, with the mode a constant */
 SD_PARALLEL_FOR
-    for (size_t k = 0; k < n; ++k) {
-        sd_gather_one(w, k, &p->f[k], &p->t[k]);
-        sd_kick_any(w, p, k, g, h); /* end of this step: v(t + dt) */
-        /* start of the next: the same kick again, then the drift (a particle
-         * may move before the others are gathered: gathering reads only the
-         * pair forces, never another particle's state) */
-        sd_kick_drift_one(w, p, k, g, h, dt);
+        for (size_t k = 0; k < n; ++k)
+            sd_gather_kick_drift_one(w, SD_KICK_PLAIN, SD_R(0.0), p, k, g, h, dt);
+    } else {
+SD_PARALLEL_FOR
+        for (size_t k = 0; k < n; ++k)
+            sd_gather_kick_drift_one(w, mode, alpha, p, k, g, h, dt);
     }
 }
 
@@ -237,10 +240,12 @@ void sd_cpu_gather_kick(sd_world *w)
     size_t n = p->n;
     sd_real h = SD_R(0.5) * w->dt;
     sd_vec3 g = w->gravity;
+    int mode = sd_kick_mode_of(w);
+    sd_real alpha = w->local_damping;
 SD_PARALLEL_FOR
     for (size_t k = 0; k < n; ++k) {
         sd_gather_one(w, k, &p->f[k], &p->t[k]);
-        sd_kick_any(w, p, k, g, h);
+        sd_kick_any(mode, alpha, p, k, g, h);
     }
 }
 

@@ -22,6 +22,30 @@ static SD_HOT sd_body sd_body_of(const sd_particles *p, size_t k)
     return b;
 }
 
+/* The plane of a wall feature: the plane wall itself, or a closed box face
+ * (inward normal). Returns 0 when x does not project inside the face's
+ * rectangle: a shape beside a box face meets it only through the
+ * neighbouring face (box rims are not resolved for shapes). */
+static inline int sd_wall_feature_plane(const sd_wall *wl, int face, sd_vec3 x, sd_vec3 *p0, sd_vec3 *n)
+{
+    if (wl->kind == SD_WALL_PLANE) {
+        *p0 = wl->point;
+        *n = wl->normal;
+        return 1;
+    }
+    int axis = face / 2;
+    sd_real lo[3] = {wl->lo.x, wl->lo.y, wl->lo.z}, hi[3] = {wl->hi.x, wl->hi.y, wl->hi.z}, c[3] = {x.x, x.y, x.z};
+    for (int k = 0; k < 3; ++k)
+        if (k != axis && (c[k] < lo[k] || c[k] > hi[k]))
+            return 0;
+    sd_real nn[3] = {0, 0, 0}, pp[3] = {c[0], c[1], c[2]};
+    nn[axis] = (face & 1) ? SD_R(-1.0) : SD_R(1.0);
+    pp[axis] = (face & 1) ? hi[axis] : lo[axis];
+    *p0 = sd_v3(pp[0], pp[1], pp[2]);
+    *n = sd_v3(nn[0], nn[1], nn[2]);
+    return 1;
+}
+
 /* First half kick and drift of every particle (velocity Verlet). */
 void sd_cpu_kick_drift(sd_world *w);
 /* Second half kick. */

@@ -74,28 +74,6 @@ void sd_cpu_poly_pair(sd_world *w, size_t e, sd_overlap_workspace *ws)
     l->supports[e] = ns.supports;
 }
 
-/* The plane of a wall feature (as loops.c): the plane itself, or a closed
- * box face with its inward normal when x projects inside the face. */
-static int sd_poly_wall_plane(const sd_wall *wl, int face, sd_vec3 x, sd_vec3 *p0, sd_vec3 *n)
-{
-    if (wl->kind == SD_WALL_PLANE) {
-        *p0 = wl->point;
-        *n = wl->normal;
-        return 1;
-    }
-    int axis = face / 2;
-    sd_real lo[3] = {wl->lo.x, wl->lo.y, wl->lo.z}, hi[3] = {wl->hi.x, wl->hi.y, wl->hi.z}, c[3] = {x.x, x.y, x.z};
-    for (int k = 0; k < 3; ++k)
-        if (k != axis && (c[k] < lo[k] || c[k] > hi[k]))
-            return 0;
-    sd_real nn[3] = {0, 0, 0}, pp[3] = {c[0], c[1], c[2]};
-    nn[axis] = (face & 1) ? SD_R(-1.0) : SD_R(1.0);
-    pp[axis] = (face & 1) ? hi[axis] : lo[axis];
-    *p0 = sd_v3(pp[0], pp[1], pp[2]);
-    *n = sd_v3(nn[0], nn[1], nn[2]);
-    return 1;
-}
-
 void sd_cpu_poly_wall_forces(sd_world *w)
 {
     const sd_particles *p = &w->p;
@@ -114,7 +92,7 @@ SD_PARALLEL_FOR_DYNAMIC
         sd_vec3 p0, nw, point = a.x;
         sd_pair_result r;
         int s = p->shape[i];
-        if (!sd_shape_is_sharp_polyhedron(&w->shapes[s]) || !sd_poly_wall_plane(wl, l->sub[e], a.x, &p0, &nw)) {
+        if (!sd_shape_is_sharp_polyhedron(&w->shapes[s]) || !sd_wall_feature_plane(wl, l->sub[e], a.x, &p0, &nw)) {
             r = sd_pair_none(&l->ds[e]);
         } else {
             sd_convex c = sd_poly_convex(w, i);
