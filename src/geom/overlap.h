@@ -10,9 +10,12 @@
  * it is evaluated, for robustness and speed:
  *
  *  - the hull starts from A's own dual hull, built once per template
- *    (sd_dtri, shape/shape.c: the dual triangles with their vertices), and
+ *    (sd_dtri, shape/shape.c: the dual triangles with their vertices and
+ *    twin edges), copied as it is: the work is done in A's principal frame
+ *    (B's planes turned by Ra^T Rb), the results turned back at the end;
  *    B's dual points are inserted one at a time (Algorithm V: visible dual
- *    triangles, horizon loop, a fan of new triangles to the new point);
+ *    triangles, horizon loop, a fan of new triangles to the new point),
+ *    the live triangles kept in consecutive slots;
  *  - the visibility predicate of a dual point y_g = n_g/d_g against the
  *    dual triangle whose unpolarised vertex is w is y_g·(w − x0) > 1, i.e.
  *    n_g·w > h_g: "vertex w lies beyond plane g". It is evaluated in that
@@ -83,10 +86,13 @@ typedef struct sd_overlap {
 
 /* Workspace sizes: dual points (planes) of both bodies, and dual triangles
  * (vertices of the intersection): a hull of n points has at most 2n − 4.
- * With SD_OVERLAP_MAX_PLANES = 64 the workspace is about 38 KB (seed 000
+ * With SD_OVERLAP_MAX_PLANES = 64 the workspace is about 31 KB (seed 000
  * §2.3 quotes about 20 KB for 48 faces). */
 #define SD_OVERLAP_MAX_DUAL (2 * SD_OVERLAP_MAX_PLANES)
 #define SD_OVERLAP_MAX_TRIS (2 * SD_OVERLAP_MAX_DUAL)
+#if SD_OVERLAP_MAX_TRIS > 65535
+#error "SD_OVERLAP_MAX_PLANES too large: triangle indices are 16-bit (sd_dtri)"
+#endif
 /* "beyond a plane" means farther than eps = SD_OVERLAP_EPS_REL x L, L the
  * sum of the two bounding radii: well above the rounding of the vertices
  * (~1e-15 L), far below any overlap that matters. */
@@ -97,32 +103,30 @@ typedef struct sd_overlap {
 /* Triangle and plane indices in the workspace (MAX_TRIS <= 65535). */
 typedef uint16_t sd_ovl_idx;
 
-/* One dual triangle of the hull being built: its planes, its neighbours and
- * the edge of each neighbour that leads back (as sd_dtri). */
-typedef struct sd_ovl_tri {
-    sd_ovl_idx f[3];
-    sd_ovl_idx nb[3];
-    uint8_t nk[3];
-} sd_ovl_tri;
+/* One dual triangle of the hull being built: its vertex (relative to x_A,
+ * in A's principal frame), planes, neighbours and the edge of each
+ * neighbour that leads back — the layout of the stored template (sd_dtri),
+ * so a build starts with a plain copy. */
+typedef sd_dtri sd_ovl_tri;
 
 typedef struct sd_overlap_workspace {
-    /* planes, world orientation, offsets relative to x_A: A's first, then B's */
+    /* planes in A's principal frame, offsets relative to x_A: A's first, then B's */
     sd_vec3 pn[SD_OVERLAP_MAX_DUAL];
     sd_real ph[SD_OVERLAP_MAX_DUAL];
     unsigned char shared[SD_OVERLAP_MAX_DUAL]; /* coincides with a plane of the other body */
-    unsigned char done[SD_OVERLAP_MAX_DUAL];   /* face present (output pass) */
-    int hmark[SD_OVERLAP_MAX_DUAL];            /* g + 1: already a horizon vertex while inserting g */
+    unsigned char done[SD_OVERLAP_MAX_DUAL];   /* output pass: face present */
+    int hmark[SD_OVERLAP_MAX_DUAL];            /* g + 1: starts a horizon edge while inserting g */
     int order[SD_OVERLAP_MAX_DUAL];            /* B's planes in insertion order */
     sd_real fa[SD_OVERLAP_MAX_DUAL];           /* output pass: twice the signed area of each face */
     sd_vec3 fm[SD_OVERLAP_MAX_DUAL];           /* output pass: six times its first moment about m, less the o_p part */
-    /* dual triangles, slots [0, nlive) all live (kept compact): vertex
-     * (relative to x_A), planes and neighbours */
-    sd_vec3 w[SD_OVERLAP_MAX_TRIS];
-    sd_real s[SD_OVERLAP_MAX_TRIS]; /* signed distance beyond the plane being inserted */
+    /* dual triangles, slots [0, nlive) all live */
     sd_ovl_tri tri[SD_OVERLAP_MAX_TRIS];
-    sd_ovl_idx vis[SD_OVERLAP_MAX_TRIS]; /* visible triangles, ascending */
-    /* the horizon loop: new triangles (planes, kept neighbour and its edge) and their vertices */
-    sd_ovl_tri ht[SD_OVERLAP_MAX_TRIS];
+    sd_real s[SD_OVERLAP_MAX_TRIS];      /* signed distance beyond the plane being inserted */
+    sd_ovl_idx vis[SD_OVERLAP_MAX_TRIS]; /* visible triangles, ascending (output pass: faces present) */
+    /* the horizon loop, in order: each new triangle's planes a -> b, its
+     * kept neighbour and that one's edge back, its vertex and its slot */
+    sd_ovl_idx ha[SD_OVERLAP_MAX_TRIS], hb[SD_OVERLAP_MAX_TRIS], hu[SD_OVERLAP_MAX_TRIS];
+    uint8_t hk[SD_OVERLAP_MAX_TRIS];
     sd_vec3 hw[SD_OVERLAP_MAX_TRIS];
     sd_ovl_idx hslot[SD_OVERLAP_MAX_TRIS];
     int nlive;
@@ -148,18 +152,20 @@ SD_HD static SD_INLINE int sd_overlap_insert(sd_overlap_workspace *ws, int g, in
     const sd_vec3 n = ws->pn[g];
     const sd_real h = ws->ph[g];
     const int nlive = ws->nlive;
-    int nv = 0, near = 0;
+    int nv = 0;
     /* branch-free; "visible" is s > eps, here and below */
     for (int t = 0; t < nlive; ++t) {
-        sd_real s = sd_v3_dot(n, ws->w[t]) - h;
+        sd_real s = sd_v3_dot(n, ws->tri[t].v) - h;
         ws->s[t] = s;
         ws->vis[nv] = (sd_ovl_idx)t;
         nv += s > eps;
-        near |= s >= -eps;
     }
     if (nv == 0) {
         /* cuts nothing. Touching the polytope: is it one of A's planes
          * (same normal and offset)? Then the face is shared (merged). */
+        int near = 0;
+        for (int t = 0; t < nlive; ++t)
+            near |= ws->s[t] >= -eps;
         if (near)
             for (int a = 0; a < na; ++a)
                 if (sd_v3_dot(ws->pn[a], n) > SD_R(1.0) - SD_R(1e-12) && sd_fabs(ws->ph[a] - h) <= eps) {
@@ -177,10 +183,9 @@ SD_HD static SD_INLINE int sd_overlap_insert(sd_overlap_workspace *ws, int g, in
         const sd_ovl_tri *tr = &ws->tri[ws->vis[i]];
         for (int k = 0; k < 3; ++k) {
             int kept = !(ws->s[tr->nb[k]] > eps);
-            if (kept && t0 < 0) {
-                t0 = ws->vis[i];
-                k0 = k;
-            }
+            int first = kept & (nhor == 0);
+            t0 = first ? ws->vis[i] : t0;
+            k0 = first ? k : k0;
             nhor += kept;
         }
     }
@@ -205,18 +210,14 @@ SD_HD static SD_INLINE int sd_overlap_insert(sd_overlap_workspace *ws, int g, in
                 return SD_OVL_INCONSISTENT;
             ws->hmark[a] = g + 1;
             int u = tr->nb[k];
-            sd_ovl_tri *nt = &ws->ht[e];
-            nt->f[0] = (sd_ovl_idx)a;
-            nt->f[1] = tr->f[kn];
-            nt->f[2] = (sd_ovl_idx)g;
-            nt->nb[0] = (sd_ovl_idx)u;
-            nt->nk[0] = tr->nk[k];
-            nt->nk[1] = 2;
-            nt->nk[2] = 1;
+            ws->ha[e] = (sd_ovl_idx)a;
+            ws->hb[e] = tr->f[kn];
+            ws->hu[e] = (sd_ovl_idx)u;
+            ws->hk[e] = tr->nk[k];
             sd_real st = ws->s[t], su = ws->s[u];
             sd_real lam = -su / (st - su); /* st > eps >= su */
             lam = sd_clamp(lam, SD_R(0.0), SD_R(1.0));
-            ws->hw[e] = sd_v3_madd(ws->w[u], lam, sd_v3_sub(ws->w[t], ws->w[u]));
+            ws->hw[e] = sd_v3_madd(ws->tri[u].v, lam, sd_v3_sub(ws->tri[t].v, ws->tri[u].v));
             ++e;
             /* turn about b = f[kn] */
             k = kn;
@@ -234,16 +235,23 @@ SD_HD static SD_INLINE int sd_overlap_insert(sd_overlap_workspace *ws, int g, in
     /* slots: the visible ones first (ascending), then appended */
     for (int e = 0; e < nhor; ++e)
         ws->hslot[e] = e < nv ? ws->vis[e] : (sd_ovl_idx)(nlive + (e - nv));
+    /* field by field: a whole-struct copy of what was just written in
+     * pieces would stall on store forwarding */
     for (int e = 0; e < nhor; ++e) {
-        int t = ws->hslot[e];
-        sd_ovl_tri nt = ws->ht[e];
-        nt.nb[1] = ws->hslot[e + 1 < nhor ? e + 1 : 0];
-        nt.nb[2] = ws->hslot[e > 0 ? e - 1 : nhor - 1];
-        ws->tri[t] = nt;
-        ws->w[t] = ws->hw[e];
-        sd_ovl_tri *ut = &ws->tri[nt.nb[0]];
-        ut->nb[nt.nk[0]] = (sd_ovl_idx)t;
-        ut->nk[nt.nk[0]] = 0;
+        int t = ws->hslot[e], u = ws->hu[e], j = ws->hk[e];
+        sd_ovl_tri *nt = &ws->tri[t];
+        nt->f[0] = ws->ha[e];
+        nt->f[1] = ws->hb[e];
+        nt->f[2] = (sd_ovl_idx)g;
+        nt->nb[0] = (sd_ovl_idx)u;
+        nt->nb[1] = ws->hslot[e + 1 < nhor ? e + 1 : 0];
+        nt->nb[2] = ws->hslot[e > 0 ? e - 1 : nhor - 1];
+        nt->nk[0] = (uint8_t)j;
+        nt->nk[1] = 2;
+        nt->nk[2] = 1;
+        ws->tri[t].v = ws->hw[e];
+        ws->tri[u].nb[j] = (sd_ovl_idx)t;
+        ws->tri[u].nk[j] = 0;
     }
     int nl = nlive - nv + nhor;
     /* visible slots left over (the largest, as vis ascends): fill each
@@ -253,31 +261,29 @@ SD_HD static SD_INLINE int sd_overlap_insert(sd_overlap_workspace *ws, int g, in
         --last;
         if (last == hole)
             continue;
-        ws->w[hole] = ws->w[last];
-        ws->tri[hole] = ws->tri[last];
-        for (int k = 0; k < 3; ++k)
-            ws->tri[ws->tri[hole].nb[k]].nb[ws->tri[hole].nk[k]] = (sd_ovl_idx)hole;
+        ws->tri[hole].v = ws->tri[last].v;
+        for (int k = 0; k < 3; ++k) {
+            int u = ws->tri[last].nb[k], j = ws->tri[last].nk[k];
+            ws->tri[hole].f[k] = ws->tri[last].f[k];
+            ws->tri[hole].nb[k] = (sd_ovl_idx)u;
+            ws->tri[hole].nk[k] = (uint8_t)j;
+            ws->tri[u].nb[j] = (sd_ovl_idx)hole;
+        }
     }
     ws->nlive = nl;
     return SD_OVL_BUILT;
 }
 
 /* One build: A's dual hull, then B's planes, at tolerance eps. */
-SD_HD static SD_INLINE int sd_overlap_build(const sd_convex *a, const sd_mat3 *Ra, int na, int nbp,
+SD_HD static SD_INLINE int sd_overlap_build(const sd_convex *a, int na, int nbp,
                                             sd_overlap_workspace *ws, sd_real eps)
 {
     const sd_shape *sa = a->shape;
     const int nt = (int)sa->tcount;
     const sd_dtri *dt = a->dtris + sa->tstart;
     ws->nlive = nt;
-    for (int t = 0; t < nt; ++t) {
-        ws->w[t] = sd_mat3_mulv(*Ra, dt[t].v);
-        for (int k = 0; k < 3; ++k) {
-            ws->tri[t].f[k] = dt[t].f[k];
-            ws->tri[t].nb[k] = dt[t].nb[k];
-            ws->tri[t].nk[k] = dt[t].nk[k];
-        }
-    }
+    for (int t = 0; t < nt; ++t)
+        ws->tri[t] = dt[t];
     for (int p = 0; p < na + nbp; ++p) {
         ws->shared[p] = 0;
         ws->hmark[p] = 0;
@@ -290,7 +296,7 @@ SD_HD static SD_INLINE int sd_overlap_build(const sd_convex *a, const sd_mat3 *R
     int m = 0;
     for (int g = na; g < na + nbp; ++g) {
         sd_real hg = ws->ph[g];
-        if (hg > ra)
+        if (!(hg <= ra))
             continue;
         int j = m++;
         while (j > 0 && ws->ph[ws->order[j - 1]] > hg) {
@@ -317,12 +323,12 @@ SD_HD static SD_INLINE int sd_overlap_build(const sd_convex *a, const sd_mat3 *R
  * so the fan triangle on edge e = w_u − w_t has area a_e = ½ n_p · (r_t × e)
  * and centroid (d_p n_p + 2 r_t + e) / 3 about m. */
 SD_HD static SD_INLINE void sd_overlap_measure(sd_overlap_workspace *ws, int na, int np, const sd_convex *a,
-                                               const sd_convex *b, sd_overlap *out)
+                                               const sd_convex *b, const sd_mat3 *Ra, sd_overlap *out)
 {
     const int nl = ws->nlive;
     sd_vec3 m = sd_v3_zero();
     for (int t = 0; t < nl; ++t)
-        m = sd_v3_add(m, ws->w[t]);
+        m = sd_v3_add(m, ws->tri[t].v);
     m = sd_v3_scale(m, SD_R(1.0) / (sd_real)nl);
     for (int p = 0; p < np; ++p) {
         ws->done[p] = 0;
@@ -330,11 +336,11 @@ SD_HD static SD_INLINE void sd_overlap_measure(sd_overlap_workspace *ws, int na,
         ws->fm[p] = sd_v3_zero();
     }
     for (int t = 0; t < nl; ++t) {
-        const sd_vec3 wt = ws->w[t], rt = sd_v3_sub(wt, m);
+        const sd_vec3 wt = ws->tri[t].v, rt = sd_v3_sub(wt, m);
         const sd_ovl_tri *tr = &ws->tri[t];
         for (int k = 0; k < 3; ++k) {
             int p = tr->f[k];
-            sd_vec3 e = sd_v3_sub(ws->w[tr->nb[k]], wt);
+            sd_vec3 e = sd_v3_sub(ws->tri[tr->nb[k]].v, wt);
             sd_real a2 = sd_v3_dot(ws->pn[p], sd_v3_cross(rt, e)); /* 2 a_e */
             ws->done[p] = 1;
             ws->fa[p] += a2;
@@ -344,10 +350,14 @@ SD_HD static SD_INLINE void sd_overlap_measure(sd_overlap_workspace *ws, int na,
     sd_real V = SD_R(0.0);
     sd_vec3 C = sd_v3_zero(), SA = sd_v3_zero(), SB = sd_v3_zero(), TA = sd_v3_zero(), TB = sd_v3_zero();
     int nfaces = 0;
+    /* the faces present, listed branch-free (an unpredictable skip per
+     * plane would cost more than the list) */
     for (int p = 0; p < np; ++p) {
-        if (!ws->done[p])
-            continue;
-        ++nfaces;
+        ws->vis[nfaces] = (sd_ovl_idx)p;
+        nfaces += ws->done[p];
+    }
+    for (int i = 0; i < nfaces; ++i) {
+        const int p = ws->vis[i];
         const sd_vec3 n = ws->pn[p];
         const sd_real d = ws->ph[p] - sd_v3_dot(n, m);
         sd_real area = SD_R(0.5) * ws->fa[p];
@@ -380,6 +390,13 @@ SD_HD static SD_INLINE void sd_overlap_measure(sd_overlap_workspace *ws, int na,
         out->status = SD_OVERLAP_NONE;
         return;
     }
+    /* from A's principal frame to the world's orientation */
+    m = sd_mat3_mulv(*Ra, m);
+    C = sd_mat3_mulv(*Ra, C);
+    SA = sd_mat3_mulv(*Ra, SA);
+    SB = sd_mat3_mulv(*Ra, SB);
+    TA = sd_mat3_mulv(*Ra, TA);
+    TB = sd_mat3_mulv(*Ra, TB);
     sd_vec3 cen = sd_v3_scale(C, SD_R(1.0) / V);
     sd_vec3 S = sd_v3_scale(sd_v3_sub(SA, SB), SD_R(0.5));
     sd_vec3 T = sd_v3_scale(sd_v3_sub(TA, TB), SD_R(0.5));
@@ -442,22 +459,28 @@ SD_HD static SD_INLINE sd_overlap sd_overlap_polyhedra(const sd_convex *a, const
     const sd_vec3 dx = sd_v3_sub(b->x, a->x);
     if (!sd_gjk_finite(dx) || !(L > SD_R(0.0)))
         return sd_overlap_none(a, SD_OVERLAP_DEGENERATE);
-    /* the planes in the world's orientation, offsets about x_A */
+    const sd_mat3 Rab = sd_mat3_mul(sd_mat3_transpose(Ra), Rb);
+    const sd_vec3 dxa = sd_mat3_tmulv(Ra, dx);
+    if (!sd_gjk_finite(dxa)) /* A's orientation not finite */
+        return sd_overlap_none(a, SD_OVERLAP_DEGENERATE);
+    /* the planes in A's principal frame (A's as stored, B's turned by
+     * Ra^T Rb), offsets about x_A; the results turn back by Ra at the end */
     const sd_plane *pa = a->planes + sa->fstart, *pb = b->planes + sb->fstart;
     for (int p = 0; p < na; ++p) {
-        ws->pn[p] = sd_mat3_mulv(Ra, pa[p].n);
+        ws->pn[p] = pa[p].n;
         ws->ph[p] = pa[p].h;
     }
     for (int p = 0; p < nbp; ++p) {
-        sd_vec3 n = sd_mat3_mulv(Rb, pb[p].n);
+        sd_vec3 n = sd_mat3_mulv(Rab, pb[p].n);
         ws->pn[na + p] = n;
-        ws->ph[na + p] = pb[p].h + sd_v3_dot(n, dx);
+        ws->ph[na + p] = pb[p].h + sd_v3_dot(n, dxa);
     }
     /* gate: a point strictly inside every plane proves overlap (the hint,
      * else the midpoint of the centres, right for deep overlaps); otherwise
      * GJK decides (the clipping below would find an empty intersection
      * too, but GJK is cheaper for the pairs that are apart) */
-    sd_vec3 x = have_hint && sd_gjk_finite(x0_hint) ? sd_v3_sub(x0_hint, a->x) : sd_v3_scale(dx, SD_R(0.5));
+    sd_vec3 x = have_hint && sd_gjk_finite(x0_hint) ? sd_mat3_tmulv(Ra, sd_v3_sub(x0_hint, a->x))
+                                                     : sd_v3_scale(dxa, SD_R(0.5));
     sd_real slack = SD_R(1e300);
     for (int p = 0; p < np; ++p)
         slack = sd_min(slack, ws->ph[p] - sd_v3_dot(ws->pn[p], x));
@@ -470,7 +493,7 @@ SD_HD static SD_INLINE sd_overlap sd_overlap_polyhedra(const sd_convex *a, const
     sd_real eps = SD_OVERLAP_EPS_REL * L;
     int r = SD_OVL_INCONSISTENT;
     for (int attempt = 0; attempt < 3 && r == SD_OVL_INCONSISTENT; ++attempt, eps *= SD_R(100.0))
-        r = sd_overlap_build(a, &Ra, na, nbp, ws, eps);
+        r = sd_overlap_build(a, na, nbp, ws, eps);
     if (r == SD_OVL_EMPTY)
         return sd_overlap_none(a, SD_OVERLAP_NONE);
     if (r == SD_OVL_FULL)
@@ -478,7 +501,7 @@ SD_HD static SD_INLINE sd_overlap sd_overlap_polyhedra(const sd_convex *a, const
     if (r == SD_OVL_INCONSISTENT)
         return sd_overlap_none(a, SD_OVERLAP_DEGENERATE);
     sd_overlap o = sd_overlap_none(a, SD_OVERLAP_NONE);
-    sd_overlap_measure(ws, na, np, a, b, &o);
+    sd_overlap_measure(ws, na, np, a, b, &Ra, &o);
     if (o.status != SD_OVERLAP_OK)
         return sd_overlap_none(a, SD_OVERLAP_NONE);
     return o;
