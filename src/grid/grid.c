@@ -54,6 +54,7 @@ void sd_grid_state_free(sd_grid_state *g)
     sd_free(g->over);
     sd_free(g->walls);
     sd_free(g->rowocc);
+    sd_free(g->occ);
     sd_free(g->slab_wall);
     sd_free(g);
 }
@@ -120,7 +121,7 @@ void sd_grid_get_info(const sd_world *w, sd_grid_info *info)
     info->bytes = g->ncell * sizeof(int32_t) + g->pcap * (sizeof(sd_grid_part) + 2 * sizeof(sd_vec3)) +
                   g->pcap * (2 * sizeof(uint32_t) + SD_GRID_SLOTS * (sizeof(uint32_t) + sizeof(sd_vec3))) +
                   g->kcap * sizeof(sd_grid_kind) + g->khcap * sizeof(uint32_t) + g->over_cap * sizeof(uint32_t) +
-                  (size_t)g->nwalls * sizeof(sd_grid_wall) + (size_t)(g->nz * g->ny) +
+                  (size_t)g->nwalls * sizeof(sd_grid_wall) + (size_t)(g->nz * g->ny) + g->nocc * sizeof(uint64_t) +
                   (size_t)(g->nslab * g->nband + 1) * (size_t)g->nwalls * 2 * sizeof(sd_vec3);
 }
 
@@ -347,6 +348,46 @@ sd_status sd_grid_absorb(sd_world *w, sd_error *err)
     return SD_OK;
 }
 
+/* The tables of the kernel's equal-sphere path (reach 2, stencil.h): the
+ * offsets of the 62 cells of the forward half stencil in the kernel's bit
+ * order (z, then y, then x), and for each of the SD_GRID_Q^3 sub-cells of
+ * the owner's cell the mask of the stencil cells whose nearest point is
+ * closer than 2 R_max (plus a margin of 1e-6 cell for rounding): a cell
+ * beyond that cannot hold a partner in contact, whatever the positions. */
+static void sd_grid_fast_tables(sd_grid_state *g)
+{
+    if (g->reach != 2)
+        return;
+    int e = 0, off[SD_GRID_HALF2][3];
+    for (int dz = 0; dz <= 2; ++dz)
+        for (int dy = dz ? -2 : 0; dy <= 2; ++dy)
+            for (int dx = (dz || dy) ? -2 : 1; dx <= 2; ++dx) {
+                off[e][0] = dx;
+                off[e][1] = dy;
+                off[e][2] = dz;
+                g->stoff[e++] = ((long)dz * g->ny + dy) * g->nx + dx;
+            }
+    double lim = 2.0 * (double)g->rmax / (double)g->h + 1e-6;
+    for (int q = 0; q < SD_GRID_Q * SD_GRID_Q * SD_GRID_Q; ++q) {
+        int qa[3] = {q % SD_GRID_Q, (q / SD_GRID_Q) % SD_GRID_Q, q / (SD_GRID_Q * SD_GRID_Q)};
+        uint64_t m = 0;
+        for (int b = 0; b < SD_GRID_HALF2; ++b) {
+            double gap2 = 0;
+            for (int a = 0; a < 3; ++a) {
+                /* the owner lies in [lo, hi] of its cell (cell units); the
+                 * other cell spans [d, d + 1] */
+                double lo = (double)qa[a] / SD_GRID_Q, hi = (double)(qa[a] + 1) / SD_GRID_Q, d = off[b][a];
+                double gap = d > 0 ? d - hi : d < 0 ? lo - (d + 1) : 0.0;
+                if (gap > 0)
+                    gap2 += gap * gap;
+            }
+            if (gap2 < lim * lim)
+                m |= (uint64_t)1 << b;
+        }
+        g->qmask[q] = m;
+    }
+}
+
 sd_status sd_grid_setup(sd_world *w, sd_error *err)
 {
     sd_grid_state *g = sd_grid_state_get(w);
@@ -420,6 +461,18 @@ sd_status sd_grid_setup(sd_world *w, sd_error *err)
     if (!rowocc)
         return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory");
     g->rowocc = rowocc;
+    /* one bit per cell, two words of padding for the kernel's unaligned
+     * reads of a row's bits */
+    size_t nocc = ncell / 64 + 2;
+    if (nocc != g->nocc || !g->occ) {
+        uint64_t *occ = sd_realloc(g->occ, nocc * sizeof *occ);
+        if (!occ)
+            return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory");
+        g->occ = occ;
+        g->nocc = nocc;
+    }
+    memset(g->occ, 0, nocc * sizeof *g->occ);
+    sd_grid_fast_tables(g);
     sd_vec3 *sw = sd_realloc(g->slab_wall, (size_t)(g->nslab * g->nband + 1) * (w->wall_count ? w->wall_count : 1) * 2 *
                                                sizeof *sw);
     if (!sw)

@@ -122,6 +122,15 @@ struct sd_grid_state {
      * stamp of the current step */
     long slab, nslab, nband;
     uint8_t *rowocc;
+    /* the equal-sphere fast path of the kernel (reach 2, stencil.h): one
+     * bit per cell (set when the cell holds a particle; rebuilt from home[]
+     * before each force pass), the offsets of the 62 cells of the half
+     * stencil, and per sub-cell position of the owner the mask of those
+     * cells a contact can reach */
+    uint64_t *occ;
+    size_t nocc;
+    long stoff[SD_GRID_HALF2];
+    uint64_t qmask[SD_GRID_Q * SD_GRID_Q * SD_GRID_Q];
     sd_vec3 *slab_wall;
     uint32_t epoch;
     /* walls as the kernel sees them */

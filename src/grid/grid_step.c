@@ -39,6 +39,15 @@ static sd_grid_view sd_grid_view_of(const sd_world *w)
     v.walls = g->walls;
     v.nwalls = g->nwalls;
     v.dt = w->dt;
+    v.occ = g->reach == 2 && g->occ ? g->occ : NULL;
+    v.stoff = g->stoff;
+    v.qmask = g->qmask;
+    v.inv_h = SD_R(1.0) / g->h;
+    v.kind1 = g->nkinds == 1;
+    v.runi = g->nkinds ? g->kinds[0].radius : SD_R(0.0);
+    for (size_t e = 1; e < g->nkinds; ++e)
+        if (g->kinds[e].radius != v.runi)
+            v.runi = SD_R(0.0);
     return v;
 }
 
@@ -83,7 +92,26 @@ static long sd_grid_block(const sd_grid_state *g, const sd_grid_view *v, sd_grid
             if (!rowocc[r])
                 continue; /* an empty row of cells: nothing to read */
             const int32_t *row = g->cell + r * g->nx;
-            for (long ix = g->reach; ix < g->nx - g->reach; ++ix)
+            long xa = g->reach, xb = g->nx - g->reach;
+            if (v->occ) {
+                /* the occupied cells of the row from its occupancy bits, a
+                 * word at a time (no branch per cell) */
+                long b0 = r * g->nx + xa, b1 = r * g->nx + xb;
+                for (long wb = b0 & ~63L; wb < b1; wb += 64) {
+                    uint64_t m = v->occ[wb >> 6];
+                    if (wb < b0)
+                        m &= ~(uint64_t)0 << (b0 - wb);
+                    if (b1 - wb < 64)
+                        m &= ((uint64_t)1 << (b1 - wb)) - 1u;
+                    while (m) {
+                        long ix = wb + sd_grid_ctz64(m) - r * g->nx;
+                        m &= m - 1u;
+                        sd_grid_owner_forces(v, a, (size_t)row[ix], ix, iy, iz);
+                    }
+                }
+                continue;
+            }
+            for (long ix = xa; ix < xb; ++ix)
                 if (row[ix] >= 0)
                     sd_grid_owner_forces(v, a, (size_t)row[ix], ix, iy, iz);
         }
@@ -113,6 +141,16 @@ static void sd_grid_forces(sd_world *w)
 SD_PARALLEL_FOR
     for (size_t k = 0; k < 2 * n; ++k)
         ft[k] = sd_v3_zero();
+    if (v.occ) {
+        /* the occupancy bits of the kernel's equal-sphere path: cell
+         * home[k] holds k (one bit per cell; serial, about 1 % of a step) */
+        uint64_t *occ = g->occ;
+        const uint32_t *home = g->home;
+        memset(occ, 0, g->nocc * sizeof *occ);
+        for (size_t k = 0; k < n; ++k)
+            if (home[k] != SD_GRID_OVER)
+                occ[home[k] >> 6] |= (uint64_t)1 << (home[k] & 63u);
+    }
     long nslab = g->nslab, nband = g->nband, nblock = nslab * nband, overflows = 0;
     for (size_t e = 0; e < (size_t)(nblock + 1) * (size_t)nw * 2; ++e)
         g->slab_wall[e] = sd_v3_zero();
@@ -160,12 +198,11 @@ SD_PRAGMA(omp parallel for schedule(dynamic, 1) num_threads(w->threads) if (w->p
 SD_PRAGMA(omp parallel for schedule(static) num_threads(w->threads) if (w->parallel) reduction(max : used_max))
     for (size_t k = 0; k < n; ++k) {
         int used = 0;
-        for (int s = 0; s < SD_GRID_SLOTS; ++s) {
+        for (int s = 0; s < SD_GRID_SLOTS; ++s) { /* branch-free */
             uint32_t tg = tag[k * SD_GRID_SLOTS + (size_t)s];
-            if (tg && (tg & SD_GRID_TAG_EPOCH) != epoch)
-                tag[k * SD_GRID_SLOTS + (size_t)s] = 0u;
-            else
-                used += tg != 0u;
+            uint32_t keep = (tg & SD_GRID_TAG_EPOCH) == epoch;
+            tag[k * SD_GRID_SLOTS + (size_t)s] = keep ? tg : 0u;
+            used += (int)(keep & (tg != 0u));
         }
         if (used > used_max)
             used_max = used;

@@ -49,6 +49,13 @@
 /* Largest stencil half width (radius ratio 2: ceil(2 * 2) = 4, 9x9x9). */
 #define SD_GRID_MAX_REACH 4
 
+/* Equal spheres (reach 2): the forward half of the 5x5x5 stencil has 62
+ * cells, one bit each in a 64-bit mask; the owner's cell is cut into
+ * SD_GRID_Q^3 sub-cells, each with the mask of the stencil cells a contact
+ * can reach from it (grid.c, sd_grid_fast_tables). */
+#define SD_GRID_HALF2 62
+#define SD_GRID_Q 8
+
 /* Slot tags: 0 = empty; a particle partner: 1 + its stable id (ids stay
  * below 2^30); a wall: SD_GRID_TAG_WALL | (wall << 3) | face (face 0..5 of
  * a box, 0 for a plane). SD_GRID_TAG_EPOCH holds the parity of the step
@@ -102,6 +109,15 @@ typedef struct sd_grid_view {
     const sd_grid_wall *walls;
     int nwalls;
     sd_real dt;
+    /* equal-sphere path (reach 2; NULL occ: the generic scan): one bit per
+     * cell, set when it holds a particle; the offsets of the half stencil's
+     * cells; the reachable cells per sub-cell of the owner */
+    const uint64_t *occ;
+    const long *stoff;
+    const uint64_t *qmask;
+    sd_real inv_h;            /* 1/m, 1 / h (the sub-cell of the owner: a margin covers its rounding) */
+    sd_real runi;             /* m, the radius when every kind has the same (else 0) */
+    int kind1;                /* a single kind: every particle's is kinds[0] */
 } sd_grid_view;
 
 /* What the kernel writes: forces and torques of both particles of a pair,
@@ -118,7 +134,7 @@ typedef struct sd_grid_acc {
 SD_HD static SD_INLINE sd_body sd_grid_body(const sd_grid_view *g, size_t k)
 {
     const sd_grid_part *p = &g->part[k];
-    const sd_grid_kind *kd = &g->kinds[p->kind];
+    const sd_grid_kind *kd = g->kind1 ? g->kinds : &g->kinds[p->kind];
     sd_body b;
     b.x = p->x;
     b.v = p->v;
@@ -135,22 +151,60 @@ SD_HD static SD_INLINE sd_real sd_grid_radius(const sd_grid_view *g, size_t k)
     return g->kinds[g->part[k].kind].radius;
 }
 
-/* Slot of particle k holding key (epoch ignored), or -1. */
+/* Index of the lowest set bit of m (m != 0). */
+SD_HD static SD_INLINE int sd_grid_ctz64(uint64_t m)
+{
+#if defined(__CUDA_ARCH__)
+    return __ffsll((long long)m) - 1;
+#elif defined(__GNUC__)
+    return __builtin_ctzll(m);
+#else
+    int e = 0;
+    while (!(m & 1u)) {
+        m >>= 1;
+        ++e;
+    }
+    return e;
+#endif
+}
+
+/* The slots of particle k holding key (epoch ignored), and the free ones,
+ * as bit masks: all slots compared at once (SSE2 on the CPU when there are
+ * 8), which spares a mispredicted exit per search. */
+#if defined(__SSE2__) && !defined(__CUDACC__) && SD_GRID_SLOTS == 8
+#define SD_GRID_SLOTS_SSE2 1
+#include <emmintrin.h>
+#endif
+
+SD_HD static SD_INLINE unsigned sd_grid_slot_mask(const uint32_t *tag, uint32_t key, uint32_t ignore)
+{
+#ifdef SD_GRID_SLOTS_SSE2
+    __m128i kv = _mm_set1_epi32((int)key), mv = _mm_set1_epi32((int)~ignore);
+    __m128i t0 = _mm_loadu_si128((const __m128i *)(const void *)tag);
+    __m128i t1 = _mm_loadu_si128((const __m128i *)(const void *)(tag + 4));
+    __m128i c0 = _mm_cmpeq_epi32(_mm_and_si128(t0, mv), kv), c1 = _mm_cmpeq_epi32(_mm_and_si128(t1, mv), kv);
+    return (unsigned)_mm_movemask_ps(_mm_castsi128_ps(c0)) | ((unsigned)_mm_movemask_ps(_mm_castsi128_ps(c1)) << 4);
+#else
+    unsigned m = 0;
+    for (int s = 0; s < SD_GRID_SLOTS; ++s)
+        m |= (unsigned)((tag[s] & ~ignore) == key) << s;
+    return m;
+#endif
+}
+
+/* Slot of particle k holding key (epoch ignored), or -1 (the first match,
+ * as a scan would find). */
 SD_HD static SD_INLINE int sd_grid_slot_find(const uint32_t *tag, uint32_t key)
 {
-    for (int s = 0; s < SD_GRID_SLOTS; ++s)
-        if ((tag[s] & ~SD_GRID_TAG_EPOCH) == key)
-            return s;
-    return -1;
+    unsigned m = sd_grid_slot_mask(tag, key, SD_GRID_TAG_EPOCH);
+    return m ? sd_grid_ctz64(m) : -1;
 }
 
 /* First free slot, or -1. */
 SD_HD static SD_INLINE int sd_grid_slot_free(const uint32_t *tag)
 {
-    for (int s = 0; s < SD_GRID_SLOTS; ++s)
-        if (tag[s] == 0u)
-            return s;
-    return -1;
+    unsigned m = sd_grid_slot_mask(tag, 0u, 0u);
+    return m ? sd_grid_ctz64(m) : -1;
 }
 
 /* The spring of pair (a, b) as seen from the lower stable id, wherever it
@@ -209,48 +263,91 @@ SD_HD static SD_INLINE int sd_grid_holed_floor(sd_vec3 x, sd_real r, const sd_gr
     return 1;
 }
 
-/* One touching particle pair (k, j), evaluated once: the force and torques
- * go to both particles, the spring to the slot that holds it (or a new
- * one). */
-SD_HD static SD_HOT void sd_grid_pair_touching(const sd_grid_view *g, sd_grid_acc *a, size_t k, size_t j)
+/* No history slot for a pair (all taken in both particles). */
+#define SD_GRID_NO_SLOT ((size_t)-1)
+
+/* The history slot of touching pair (k, j), kept by either particle (found
+ * by the partner's stable id), or a new one — in body i (the lower stable
+ * id) when it has room, else in body j, its spring zeroed — stamped with
+ * this step's epoch; SD_GRID_NO_SLOT when both are full. */
+SD_HD static SD_INLINE size_t sd_grid_pair_slot(const sd_grid_view *g, sd_grid_acc *a, size_t k, size_t j)
+{
+    uint32_t idk = g->part[k].id, idj = g->part[j].id;
+    size_t i = idk < idj ? k : j, jj = i == k ? j : k;
+    uint32_t key_i = g->part[jj].id + 1u, key_j = g->part[i].id + 1u;
+    uint32_t *ti = a->tag + i * SD_GRID_SLOTS, *tj = a->tag + jj * SD_GRID_SLOTS;
+    int s = sd_grid_slot_find(ti, key_i);
+    if (s >= 0) {
+        ti[s] = key_i | a->epoch;
+        return i * SD_GRID_SLOTS + (size_t)s;
+    }
+    if ((s = sd_grid_slot_find(tj, key_j)) >= 0) {
+        tj[s] = key_j | a->epoch;
+        return jj * SD_GRID_SLOTS + (size_t)s;
+    }
+    size_t slot;
+    if ((s = sd_grid_slot_free(ti)) >= 0) {
+        ti[s] = key_i | a->epoch;
+        slot = i * SD_GRID_SLOTS + (size_t)s;
+    } else if ((s = sd_grid_slot_free(tj)) >= 0) {
+        tj[s] = key_j | a->epoch;
+        slot = jj * SD_GRID_SLOTS + (size_t)s;
+    } else {
+        return SD_GRID_NO_SLOT;
+    }
+    a->ds[slot] = sd_v3_zero();
+    return slot;
+}
+
+/* One touching particle pair (k, j) with its slot (sd_grid_pair_slot),
+ * evaluated once: the force and torques go to both particles (k's to
+ * fk, tk, which the caller keeps for it: the same sums in the same order
+ * as in a->ft, without a store and a load per pair), the spring back to
+ * the slot. */
+SD_HD static SD_HOT void sd_grid_pair_eval(const sd_grid_view *g, sd_grid_acc *a, size_t k, size_t j, size_t slot,
+                                           sd_vec3 *fk, sd_vec3 *tk)
 {
     /* canonical orientation: body i is the lower stable id */
     uint32_t idk = g->part[k].id, idj = g->part[j].id;
-    size_t i = idk < idj ? k : j, jj = i == k ? j : k;
+    int k_is_i = idk < idj;
+    size_t i = k_is_i ? k : j, jj = k_is_i ? j : k;
     sd_body bi = sd_grid_body(g, i), bj = sd_grid_body(g, jj);
-    const sd_pair_params *prm = &g->mix[(size_t)g->kinds[g->part[i].kind].material * (size_t)g->nm +
-                                        (size_t)g->kinds[g->part[jj].kind].material];
-    /* the slot: kept by either particle; a new one goes to body i when it
-     * has room, else to body j */
-    uint32_t key_i = g->part[jj].id + 1u, key_j = g->part[i].id + 1u;
-    uint32_t *ti = a->tag + i * SD_GRID_SLOTS, *tj = a->tag + jj * SD_GRID_SLOTS;
-    size_t slot = 0;
-    uint32_t *stag = 0, skey = 0;
-    int s = sd_grid_slot_find(ti, key_i);
-    if (s >= 0) {
-        slot = i * SD_GRID_SLOTS + (size_t)s, stag = ti + s, skey = key_i;
-    } else if ((s = sd_grid_slot_find(tj, key_j)) >= 0) {
-        slot = jj * SD_GRID_SLOTS + (size_t)s, stag = tj + s, skey = key_j;
-    } else if ((s = sd_grid_slot_free(ti)) >= 0) {
-        slot = i * SD_GRID_SLOTS + (size_t)s, stag = ti + s, skey = key_i;
-        a->ds[slot] = sd_v3_zero();
-    } else if ((s = sd_grid_slot_free(tj)) >= 0) {
-        slot = jj * SD_GRID_SLOTS + (size_t)s, stag = tj + s, skey = key_j;
-        a->ds[slot] = sd_v3_zero();
-    }
-    sd_vec3 ds = stag ? a->ds[slot] : sd_v3_zero();
+    const sd_pair_params *prm =
+        g->kind1 ? &g->mix[(size_t)g->kinds[0].material * (size_t)g->nm + (size_t)g->kinds[0].material]
+                 : &g->mix[(size_t)g->kinds[g->part[i].kind].material * (size_t)g->nm +
+                           (size_t)g->kinds[g->part[jj].kind].material];
+    int kept = slot != SD_GRID_NO_SLOT;
+    sd_vec3 ds = kept ? a->ds[slot] : sd_v3_zero();
     sd_pair_result r = sd_pair_spheres(prm, &bi, &bj, &ds, g->dt);
-    if (stag) {
+    if (kept)
         a->ds[slot] = ds;
-        *stag = skey | a->epoch;
-    } else {
+    else
         a->overflows++;
+    /* body i gets +f and ti, body j gets -f (x - f is x + (-f), bit for
+     * bit) and tj */
+    sd_vec3 *ftp = a->ft + 2 * j;
+    if (k_is_i) {
+        *fk = sd_v3_add(*fk, r.f);
+        *tk = sd_v3_add(*tk, r.ti);
+        ftp[0] = sd_v3_sub(ftp[0], r.f);
+        ftp[1] = sd_v3_add(ftp[1], r.tj);
+    } else {
+        ftp[0] = sd_v3_add(ftp[0], r.f);
+        ftp[1] = sd_v3_add(ftp[1], r.ti);
+        *fk = sd_v3_sub(*fk, r.f);
+        *tk = sd_v3_add(*tk, r.tj);
     }
-    sd_vec3 *fti = a->ft + 2 * i, *ftj = a->ft + 2 * jj;
-    fti[0] = sd_v3_add(fti[0], r.f);
-    fti[1] = sd_v3_add(fti[1], r.ti);
-    ftj[0] = sd_v3_sub(ftj[0], r.f);
-    ftj[1] = sd_v3_add(ftj[1], r.tj);
+}
+
+/* One touching particle pair (k, j), evaluated once: its slot, then the
+ * contact. */
+SD_HD static SD_HOT void sd_grid_pair_touching(const sd_grid_view *g, sd_grid_acc *a, size_t k, size_t j)
+{
+    size_t slot = sd_grid_pair_slot(g, a, k, j);
+    sd_vec3 fk = a->ft[2 * k], tk = a->ft[2 * k + 1];
+    sd_grid_pair_eval(g, a, k, j, slot, &fk, &tk);
+    a->ft[2 * k] = fk;
+    a->ft[2 * k + 1] = tk;
 }
 
 /* Any pair (k, j): evaluated when touching; a pair that is not touching
@@ -308,6 +405,11 @@ SD_HD static SD_INLINE void sd_grid_walls_of(const sd_grid_view *g, sd_grid_acc 
                 sd_grid_add_wall(g, a, k, wi, 0, &geo);
             continue;
         }
+        /* most particles are a radius or more inside every face: then the
+         * face loop below skips all six (s >= r), so skip it at once */
+        if (x.x - wl->lo.x >= r && wl->hi.x - x.x >= r && x.y - wl->lo.y >= r && wl->hi.y - x.y >= r &&
+            x.z - wl->lo.z >= r && wl->hi.z - x.z >= r)
+            continue;
         const sd_real cx[3] = {x.x, x.y, x.z};
         const sd_real lo[3] = {wl->lo.x, wl->lo.y, wl->lo.z};
         const sd_real hi[3] = {wl->hi.x, wl->hi.y, wl->hi.z};
@@ -330,12 +432,78 @@ SD_HD static SD_INLINE void sd_grid_walls_of(const sd_grid_view *g, sd_grid_acc 
     }
 }
 
+/* Bits [b, b + 5) of the occupancy bitmap (the words after b's exist: the
+ * bitmap has two words of padding). */
+SD_HD static SD_INLINE uint64_t sd_grid_occ5(const uint64_t *occ, long b)
+{
+    size_t i = (size_t)b >> 6;
+    unsigned s = (unsigned)b & 63u;
+    return ((occ[i] >> s) | ((occ[i + 1] << 1) << (63u - s))) & 0x1fu;
+}
+
+/* The candidates of owner k in cell c = (ix, iy, iz) for equal spheres
+ * (reach 2), into cand in stencil order (z, then y, then x: the order of
+ * the generic scan, so the contacts are summed in the same order): the
+ * occupied cells of the half stencil, from the bitmap (13 reads of 5 bits
+ * instead of 62 cell reads), masked by the cells reachable from k's
+ * sub-cell (a cell whose nearest point is 2 R or more away holds no
+ * partner), then only those closer than the sum of the radii. */
+SD_HD static SD_INLINE int sd_grid_touching2(const sd_grid_view *g, size_t k, long ix, long iy, long iz, long c,
+                                            int32_t *cand)
+{
+    const uint64_t *occ = g->occ;
+    const long *off = g->stoff;
+    /* row (dz = 0, dy = 0): dx = 1, 2 -> bits 0, 1; the 12 full rows after
+     * it, 5 bits each from bit 2 */
+    uint64_t m = sd_grid_occ5(occ, c + 1) & 0x3u;
+    for (int r = 0; r < 12; ++r)
+        m |= sd_grid_occ5(occ, c + off[2 + 5 * r]) << (2 + 5 * r);
+    /* the owner's sub-cell (a product by 1/h may put the fraction an ulp
+     * outside [0, 1) or in the next sub-cell: the clamp and the tables'
+     * margin of 1e-6 cell cover that) */
+    sd_vec3 xk = g->part[k].x;
+    double fx = (double)((xk.x - g->lo.x) * g->inv_h) - (double)ix,
+           fy = (double)((xk.y - g->lo.y) * g->inv_h) - (double)iy,
+           fz = (double)((xk.z - g->lo.z) * g->inv_h) - (double)iz;
+    int qx = (int)(fx * SD_GRID_Q), qy = (int)(fy * SD_GRID_Q), qz = (int)(fz * SD_GRID_Q);
+    qx = qx < 0 ? 0 : qx > SD_GRID_Q - 1 ? SD_GRID_Q - 1 : qx;
+    qy = qy < 0 ? 0 : qy > SD_GRID_Q - 1 ? SD_GRID_Q - 1 : qy;
+    qz = qz < 0 ? 0 : qz > SD_GRID_Q - 1 ? SD_GRID_Q - 1 : qz;
+    m &= g->qmask[(qz * SD_GRID_Q + qy) * SD_GRID_Q + qx];
+    sd_real rk = sd_grid_radius(g, k);
+    int nt = 0;
+    if (g->runi > SD_R(0.0)) {
+        /* one radius: the same sum rk + rk for every partner */
+        sd_real rs = rk + rk, rs2 = rs * rs;
+        while (m) {
+            int e = sd_grid_ctz64(m);
+            m &= m - 1u;
+            int32_t j = g->cell[c + off[e]];
+            sd_vec3 d = sd_v3_sub(xk, g->part[j].x);
+            cand[nt] = j;
+            nt += sd_v3_norm2(d) < rs2;
+        }
+    } else {
+        while (m) {
+            int e = sd_grid_ctz64(m);
+            m &= m - 1u;
+            int32_t j = g->cell[c + off[e]];
+            sd_vec3 d = sd_v3_sub(xk, g->part[j].x);
+            sd_real rs = rk + sd_grid_radius(g, (size_t)j);
+            cand[nt] = j;
+            nt += sd_v3_norm2(d) < rs * rs;
+        }
+    }
+    return nt;
+}
+
 /* The kernel: particle k, in its cell (ix, iy, iz), as owner. Visits the
  * forward half of its (2 reach + 1)^3 stencil (seed 001 §3.2.1): dz > 0, or
  * dz = 0 and dy > 0, or dz = dy = 0 and dx > 0 — every pair of occupied
  * cells within reach once — then its walls. Cells z, then y, then x: a
- * fixed order. The caller passes the cell's coordinates (it walks the
- * cells), which spares integer divisions per particle. */
+ * fixed order (equal spheres: sd_grid_touching2, the same order). The
+ * caller passes the cell's coordinates (it walks the cells), which spares
+ * integer divisions per particle. */
 SD_HD static SD_INLINE void sd_grid_owner_forces(const sd_grid_view *g, sd_grid_acc *a, size_t k, long ix, long iy,
                                                  long iz)
 {
@@ -343,31 +511,36 @@ SD_HD static SD_INLINE void sd_grid_owner_forces(const sd_grid_view *g, sd_grid_
     long c = (iz * g->ny + iy) * g->nx + ix;
     int rch = g->reach;
     sd_real rk = sd_grid_radius(g, k);
-    /* candidates first (a branch-free gather of the occupied cells of the
-     * half stencil: 62 cells for equal spheres, all read — a distance cull
-     * of rows and cells cost more than the reads it saved), then the
-     * distance tests, then the contacts: the branches stay predictable */
     int32_t cand[(SD_GRID_MAX_REACH + 1) * (2 * SD_GRID_MAX_REACH + 1) * (2 * SD_GRID_MAX_REACH + 1)];
-    int nc = 0;
-    for (int dz = 0; dz <= rch; ++dz) {
-        for (int dy = dz ? -rch : 0; dy <= rch; ++dy) {
-            int x0 = (dz || dy) ? -rch : 1, x1 = rch;
-            const int32_t *row = g->cell + c + (long)dz * nxy + (long)dy * g->nx;
-            for (int dx = x0; dx <= x1; ++dx) {
-                int32_t j = row[dx];
-                cand[nc] = j;
-                nc += j >= 0;
+    int nt;
+    if (rch == 2 && g->occ) {
+        nt = sd_grid_touching2(g, k, ix, iy, iz, c, cand);
+    } else {
+        /* radius ratios above 1 (reach 3 or 4), or no bitmap: candidates
+         * first (a branch-free gather of the occupied cells of the half
+         * stencil), then the distance tests, then the contacts: the
+         * branches stay predictable */
+        int nc = 0;
+        for (int dz = 0; dz <= rch; ++dz) {
+            for (int dy = dz ? -rch : 0; dy <= rch; ++dy) {
+                int x0 = (dz || dy) ? -rch : 1, x1 = rch;
+                const int32_t *row = g->cell + c + (long)dz * nxy + (long)dy * g->nx;
+                for (int dx = x0; dx <= x1; ++dx) {
+                    int32_t j = row[dx];
+                    cand[nc] = j;
+                    nc += j >= 0;
+                }
             }
         }
-    }
-    sd_vec3 xk = g->part[k].x;
-    int nt = 0;
-    for (int e = 0; e < nc; ++e) {
-        size_t j = (size_t)cand[e];
-        sd_vec3 d = sd_v3_sub(xk, g->part[j].x);
-        sd_real rs = rk + sd_grid_radius(g, j);
-        cand[nt] = (int32_t)j;
-        nt += sd_v3_norm2(d) < rs * rs;
+        sd_vec3 xk = g->part[k].x;
+        nt = 0;
+        for (int e = 0; e < nc; ++e) {
+            size_t j = (size_t)cand[e];
+            sd_vec3 d = sd_v3_sub(xk, g->part[j].x);
+            sd_real rs = rk + sd_grid_radius(g, j);
+            cand[nt] = (int32_t)j;
+            nt += sd_v3_norm2(d) < rs * rs;
+        }
     }
     /* the touching partners' slots are read next: ask for them now (a
      * hint only; nothing under nvcc) */
@@ -376,9 +549,21 @@ SD_HD static SD_INLINE void sd_grid_owner_forces(const sd_grid_view *g, sd_grid_
         SD_GRID_PREFETCH(a->ds + (size_t)cand[e] * SD_GRID_SLOTS);
         SD_GRID_PREFETCH(a->ds + (size_t)cand[e] * SD_GRID_SLOTS + 3);
         SD_GRID_PREFETCH(a->ds + (size_t)cand[e] * SD_GRID_SLOTS + 6);
+        SD_GRID_PREFETCH(a->ft + 2 * (size_t)cand[e]);
+        SD_GRID_PREFETCH(a->ft + 2 * (size_t)cand[e] + 1);
     }
+    /* the slots of all touching pairs first (in pair order, so new slots
+     * are taken as one pair at a time would), then the contacts: the
+     * slots' dependent loads do not hold up the contacts' arithmetic */
+    size_t slot[(SD_GRID_MAX_REACH + 1) * (2 * SD_GRID_MAX_REACH + 1) * (2 * SD_GRID_MAX_REACH + 1)];
     for (int e = 0; e < nt; ++e)
-        sd_grid_pair_touching(g, a, k, (size_t)cand[e]);
+        slot[e] = sd_grid_pair_slot(g, a, k, (size_t)cand[e]);
+
+    sd_vec3 fk = a->ft[2 * k], tk = a->ft[2 * k + 1];
+    for (int e = 0; e < nt; ++e)
+        sd_grid_pair_eval(g, a, k, (size_t)cand[e], slot[e], &fk, &tk);
+    a->ft[2 * k] = fk;
+    a->ft[2 * k + 1] = tk;
     sd_grid_walls_of(g, a, k);
 }
 
