@@ -114,20 +114,14 @@ static sd_history *sd_history_sort(sd_history *h, sd_history *tmp, size_t m)
     return h;
 }
 
-/* An entry worth keeping: a spring, or an overlap hint (x0_ok may be NULL). */
-static int sd_history_live(const sd_vec3 *ds, const uint8_t *x0_ok, size_t k)
-{
-    return ds[k].x != 0 || ds[k].y != 0 || ds[k].z != 0 || (x0_ok && x0_ok[k]);
-}
-
-/* Collects entries with a spring or a hint, sorted by key (x0 and x0_ok may
- * be NULL: wall pairs keep no hint). */
-static sd_history *sd_history_collect(size_t n, const uint64_t *key, const sd_vec3 *ds, const sd_vec3 *x0,
-                                      const uint8_t *x0_ok, size_t *count)
+/* Collects the entries worth keeping, sorted by key: those with a non-zero
+ * spring v (only == NULL), or those marked in only[] (the overlap hints). */
+static sd_history *sd_history_collect(size_t n, const uint64_t *key, const sd_vec3 *v, const uint8_t *only,
+                                      size_t *count)
 {
     size_t m = 0;
     for (size_t k = 0; k < n; ++k)
-        if (sd_history_live(ds, x0_ok, k))
+        if (only ? only[k] != 0 : (v[k].x != 0 || v[k].y != 0 || v[k].z != 0))
             ++m;
     *count = m;
     /* one block: the entries, then the radix sort's scratch */
@@ -136,11 +130,9 @@ static sd_history *sd_history_collect(size_t n, const uint64_t *key, const sd_ve
         return NULL;
     m = 0;
     for (size_t k = 0; k < n; ++k)
-        if (sd_history_live(ds, x0_ok, k)) {
+        if (only ? only[k] != 0 : (v[k].x != 0 || v[k].y != 0 || v[k].z != 0)) {
             h[m].key = key[k];
-            h[m].ds = ds[k];
-            h[m].x0_ok = x0_ok ? x0_ok[k] : 0;
-            h[m].x0 = h[m].x0_ok ? x0[k] : sd_v3_zero();
+            h[m].v = v[k];
             ++m;
         }
     sd_history *sorted = sd_history_sort(h, h + m, m);
@@ -173,7 +165,7 @@ static sd_vec3 sd_history_find(const sd_history *h, size_t n, uint64_t key)
             hi = mid;
     }
     if (lo < n && h[lo].key == key)
-        return h[lo].ds;
+        return h[lo].v;
     return sd_v3_zero();
 }
 
@@ -358,10 +350,17 @@ static sd_status sd_pairs_build(sd_world *w)
     size_t n = p->n;
     uint32_t *cnt = w->grid.count;
 
-    size_t nhist = 0;
-    sd_history *hist = sd_history_collect(l->n, l->key, l->ds, l->x0, l->x0_ok, &nhist);
+    size_t nhist = 0, nhint = 0;
+    sd_history *hist = sd_history_collect(l->n, l->key, l->ds, NULL, &nhist);
     if (!hist)
         return SD_ERR_MEMORY;
+    /* overlap hints only where a volume law can use them (pairs.h) */
+    int hinted = w->has_volume_law;
+    sd_history *hints = hinted ? sd_history_collect(l->n, l->key, l->x0, l->x0_ok, &nhint) : NULL;
+    if (hinted && !hints) {
+        sd_free(hist);
+        return SD_ERR_MEMORY;
+    }
 
     /* one search per particle: its candidates go to a small fixed slot in
      * the grid scratch (SD_PAIR_SLOTS each); only a particle with more
@@ -378,6 +377,7 @@ static sd_status sd_pairs_build(sd_world *w)
     }
     if (sd_pairs_reserve(l, total)) {
         sd_free(hist);
+        sd_free(hints);
         return SD_ERR_MEMORY;
     }
     l->n = total;
@@ -394,10 +394,14 @@ static sd_status sd_pairs_build(sd_world *w)
             l->i[e] = (uint32_t)i;
             uint64_t a = p->id[i], b = p->id[l->j[e]];
             l->key[e] = a < b ? (a << 32 | b) : (b << 32 | a);
-            const sd_history *hh = sd_history_lookup(hist, nhist, l->key[e]);
-            l->ds[e] = hh ? hh->ds : sd_v3_zero();
-            l->x0[e] = hh ? hh->x0 : sd_v3_zero();
-            l->x0_ok[e] = hh ? (uint8_t)hh->x0_ok : 0;
+            l->ds[e] = sd_history_find(hist, nhist, l->key[e]);
+            if (hinted) {
+                const sd_history *hh = sd_history_lookup(hints, nhint, l->key[e]);
+                l->x0[e] = hh ? hh->v : sd_v3_zero();
+                l->x0_ok[e] = hh != NULL;
+            } else {
+                l->x0_ok[e] = 0;
+            }
             l->f[e] = sd_v3_zero();
             l->t[2 * e] = sd_v3_zero();
             l->t[2 * e + 1] = sd_v3_zero();
@@ -409,6 +413,7 @@ static sd_status sd_pairs_build(sd_world *w)
         }
     }
     sd_free(hist);
+    sd_free(hints);
     if (sd_pairs_partition(w) != SD_OK)
         return SD_ERR_MEMORY;
     SD_PARALLEL_FOR
@@ -496,7 +501,7 @@ static sd_status sd_wall_pairs_build(sd_world *w)
         l->start_cap = n + 1;
     }
     size_t nhist = 0;
-    sd_history *hist = sd_history_collect(l->n, l->key, l->ds, NULL, NULL, &nhist);
+    sd_history *hist = sd_history_collect(l->n, l->key, l->ds, NULL, &nhist);
     if (!hist)
         return SD_ERR_MEMORY;
     SD_PARALLEL_FOR

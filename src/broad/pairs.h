@@ -70,12 +70,13 @@ typedef struct sd_grid {
     size_t pcap;
 } sd_grid;
 
-/* History entry for the carry-over at rebuilds. */
+/* History entry for the carry-over at rebuilds: the carried vector is a
+ * tangential spring, or (in a separate list, only in worlds with a volume
+ * law) a polyhedron pair's overlap hint x0. One 32-byte entry type for both
+ * keeps the sphere path's sort as light as it was before the hints. */
 typedef struct sd_history {
     uint64_t key;
-    sd_vec3 ds;
-    sd_vec3 x0;  /* overlap hint (pair lists only) */
-    int x0_ok;   /* 0 when there is none */
+    sd_vec3 v;
 } sd_history;
 
 #endif
