@@ -156,17 +156,8 @@ static const sd_history *sd_history_lookup(const sd_history *h, size_t n, uint64
 
 static sd_vec3 sd_history_find(const sd_history *h, size_t n, uint64_t key)
 {
-    size_t lo = 0, hi = n;
-    while (lo < hi) {
-        size_t mid = lo + (hi - lo) / 2;
-        if (h[mid].key < key)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    if (lo < n && h[lo].key == key)
-        return h[lo].v;
-    return sd_v3_zero();
+    const sd_history *e = sd_history_lookup(h, n, key);
+    return e ? e->v : sd_v3_zero();
 }
 
 /* ---- grid ------------------------------------------------------------------ */
