@@ -11,6 +11,9 @@
 #include "broad/cells.h"
 
 #include <string.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #include "core/alloc.h"
 #include "core/error.h"
@@ -82,60 +85,116 @@ void sd_broad_free(sd_pair_list *l, sd_wall_pair_list *wl, sd_grid *g)
 /* Sorts h by key: least-significant-digit radix sort, 11 bits a pass,
  * skipping the passes whose digit is the same in every key (the high bits
  * of small ids). Linear in the count, which matters at every rebuild of a
- * large list. tmp holds as many entries as h; returns where the result is. */
-static sd_history *sd_history_sort(sd_history *h, sd_history *tmp, size_t m)
+ * large list. tmp holds as many entries as h; returns where the result is.
+ *
+ * Threaded when the world is: each thread counts the digits of its own
+ * contiguous share, the offsets are laid out digit by digit and, within a
+ * digit, share by share, and each thread scatters its share in order. That
+ * is the stable order of the serial sort, which is unique: the same result
+ * for any thread count. */
+enum { SD_HIST_BITS = 11, SD_HIST_RADIX = 1 << SD_HIST_BITS };
+
+static sd_history *sd_history_sort(const sd_world *w, sd_history *h, sd_history *tmp, size_t m)
 {
-    enum { BITS = 11, RADIX = 1 << BITS };
-    static const uint64_t mask = RADIX - 1;
+    const uint64_t mask = SD_HIST_RADIX - 1;
     uint64_t all_or = 0, all_and = ~(uint64_t)0;
+    SD_PRAGMA(omp parallel for schedule(static) num_threads(w->threads) if (w->parallel) \
+                  reduction(| : all_or) reduction(& : all_and))
     for (size_t k = 0; k < m; ++k) {
         all_or |= h[k].key;
         all_and &= h[k].key;
     }
-    size_t count[RADIX];
-    for (int shift = 0; shift < 64; shift += BITS) {
+    int nt = w->parallel && w->threads > 1 ? w->threads : 1;
+    size_t one[SD_HIST_RADIX];
+    size_t *count = nt > 1 ? sd_malloc((size_t)nt * SD_HIST_RADIX * sizeof *count) : NULL;
+    if (!count) { /* one thread (or no memory for the threads' counts) */
+        count = one;
+        nt = 1;
+    }
+    for (int shift = 0; shift < 64; shift += SD_HIST_BITS) {
         if ((((all_or ^ all_and) >> shift) & mask) == 0)
             continue; /* the same digit everywhere: already in order */
-        memset(count, 0, sizeof count);
-        for (size_t k = 0; k < m; ++k)
-            count[(h[k].key >> shift) & mask]++;
-        size_t sum = 0;
-        for (size_t d = 0; d < RADIX; ++d) {
-            size_t c = count[d];
-            count[d] = sum;
-            sum += c;
+        SD_PRAGMA(omp parallel num_threads(nt) if (nt > 1))
+        {
+            int t = 0;
+#ifdef _OPENMP
+            t = omp_get_thread_num();
+            int got = omp_get_num_threads();
+#else
+            int got = 1;
+#endif
+            /* shares by the team actually running, so a smaller team still
+             * covers every entry (the order within a digit does not depend
+             * on how the entries are shared) */
+            size_t k0 = m * (size_t)t / (size_t)got, k1 = m * (size_t)(t + 1) / (size_t)got;
+            size_t *c = count + (size_t)t * SD_HIST_RADIX;
+            memset(c, 0, SD_HIST_RADIX * sizeof *c);
+            for (size_t k = k0; k < k1; ++k)
+                c[(h[k].key >> shift) & mask]++;
+            SD_PRAGMA(omp barrier)
+            SD_PRAGMA(omp single)
+            {
+                size_t sum = 0;
+                for (size_t d = 0; d < SD_HIST_RADIX; ++d)
+                    for (int u = 0; u < got; ++u) {
+                        size_t v = count[(size_t)u * SD_HIST_RADIX + d];
+                        count[(size_t)u * SD_HIST_RADIX + d] = sum;
+                        sum += v;
+                    }
+            }
+            for (size_t k = k0; k < k1; ++k)
+                tmp[c[(h[k].key >> shift) & mask]++] = h[k];
         }
-        for (size_t k = 0; k < m; ++k)
-            tmp[count[(h[k].key >> shift) & mask]++] = h[k];
         sd_history *t = h;
         h = tmp;
         tmp = t;
     }
+    if (count != one)
+        sd_free(count);
     return h;
 }
 
 /* Collects the entries worth keeping, sorted by key: those with a non-zero
- * spring v (only == NULL), or those marked in only[] (the overlap hints). */
-static sd_history *sd_history_collect(size_t n, const uint64_t *key, const sd_vec3 *v, const uint8_t *only,
-                                      size_t *count)
+ * spring v (only == NULL), or those marked in only[] (the overlap hints).
+ * Threaded like the sort: each thread counts its share, then copies it to
+ * its place, so the entries keep the pair-list order for any thread count. */
+static int sd_history_keep(size_t k, const sd_vec3 *v, const uint8_t *only)
 {
-    size_t m = 0;
-    for (size_t k = 0; k < n; ++k)
-        if (only ? only[k] != 0 : (v[k].x != 0 || v[k].y != 0 || v[k].z != 0))
-            ++m;
+    return only ? only[k] != 0 : (v[k].x != 0 || v[k].y != 0 || v[k].z != 0);
+}
+
+static sd_history *sd_history_collect(const sd_world *w, size_t n, const uint64_t *key, const sd_vec3 *v,
+                                      const uint8_t *only, size_t *count)
+{
+    enum { SHARES = 64 }; /* fixed shares: the layout does not depend on the thread count */
+    size_t before[SHARES + 1];
+    SD_PRAGMA(omp parallel for schedule(static) num_threads(w->threads) if (w->parallel))
+    for (int s = 0; s < SHARES; ++s) {
+        size_t c = 0;
+        for (size_t k = n * (size_t)s / SHARES; k < n * (size_t)(s + 1) / SHARES; ++k)
+            c += (size_t)sd_history_keep(k, v, only);
+        before[s + 1] = c;
+    }
+    before[0] = 0;
+    for (int s = 0; s < SHARES; ++s)
+        before[s + 1] += before[s];
+    size_t m = before[SHARES];
     *count = m;
     /* one block: the entries, then the radix sort's scratch */
     sd_history *h = sd_malloc(2 * (m ? m : 1) * sizeof *h);
     if (!h)
         return NULL;
-    m = 0;
-    for (size_t k = 0; k < n; ++k)
-        if (only ? only[k] != 0 : (v[k].x != 0 || v[k].y != 0 || v[k].z != 0)) {
-            h[m].key = key[k];
-            h[m].v = v[k];
-            ++m;
-        }
-    sd_history *sorted = sd_history_sort(h, h + m, m);
+    SD_PRAGMA(omp parallel for schedule(static) num_threads(w->threads) if (w->parallel))
+    for (int s = 0; s < SHARES; ++s) {
+        size_t o = before[s];
+        for (size_t k = n * (size_t)s / SHARES; k < n * (size_t)(s + 1) / SHARES; ++k)
+            if (sd_history_keep(k, v, only)) {
+                h[o].key = key[k];
+                h[o].v = v[k];
+                ++o;
+            }
+    }
+    sd_history *sorted = sd_history_sort(w, h, h + m, m);
     if (sorted != h)
         memcpy(h, sorted, m * sizeof *h);
     return h;
@@ -240,7 +299,8 @@ static void sd_grid_sort(sd_world *w)
     for (size_t c = g->ncell; c > 0; --c)
         g->cell_start[c] = g->cell_start[c - 1];
     g->cell_start[0] = 0;
-    sd_particles_permute(p, g->perm, g->scratch);
+    sd_particles_permute(p, g->perm, g->scratch, w->threads, w->parallel);
+    SD_PARALLEL_FOR
     for (size_t k = 0; k < n; ++k)
         g->cell[k] = sd_grid_cell(g, p->x[k]);
 }
@@ -342,12 +402,12 @@ static sd_status sd_pairs_build(sd_world *w)
     uint32_t *cnt = w->grid.count;
 
     size_t nhist = 0, nhint = 0;
-    sd_history *hist = sd_history_collect(l->n, l->key, l->ds, NULL, &nhist);
+    sd_history *hist = sd_history_collect(w, l->n, l->key, l->ds, NULL, &nhist);
     if (!hist)
         return SD_ERR_MEMORY;
     /* overlap hints only where a volume law can use them (pairs.h) */
     int hinted = w->has_volume_law;
-    sd_history *hints = hinted ? sd_history_collect(l->n, l->key, l->x0, l->x0_ok, &nhint) : NULL;
+    sd_history *hints = hinted ? sd_history_collect(w, l->n, l->key, l->x0, l->x0_ok, &nhint) : NULL;
     if (hinted && !hints) {
         sd_free(hist);
         return SD_ERR_MEMORY;
@@ -492,7 +552,7 @@ static sd_status sd_wall_pairs_build(sd_world *w)
         l->start_cap = n + 1;
     }
     size_t nhist = 0;
-    sd_history *hist = sd_history_collect(l->n, l->key, l->ds, NULL, &nhist);
+    sd_history *hist = sd_history_collect(w, l->n, l->key, l->ds, NULL, &nhist);
     if (!hist)
         return SD_ERR_MEMORY;
     SD_PARALLEL_FOR

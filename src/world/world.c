@@ -116,16 +116,21 @@ void sd_particles_free(sd_particles *p)
     memset(p, 0, sizeof *p);
 }
 
-void sd_particles_permute(sd_particles *p, const uint32_t *perm, void *scratch)
+void sd_particles_permute(sd_particles *p, const uint32_t *perm, void *scratch, int threads, int parallel)
 {
     size_t n = p->n;
-#define SD_X_PERMUTE(type, name, unit, doc)                           \
-    {                                                                 \
-        _Static_assert(sizeof(type) <= 32, "scratch too small");      \
-        type *tmp = (type *)scratch;                                  \
-        for (size_t k = 0; k < n; ++k)                                \
-            tmp[k] = p->name[perm[k]];                                \
-        memcpy(p->name, tmp, n * sizeof(type));                       \
+    (void)threads;
+    (void)parallel;
+#define SD_X_PERMUTE(type, name, unit, doc)                                                                 \
+    {                                                                                                       \
+        _Static_assert(sizeof(type) <= 32, "scratch too small");                                            \
+        type *tmp = (type *)scratch;                                                                        \
+        SD_PRAGMA(omp parallel for schedule(static) num_threads(threads) if (parallel))                     \
+        for (size_t k = 0; k < n; ++k)                                                                      \
+            tmp[k] = p->name[perm[k]];                                                                      \
+        SD_PRAGMA(omp parallel for schedule(static) num_threads(threads) if (parallel))                     \
+        for (size_t k = 0; k < n; ++k)                                                                      \
+            p->name[k] = tmp[k];                                                                            \
     }
     SD_PARTICLE_FIELDS(SD_X_PERMUTE)
 #undef SD_X_PERMUTE

@@ -140,8 +140,9 @@ struct sd_world {
 /* Grows the particle arrays to hold at least cap particles. */
 sd_status sd_particles_reserve(sd_particles *p, size_t cap);
 void sd_particles_free(sd_particles *p);
-/* Reorders every field: new[k] = old[perm[k]]; scratch holds n * 32 bytes. */
-void sd_particles_permute(sd_particles *p, const uint32_t *perm, void *scratch);
+/* Reorders every field: new[k] = old[perm[k]]; scratch holds n * 32 bytes;
+ * threaded (threads, when parallel) a field at a time. */
+void sd_particles_permute(sd_particles *p, const uint32_t *perm, void *scratch, int threads, int parallel);
 
 /* servo.c: moves the walls that have a motion over one step starting at
  * time t (fails when a servo wall has no opposite walls to measure its
