@@ -390,6 +390,10 @@ static sd_status sd_build(const sd_scene *s, sd_world *w, sd_scene_spheres *sp, 
     sd_free(bodies);
     if (st != SD_OK)
         return st;
+    /* the world holds the particles now: the generated copy goes before
+     * the world is prepared (where, with solver grid, the solver takes the
+     * spheres over), so the two are never held at once with it */
+    sd_scene_spheres_free(sp);
 
     /* pouring and the outlet of the grid solver (src/grid, seed 001 4.1-4.2) */
     if (s->pour.given) {
