@@ -94,7 +94,11 @@ sd_status sd_particles_reserve(sd_particles *p, size_t cap)
 {
     if (cap <= p->cap)
         return SD_OK;
-    cap = cap + cap / 2 + 64;
+    /* head room for later additions, but not on the first fill: a scene
+     * that adds its particles in one go (a generator of millions) would
+     * reserve half as much again and never use it */
+    if (p->cap)
+        cap = cap + cap / 2 + 64;
 #define SD_X_GROW(type, name, unit, doc)                          \
     {                                                             \
         type *q = sd_realloc(p->name, cap * sizeof(type));        \
