@@ -166,7 +166,7 @@ static int sd_history_keep(size_t k, const sd_vec3 *v, const uint8_t *only)
 static sd_history *sd_history_collect(const sd_world *w, size_t n, const uint64_t *key, const sd_vec3 *v,
                                       const uint8_t *only, size_t *count)
 {
-    enum { SHARES = 64 }; /* fixed shares: the layout does not depend on the thread count */
+    enum { SHARES = 64 }; /* contiguous shares: the entries come out in pair-list order */
     size_t before[SHARES + 1];
     SD_PRAGMA(omp parallel for schedule(static) num_threads(w->threads) if (w->parallel))
     for (int s = 0; s < SHARES; ++s) {

@@ -123,8 +123,6 @@ void sd_particles_free(sd_particles *p)
 void sd_particles_permute(sd_particles *p, const uint32_t *perm, void *scratch, int threads, int parallel)
 {
     size_t n = p->n;
-    (void)threads;
-    (void)parallel;
 #define SD_X_PERMUTE(type, name, unit, doc)                                                                 \
     {                                                                                                       \
         _Static_assert(sizeof(type) <= 32, "scratch too small");                                            \
