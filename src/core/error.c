@@ -32,6 +32,44 @@ sd_status sd_error_set(sd_error *err, sd_status code, const char *file, int line
     return code;
 }
 
+const char *sd_escape(char *buf, size_t size, const char *s, size_t len)
+{
+    static const char hex[] = "0123456789abcdef";
+    if (!buf || size == 0)
+        return buf;
+    buf[0] = '\0';
+    if (!s)
+        return buf;
+    size_t o = 0;
+    for (size_t i = 0; i < len && s[i] != '\0'; ++i) {
+        const unsigned char c = (unsigned char)s[i];
+        char e[5];
+        size_t k = 0;
+        if (c == '\r' || c == '\n' || c == '\t' || c == '\\') {
+            e[k++] = '\\';
+            e[k++] = c == '\r' ? 'r' : (c == '\n' ? 'n' : (c == '\t' ? 't' : '\\'));
+        } else if (c < 0x20 || c >= 0x7f) { /* control bytes, DEL, and every byte of a non-ASCII sequence */
+            e[k++] = '\\';
+            e[k++] = 'x';
+            e[k++] = hex[c >> 4];
+            e[k++] = hex[c & 15];
+        } else {
+            e[k++] = (char)c;
+        }
+        if (o + k + 4 > size) { /* keep room for "..." and the NUL (o + 4 <= size holds here) */
+            if (size >= 4)
+                memcpy(buf + o, "...", 4);
+            else
+                buf[0] = '\0';
+            return buf;
+        }
+        memcpy(buf + o, e, k);
+        o += k;
+    }
+    buf[o] = '\0';
+    return buf;
+}
+
 void sd_error_clear(sd_error *err)
 {
     if (err)

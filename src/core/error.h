@@ -15,4 +15,11 @@ sd_status sd_error_set(sd_error *err, sd_status code, const char *file, int line
                        const char *fmt, ...) SD_PRINTF(6, 7);
 void sd_error_clear(sd_error *err);
 
+/* Writes s[0 .. len) (len (size_t)-1: up to its NUL) into buf (size >= 8)
+ * with every byte that is not printable ASCII escaped: \r \n \t \\ and
+ * \xNN for the rest (control bytes, ANSI escapes, non-UTF-8 garbage), so a
+ * message that quotes file content cannot move the user's cursor or recolour
+ * the terminal. Cut with "..." when it does not fit. Returns buf. */
+const char *sd_escape(char *buf, size_t size, const char *s, size_t len);
+
 #endif
