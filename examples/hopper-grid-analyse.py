@@ -221,7 +221,11 @@ def main():
                          (frames[-1], "n/a" if angles[0] is None else "%.1f" % angles[0],
                           "n/a" if angles[1] is None else "%.1f" % angles[1]))
 
-    import matplotlib
+    try:
+        import matplotlib
+    except ImportError:  # one line, not a traceback
+        sys.exit("%s: needs the Python module matplotlib: install the Debian package "
+                 "python3-matplotlib (apt-get install python3-matplotlib, or make deps)" % sys.argv[0])
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt

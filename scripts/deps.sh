@@ -1,13 +1,30 @@
 #!/usr/bin/env bash
-# Installs the Debian packages shapedem needs to build and test.
-# As root it runs apt-get; otherwise it prints the exact command to run.
+# Installs the Debian packages shapedem needs to build, test and run its
+# documented examples: the one install step there is. As root it runs
+# apt-get; otherwise it prints the exact command to run.
+#
+#   scripts/deps.sh            install what is missing
+#   scripts/deps.sh --list     print the package list, one per line, and exit
+#
+# tests/cli/deps_complete.sh checks that this list provides every command a
+# test or README command calls and every Python module a tracked script
+# imports: a package used by hand and missing here fails the suite.
 set -euo pipefail
 
-# build: compiler, CMake, YAML parser; tests: independent libraries used
-# as oracles (libccd for GJK/EPA, qhull for overlap volumes).
-need_pkgs=(build-essential cmake pkg-config libyaml-dev libccd-dev libqhull-dev)
+# build: compiler, CMake, YAML parser. tests: independent libraries used as
+# oracles (libccd for GJK/EPA, qhull for overlap volumes). Python 3 with
+# matplotlib and numpy: the analysis and plotting scripts (examples/,
+# docs/validation/, scripts/), which tests run; Debian's interpreter is the
+# one these modules install into (/usr/bin/python3).
+need_pkgs=(build-essential cmake pkg-config libyaml-dev libccd-dev libqhull-dev
+  python3 python3-matplotlib python3-numpy)
 if [[ "${SHAPEDEM_WITH_BENCH:-0}" == 1 ]]; then
   need_pkgs+=(liggghts)
+fi
+
+if [[ "${1:-}" == --list ]]; then
+  printf '%s\n' "${need_pkgs[@]}"
+  exit 0
 fi
 
 missing=()

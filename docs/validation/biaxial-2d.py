@@ -148,7 +148,11 @@ def scene(out):
 
 
 def plot(csv, png):
-    import matplotlib
+    try:
+        import matplotlib
+    except ImportError:  # one line, not a traceback
+        sys.exit("%s: needs the Python module matplotlib: install the Debian package "
+                 "python3-matplotlib (apt-get install python3-matplotlib, or make deps)" % sys.argv[0])
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     rows = []

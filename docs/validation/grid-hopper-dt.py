@@ -7,9 +7,14 @@ Writes grid-hopper-discharge.png next to this script.
     python3 docs/validation/grid-hopper-dt.py
 """
 import csv
+import sys
 import os
 
-import matplotlib
+try:
+    import matplotlib
+except ImportError:  # one line, not a traceback
+    sys.exit("%s: needs the Python module matplotlib: install the Debian package "
+             "python3-matplotlib (apt-get install python3-matplotlib, or make deps)" % sys.argv[0])
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402

@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# deps_complete.sh — scripts/deps.sh installs everything the project uses:
+# every Python module a tracked script imports and every command a test
+# script or a README command calls comes from a Debian package that deps.sh
+# lists (or one of their dependencies, or a package every Debian system has).
+# tests/tools/deps_check.py does the finding; this test also shows that it
+# catches a package dropped from the list, so the check itself cannot rot.
+set -u
+bin="$1"
+root="$2"
+pass=0
+fail=0
+check() {
+    if [[ "$2" == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi
+}
+py=/usr/bin/python3  # Debian's interpreter: the one deps.sh installs modules for
+if [[ ! -x $py ]]; then
+    echo "FAIL $py is missing: scripts/deps.sh installs the Debian package python3"
+    exit 1
+fi
+"$py" "$root/tests/tools/deps_check.py" "$root"
+check "every module and command comes from a package scripts/deps.sh installs" "$(($? == 0))"
+
+# The check must fail when a package is removed from the list, naming the
+# package that provides what is then missing: matplotlib itself, and make,
+# which build-essential brings.
+for case in python3-matplotlib:python3-matplotlib build-essential:make; do
+    pkg=${case%%:*} want=${case#*:}
+    out=$("$py" "$root/tests/tools/deps_check.py" "$root" --without "$pkg" 2>&1)
+    rc=$?
+    named=$(grep -c "^FAIL .*Debian package $want," <<<"$out")
+    grep "^FAIL" <<<"$out" | head -3
+    check "without $pkg: the check fails (rc $rc) and names $want ($named line(s))" \
+        "$([[ $rc == 1 && $named -ge 1 ]] && echo 1 || echo 0)"
+done
+echo "$pass passed, $fail failed"
+((fail == 0))
