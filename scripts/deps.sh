@@ -15,9 +15,10 @@ set -euo pipefail
 # oracles (libccd for GJK/EPA, qhull for overlap volumes). Python 3 with
 # matplotlib and numpy: the analysis and plotting scripts (examples/,
 # docs/validation/, scripts/), which tests run; Debian's interpreter is the
-# one these modules install into (/usr/bin/python3).
+# one these modules install into (/usr/bin/python3). git: the suite lists the
+# tracked files it checks.
 need_pkgs=(build-essential cmake pkg-config libyaml-dev libccd-dev libqhull-dev
-  python3 python3-matplotlib python3-numpy)
+  python3 python3-matplotlib python3-numpy git)
 if [[ "${SHAPEDEM_WITH_BENCH:-0}" == 1 ]]; then
   need_pkgs+=(liggghts)
 fi
