@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """hopper-grid-analyse.py DIR [--orifice X0 X1] [--png FILE]
 
-Analysis of a flat-bottomed hopper run on the grid solver (seed 001 §4.2;
-examples/hopper-grid.yaml). Reads what `shapedem run` wrote into DIR:
+Analysis of a flat-bottomed hopper run on the grid solver (§4.2 of [Naderi 2024],
+docs/references.md; examples/hopper-grid.yaml). Reads what `shapedem run` wrote into DIR:
 
 - stats.csv (columns time, in_domain, discharged, discharged_mass, written by
   solver grid) -> the discharge curve: mass fraction discharged against the
@@ -11,7 +11,7 @@ examples/hopper-grid.yaml). Reads what `shapedem run` wrote into DIR:
   the orifice the free surface (the top of each column of particles one
   diameter wide, between the wall and the orifice edge) is fitted with a
   least-squares line; its inclination is the dead zone's residual angle
-  (the seed reports 18 degrees at 6 s).
+  ([Naderi 2024] reports 18 degrees at 6 s).
 
 Writes into DIR: discharge.csv, discharge.png (matplotlib, Agg backend) and
 dead-zones.txt, and prints a summary, including the discharge rate over
@@ -217,7 +217,7 @@ def main():
                 for name, side in (("left", left), ("right", right)):
                     fh.write("%s_angle_deg: %s\n" % (name, "nan" if side[0] is None else "%.2f" % side[0]))
                     fh.write("%s_columns: %d\n" % (name, len(side[1])))
-            lines.append("dead zones (%s): residual angle left %s deg, right %s deg (seed 001: 18 deg)" %
+            lines.append("dead zones (%s): residual angle left %s deg, right %s deg ([Naderi 2024]: 18 deg)" %
                          (frames[-1], "n/a" if angles[0] is None else "%.1f" % angles[0],
                           "n/a" if angles[1] is None else "%.1f" % angles[1]))
 
@@ -236,7 +236,7 @@ def main():
     ax.set_ylabel("mass fraction discharged")
     ax.set_ylim(0, 1)
     ax.grid(alpha=0.3)
-    ax.set_title("Flat-bottomed hopper, Set II (seed 001 §4.2)")
+    ax.set_title("Flat-bottomed hopper, Set II (§4.2 of [Naderi 2024])")
     ax.legend(loc="lower right")
     fig.tight_layout()
     fig.savefig(png, dpi=120)

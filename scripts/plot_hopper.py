@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """plot_hopper.py CSV PNG — draws the discharge curve of the grid solver's
-hopper (seed 001 §4.2; tests/validation/grid_hopper.c, long mode): mass
+hopper ([Naderi 2024] §4.2, docs/references.md; tests/validation/grid_hopper.c, long mode): mass
 fraction discharged against time since the orifice opened. Needs matplotlib
 (Debian: apt-get install python3-matplotlib)."""
 import csv
@@ -30,7 +30,7 @@ def main():
     ax.set_ylabel("mass fraction discharged")
     ax.set_ylim(0, 1)
     ax.grid(alpha=0.3)
-    ax.set_title("Flat-bottomed hopper, Set II (seed 001 §4.2)")
+    ax.set_title("Flat-bottomed hopper, Set II ([Naderi 2024] §4.2)")
     ax.legend(loc="lower right")
     fig.tight_layout()
     fig.savefig(sys.argv[2], dpi=120)

@@ -22,11 +22,11 @@ path = sys.argv[1] if len(sys.argv) > 1 else "docs/validation/cylinder_impact.cs
 rows = list(csv.DictReader(open(path)))
 th = [float(r["theta_deg"]) for r in rows]
 fig, ax = plt.subplots(1, 2, figsize=(10, 4))
-ax[0].plot(th, [float(r["vz_analytic"]) for r in rows], "k-", label="analytic (seed 000 eq. 28)")
+ax[0].plot(th, [float(r["vz_analytic"]) for r in rows], "k-", label="analytic (eq. 28 of [Xu n.d.])")
 ax[0].plot(th, [float(r["vz_computed"]) for r in rows], "o", mfc="none", label="shapedem, true cylinder")
 ax[0].set_xlabel("impact angle theta (deg)")
 ax[0].set_ylabel("post-impact V_z (m/s)")
-ax[1].plot(th, [float(r["wy_analytic"]) for r in rows], "k-", label="analytic (seed 000 eq. 27)")
+ax[1].plot(th, [float(r["wy_analytic"]) for r in rows], "k-", label="analytic (eq. 27 of [Xu n.d.])")
 ax[1].plot(th, [float(r["wy_computed"]) for r in rows], "o", mfc="none", label="shapedem, true cylinder")
 ax[1].set_xlabel("impact angle theta (deg)")
 ax[1].set_ylabel("post-impact omega_y (rad/s)")

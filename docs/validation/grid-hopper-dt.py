@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Discharge curves of the seed 001 §4.2 hopper (examples/hopper-grid.yaml)
+"""Discharge curves of the hopper of [Naderi 2024] §4.2 (examples/hopper-grid.yaml)
 run with three time steps: grid-hopper-discharge.csv (dt = 1e-5 s),
 grid-hopper-discharge-dt2e-5.csv and grid-hopper-discharge-dt4e-5.csv.
 Writes grid-hopper-discharge.png next to this script.
@@ -32,7 +32,7 @@ ax.set_xlim(0, 7.5)
 ax.set_ylim(0, 1)
 ax.set_xlabel("time since the orifice opened (s)")
 ax.set_ylabel("mass fraction discharged")
-ax.set_title("Flat-bottomed hopper, Set II (seed 001 §4.2), solver grid")
+ax.set_title("Flat-bottomed hopper, Set II ([Naderi 2024] §4.2), solver grid")
 ax.grid(alpha=0.3)
 ax.legend(loc="lower right")
 fig.tight_layout()

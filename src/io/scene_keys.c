@@ -67,17 +67,18 @@ const sd_scene_key sd_scene_keys[] = {
     {SD_SEC_ROOT, "output", SD_KT_MAP, SD_KR_ANY, NULL, ALL, 0, "", "{}",
      "where and how often results are written"},
     {SD_SEC_ROOT, "pour", SD_KT_MAP, SD_KR_ANY, NULL, ALL, 0, "", "-",
-     "solver grid: pour spheres layer by layer from the top (seed 001 4.1; docs/grid-solver.md)"},
+     "solver grid: pour spheres layer by layer from the top (§4.1 of [Naderi 2024]; "
+     "docs/grid-solver.md)"},
     {SD_SEC_ROOT, "outlet", SD_KT_MAP, SD_KR_ANY, NULL, ALL, 0, "", "-",
      "solver grid: a rectangular hole in the floor of the box wall; particles falling through "
-     "are counted as discharged (seed 001 4.2)"},
+     "are counted as discharged (§4.2 of [Naderi 2024])"},
 
     {SD_SEC_SIMULATION, "dimension", SD_KT_INT, SD_KR_ANY, NULL, ALL, 0, "", "3",
      "3, or 2: the planar mode (every z, velocity z and gravity z is 0, rotation about z "
      "only, masses per unit thickness of 1 m; shapes: circle, ellipse, polygon, polybezier, "
      "fourier)"},
     {SD_SEC_SIMULATION, "local_damping", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "", "0",
-     "velocity-based local damping coefficient alpha in [0, 1) (seed 002 3.2): each force "
+     "velocity-based local damping coefficient alpha in [0, 1) (§3.2 of [Huang 2021]): each force "
      "and torque component gets -alpha |unbalanced| sign(velocity); 0 = off"},
     {SD_SEC_SIMULATION, "dt", SD_KT_NUMBER, SD_KR_POS, NULL, ALL, ALL, "s", "required",
      "time step; must not exceed 1/5 of the shortest contact duration"},
@@ -96,7 +97,7 @@ const sd_scene_key sd_scene_keys[] = {
     {SD_SEC_SIMULATION, "skin", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "m", "0",
      "Verlet skin of the pair list; 0 = 0.2 x the smallest radius"},
     {SD_SEC_SIMULATION, "solver", SD_KT_ENUM, SD_KR_ANY, "cells|grid", ALL, 0, "", "cells",
-     "cells: the general engine; grid: the dense grid-stencil solver of seed 001 for equal "
+     "cells: the general engine; grid: the dense grid-stencil solver of [Naderi 2024] for equal "
      "(R_max/R_min <= 2) spheres inside a box wall, same physics (docs/grid-solver.md)"},
 
     {SD_SEC_MATERIAL, "name", SD_KT_STRING, SD_KR_NONEMPTY, NULL, ALL, ALL, "", "required",
@@ -119,8 +120,8 @@ const sd_scene_key sd_scene_keys[] = {
     {SD_SEC_MATERIAL, "tangential_stiffness_ratio", SD_KT_NUMBER, SD_KR_POS, NULL, ALL, 0, "",
      "0.2857142857142857", "k_t / k_n of the linear law (2/7)"},
     {SD_SEC_MATERIAL, "damping", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "N s/m", "0",
-     "linear law: viscous coefficient eta of the normal and tangential dashpots (seed 001 "
-     "eqs. 6, 8), used instead of the restitution; 0 = damping from the restitution"},
+     "linear law: viscous coefficient eta of the normal and tangential dashpots (eqs. 6 "
+     "and 8 of [Naderi 2024]), used instead of the restitution; 0 = damping from the restitution"},
     {SD_SEC_MATERIAL, "volume_stiffness", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "N/m^3", "0",
      "stiffness k_V of the volume_linear law (F = k_V V, V the overlap volume of two "
      "polyhedra); 0 = unset, required when a volume_linear contact involves the material"},
@@ -157,7 +158,7 @@ const sd_scene_key sd_scene_keys[] = {
      "convex curve (any frame: moved to the centroid)"},
     {SD_SEC_SHAPE, "fourier_a", SD_KT_NUM_LIST, SD_KR_ANY, NULL, SFOUR, SFOUR, "m", "required",
      "a_0 .. a_N of the support function p(theta) = a_0/2 + sum a_k cos k theta + b_k sin k "
-     "theta (seed 002 eq. 2); the series must be convex, p + p'' >= 0 (eq. 5; `shapedem shape "
+     "theta (eq. 2 of [Huang 2021]); the series must be convex, p + p'' >= 0 (eq. 5; `shapedem shape "
      "fit-fourier` reduces it)"},
     {SD_SEC_SHAPE, "fourier_b", SD_KT_NUM_LIST, SD_KR_ANY, NULL, SFOUR, 0, "m", "zeros",
      "b_1 .. b_N (one fewer than fourier_a)"},
@@ -188,7 +189,7 @@ const sd_scene_key sd_scene_keys[] = {
      "from convex it is) or hull (take the convex hull, with a warning)"},
     {SD_SEC_SHAPE, "preset", SD_KT_ENUM, SD_KR_ANY, SD_POLY_CHOICES, SPOLY, 0, "", "-",
      "a built-in polyhedron, sized by size (circumscribed diameter) or edge: Platonic solids; "
-     "prism (sides-gon, axis z); cylinder (the same solid with cap centres, seed 000 §3.1: "
+     "prism (sides-gon, axis z); cylinder (the same solid with cap centres, §3.1 of [Xu n.d.]: "
      "sides 20 gives 42 vertices, 80 triangles, 22 faces); random (seeded, faces or "
      "vertex_count); give one of vertices, file and preset"},
     {SD_SEC_SHAPE, "edge", SD_KT_NUMBER, SD_KR_POS, NULL, SPOLY, 0, "m", "-",
@@ -291,7 +292,7 @@ const sd_scene_key sd_scene_keys[] = {
     {SD_SEC_WALL, "move_end", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "s", "never",
      "time the prescribed velocity stops"},
     {SD_SEC_WALL, "servo_stress", SD_KT_NUMBER, SD_KR_NONNEG, NULL, PLANE, 0, "Pa", "0",
-     "servo control (seed 002 3.2): each step the plane moves along its normal so the normal "
+     "servo control (§3.2 of [Huang 2021]): each step the plane moves along its normal so the normal "
      "stress it carries (force over the distance between the two opposite planes across it; "
      "2D: per 1 m thickness) tracks this value; 0 = no servo; wins over velocity where both act"},
     {SD_SEC_WALL, "servo_start", SD_KT_NUMBER, SD_KR_NONNEG, NULL, PLANE, 0, "s", "0",
@@ -327,11 +328,11 @@ const sd_scene_key sd_scene_keys[] = {
     {SD_SEC_POUR, "height", SD_KT_NUMBER, SD_KR_ANY, NULL, ALL, ALL, "m", "required",
      "z of the centres of each new sheet (inside the box)"},
     {SD_SEC_POUR, "layers_per_second", SD_KT_NUMBER, SD_KR_POS, NULL, ALL, 0, "1/s", "4",
-     "feed rate: sheets per second (seed 001 Table 2: 4 or 8)"},
+     "feed rate: sheets per second ([Naderi 2024] Table 2: 4 or 8)"},
     {SD_SEC_POUR, "vertical_speed", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "m/s", "0.5",
-     "each sphere starts with a vertical velocity uniform in [-v, v] (seed 001 4.1)"},
+     "each sphere starts with a vertical velocity uniform in [-v, v] (§4.1 of [Naderi 2024])"},
     {SD_SEC_POUR, "horizontal_speed", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "m/s", "0.1",
-     "each sphere starts with horizontal velocities uniform in [-v, v] (seed 001 4.1)"},
+     "each sphere starts with horizontal velocities uniform in [-v, v] (§4.1 of [Naderi 2024])"},
     {SD_SEC_POUR, "start", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "s", "0",
      "time of the first sheet"},
 
@@ -557,7 +558,7 @@ static const char *const sd_scene_rules[] = {
     "the stability limit); `shapedem check` prints the recommended step.",
     "Material, interaction and particle values are checked when the scene loads; errors name "
     "the file, the line and the key (e.g. materials[1].density).",
-    "particles: one generator per entry, each with its own keys (the section column says which). "
+    "particles: one generator per entry, each with its own keys (the section says which). "
     "lattice: count[0] x count[1] x count[2] spheres at origin + (i, j, k) * spacing. "
     "random: random sequential addition inside box, deterministic from simulation.seed; it "
     "fails with an error when the box is too full. list: spheres given one by one. csv: one "
@@ -585,11 +586,11 @@ static const char *const sd_scene_rules[] = {
     "pour and outlet need simulation.solver: grid and a box wall (the grid's domain). pour "
     "lays a sheet of spheres every 1/layers_per_second s at height, one per two cells along x "
     "and y (2 radii apart), skipping spots that are taken, until count spheres are poured "
-    "(seed 001 4.1); with fill_height, count = packing_fraction x floor area x fill_height / "
+    "(§4.1 of [Naderi 2024]); with fill_height, count = packing_fraction x floor area x fill_height / "
     "sphere volume. particles may then be omitted. outlet opens a hole in the box's floor at "
     "open_at; spheres falling through are removed and counted (stats.csv and summary.txt: "
     "poured, in_domain, discharged, discharged_mass, conflicts).",
-    "simulation.dimension: 2 is the planar mode (seed 002): every position, velocity, gravity "
+    "simulation.dimension: 2 is the planar mode (after [Huang 2021]): every position, velocity, gravity "
     "and plane normal has z = 0 (generators place particles at z = 0 and ignore the z range of "
     "their box), rotations are about z (random orientations draw a uniform angle), masses are "
     "per unit thickness (m = density x area x 1 m) and shapes are the planar types circle "
@@ -599,6 +600,84 @@ static const char *const sd_scene_rules[] = {
     "distance is its contact length); four planes with normals +x, -x, +y, -y make the run "
     "write biaxial.csv (docs/output.md).",
 };
+
+/* Plain-text help is read in a terminal, so it is wrapped at print time to
+ * SD_HELP_WIDTH columns: the key table's cells wrap inside their columns and
+ * a key's meaning goes on the lines under it. The table strings themselves
+ * stay one sentence each, as the markdown table needs them. */
+#define SD_HELP_WIDTH 100
+
+/* The next line of *p at most width columns: breaks after the last space
+ * that fits (a word longer than width is cut). Sets *len to the line's
+ * length and advances *p past it and the spaces after it. */
+static const char *sd_wrap_next(const char **p, size_t width, size_t *len)
+{
+    const char *s = *p;
+    while (*s == ' ')
+        ++s;
+    size_t n = strlen(s);
+    if (n > width) {
+        n = width;
+        while (n > 0 && s[n] != ' ')
+            --n;
+        if (n == 0)
+            n = width;
+    }
+    *len = n;
+    *p = s + n;
+    while (**p == ' ')
+        ++*p;
+    return s;
+}
+
+/* text wrapped to SD_HELP_WIDTH columns, each line indented by indent
+ * spaces; the first line starts with first instead (a list bullet). */
+static void sd_print_wrapped(FILE *f, const char *text, int indent, const char *first)
+{
+    for (int line = 0; *text; ++line) {
+        size_t n;
+        const char *s = sd_wrap_next(&text, (size_t)(SD_HELP_WIDTH - indent), &n);
+        fprintf(f, "%-*s%.*s\n", indent, line == 0 && first ? first : "", (int)n, s);
+    }
+}
+
+/* One table row: each cell wrapped inside its column, the columns side by
+ * side, no trailing spaces. */
+static void sd_print_row(FILE *f, const char *const *cells, const int *widths, size_t ncols)
+{
+    const char *rest[4];
+    for (size_t c = 0; c < ncols; ++c)
+        rest[c] = cells[c];
+    for (int more = 1; more;) {
+        char line[SD_HELP_WIDTH * 2];
+        size_t used = 2, end = 0;
+        memset(line, ' ', used);
+        more = 0;
+        for (size_t c = 0; c < ncols; ++c) {
+            size_t n;
+            const char *s = sd_wrap_next(&rest[c], (size_t)widths[c], &n);
+            int w = snprintf(line + used, sizeof line - used, "%.*s%*s", (int)n, s,
+                             c + 1 < ncols ? widths[c] - (int)n + 1 : 0, "");
+            used += w > 0 && (size_t)w < sizeof line - used ? (size_t)w : 0;
+            if (n > 0)
+                end = used;
+            more |= *rest[c] != '\0';
+        }
+        while (end > 0 && line[end - 1] == ' ')
+            --end;
+        fprintf(f, "%.*s\n", (int)end, line);
+    }
+}
+
+/* A markdown table cell: '|' would end the cell, so it is escaped. */
+static void sd_md_cell(FILE *f, const char *text)
+{
+    for (; *text; ++text) {
+        if (*text == '|')
+            fputc('\\', f);
+        fputc(*text, f);
+    }
+}
 
 void sd_scene_print_keys(FILE *f, int markdown)
 {
@@ -610,7 +689,9 @@ void sd_scene_print_keys(FILE *f, int markdown)
                    "do not edit. -->\n\n");
         fprintf(f, "A scene is a YAML file that describes one simulation: materials, particles, "
                    "walls and output. Run it with `shapedem run SCENE`; check it without running "
-                   "with `shapedem check SCENE`. Units are SI.\n\n");
+                   "with `shapedem check SCENE`. Units are SI. Papers are cited by short name, "
+                   "e.g. [Naderi 2024]; [references.md](references.md) gives the full "
+                   "references.\n\n");
         fprintf(f, "## Example\n\n```yaml\n%s```\n\n", sd_scene_example);
         fprintf(f, "## Keys\n\n");
         fprintf(f, "| section | key | type | unit | default | meaning |\n");
@@ -620,25 +701,40 @@ void sd_scene_print_keys(FILE *f, int markdown)
             sd_section_text(k, sec, sizeof sec);
             sd_scene_type_text(k, type, sizeof type);
             sd_default_text(k, def, sizeof def);
-            fprintf(f, "| %s | `%s` | %s | %s | %s | %s |\n", sec, k->key, type, k->unit, def,
-                    k->doc);
+            fprintf(f, "| %s | `%s` | %s | %s | %s | ", sec, k->key, type, k->unit, def);
+            sd_md_cell(f, k->doc);
+            fputs(" |\n", f);
         }
         fprintf(f, "\n## Rules\n\n");
         for (size_t i = 0; i < nrules; ++i)
             fprintf(f, "- %s\n", sd_scene_rules[i]);
         return;
     }
-    fprintf(f, "Scene file keys (YAML; SI units):\n\n");
-    fprintf(f, "%-36s %-28s %-40s %-7s %-22s %s\n", "section", "key", "type", "unit", "default",
-            "meaning");
+    /* Grouped by section; under each, one row per key and its meaning
+     * indented below (the widths fit the longest key, unit and default). */
+    static const int widths[4] = {28, 40, 8, 22};
+    const char *head[4] = {"key", "type", "unit", "default"};
+    char prev[sizeof sec] = "";
+    fprintf(f, "Scene file keys (YAML; SI units). Each section lists its keys: type, unit and "
+               "default,\nthen the meaning on the lines below. Papers are cited by short name, "
+               "e.g. [Naderi 2024];\ndocs/references.md gives the full references.\n\n");
+    fprintf(f, "section\n");
+    sd_print_row(f, head, widths, 4);
+    fprintf(f, "      meaning\n");
     for (size_t i = 0; i < sd_scene_key_count; ++i) {
         const sd_scene_key *k = &sd_scene_keys[i];
         sd_section_text(k, sec, sizeof sec);
         sd_scene_type_text(k, type, sizeof type);
         sd_default_text(k, def, sizeof def);
-        fprintf(f, "%-36s %-28s %-40s %-7s %-22s %s\n", sec, k->key, type, k->unit, def, k->doc);
+        if (strcmp(sec, prev) != 0) {
+            fprintf(f, "\n%s\n", sec);
+            snprintf(prev, sizeof prev, "%s", sec);
+        }
+        const char *cells[4] = {k->key, type, k->unit, def};
+        sd_print_row(f, cells, widths, 4);
+        sd_print_wrapped(f, k->doc, 6, NULL);
     }
     fprintf(f, "\nRules:\n");
     for (size_t i = 0; i < nrules; ++i)
-        fprintf(f, "  - %s\n", sd_scene_rules[i]);
+        sd_print_wrapped(f, sd_scene_rules[i], 4, "  - ");
 }
