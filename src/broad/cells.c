@@ -436,6 +436,10 @@ static sd_status sd_pairs_build(sd_world *w)
     for (size_t i = 0; i < n; ++i) {
         uint32_t off = cnt[i];
         uint32_t m = (i + 1 < n ? cnt[i + 1] : (uint32_t)total) - off;
+        /* no pairs for i: skip, as l->j is NULL in a world without pairs
+         * and memcpy from or to NULL is undefined even for 0 bytes */
+        if (m == 0)
+            continue;
         if (m <= SD_PAIR_SLOTS)
             memcpy(l->j + off, slots + i * SD_PAIR_SLOTS, m * sizeof *l->j);
         else
