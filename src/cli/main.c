@@ -18,6 +18,7 @@
 
 #include <shapedem/shapedem.h>
 
+#include "cli/check_report.h"
 #include "cli/commands.h"
 #include "io/output.h"
 #include "io/scene.h"
@@ -330,19 +331,16 @@ static int sd_cmd_check(const sd_cli *c)
     double tc = 0, rec = sd_world_recommended_dt(w, &tc);
     double dt = sd_world_dt(w);
     printf("scene        %s\n", c->scene);
-    size_t nshape = 0;
-    double rmin = 1e300, rmax = 0;
-    for (size_t k = 0; k < n; ++k) {
-        sd_particle_state p;
-        sd_world_get_particle(w, k, &p);
-        nshape += p.shape >= 0;
-        rmin = p.radius < rmin ? p.radius : rmin;
-        rmax = p.radius > rmax ? p.radius : rmax;
-    }
+    sd_check_counts cnt; /* the pour's spheres too (cli/check_report.c) */
+    sd_check_count(scene, w, &cnt);
+    size_t total = n + cnt.poured;
+    size_t nshape = cnt.bodies;
     printf("particles    %zu: %zu spheres, %zu bodies of %zu shapes", n, n - nshape, nshape,
            sd_world_shape_count(w));
-    if (n)
-        printf("; radius (bounding radius for shapes) %.4g .. %.4g m", rmin, rmax);
+    if (cnt.poured)
+        printf(", and %zu spheres the pour inserts: %zu in all", cnt.poured, total);
+    if (total)
+        printf("; radius (bounding radius for shapes) %.4g .. %.4g m", cnt.rmin, cnt.rmax);
     printf("\nsolver       %s", scene->world.solver == SD_SOLVER_GRID ? "grid (dense grid stencil, seed 001)"
                                                                      : "cells (cell binning + pair lists)");
     printf("\nmaterials    %zu:", scene->material_count);
@@ -364,13 +362,67 @@ static int sd_cmd_check(const sd_cli *c)
     printf("contact      shortest estimated contact duration %.4g s (%.1f steps)\n", tc, tc / dt);
     printf("time step    %.4g s recommended; stability limit %.4g s\n", rec, tc / 5);
     printf("threads      %d\n", sd_world_threads(w));
-    printf("memory       about %.1f MiB (%.0f bytes per particle) once the pair lists are built\n",
-           (double)mem / 1048576.0, n ? (double)mem / (double)n : 0.0);
+    const char *unit2d = scene->world.dimension == 2 ? " per 1 m of thickness" : "";
+    printf("mass         %.6g kg%s", cnt.mass_now + cnt.mass_poured, unit2d);
+    if (cnt.poured)
+        printf(": %.6g kg at the start and %.6g kg poured", cnt.mass_now, cnt.mass_poured);
+    printf("\n");
+    double memory = (double)mem + (cnt.poured ? sd_check_pour_bytes(cnt.poured) : 0.0);
+    printf("memory       about %.1f MiB (%.0f bytes per particle) once the pair lists are built%s\n",
+           memory / 1048576.0, total ? memory / (double)total : 0.0,
+           cnt.poured ? ", all poured spheres in" : "");
+    /* output: frames at step 0, every `every` steps and at the end; stats
+     * rows at step 0 and every stats_every steps (sd_cmd_run) */
+    long steps = scene->steps, every = scene->output.every > 0 ? scene->output.every : 1;
+    long stats_every = scene->output.stats_every > 0 ? scene->output.stats_every : every;
+    long frames = 1 + steps / every + (steps % every != 0), rows = 1 + steps / stats_every;
+    sd_output_def od = {".", (scene->output.formats & SD_OUT_VTK) != 0, (scene->output.formats & SD_OUT_CSV) != 0,
+                        c->scene};
+    sd_output_size osz;
+    sd_error oerr;
+    memset(&oerr, 0, sizeof oerr);
+    if (sd_output_estimate(&od, w, total, frames, rows, (double)steps * dt, &osz, &oerr) == SD_OK) {
+        char tb[32], fb[32];
+        sd_check_format_bytes(osz.total, tb, sizeof tb);
+        sd_check_format_bytes(osz.frame_particles + osz.frame_walls, fb, sizeof fb);
+        printf("output       about %s (%.0f bytes): ", tb, osz.total);
+        if (od.vtk)
+            printf("%ld frames x %s%s", frames, fb, cnt.poured ? " (at most: all poured spheres in)" : "");
+        if (od.csv)
+            printf("%s%ld stats rows x %.0f bytes", od.vtk ? ", " : "", rows, osz.stats_row);
+        printf("\n");
+    }
     int warnings = 0;
     if (dt > rec) {
         printf("warning      dt = %.4g s is above the recommended %.4g s: contacts are resolved in %.1f steps\n", dt,
                rec, tc / dt);
         warnings++;
+    }
+    warnings += sd_check_units(stdout, scene, &cnt, tc, dt);
+    /* last: the trial steps the world */
+    sd_check_trial tr;
+    sd_check_time(scene, w, total, steps, &tr);
+    if (tr.ok && tr.steps > 0) {
+        char left[32];
+        sd_format_duration(tr.estimate, left, sizeof left);
+        printf("run time     %sabout %s on %d thread%s (timed trial: %ld steps of %s%zu particles in %.3g s, "
+               "scaled to %ld steps%s; rough, within a factor of 2-3)\n",
+               cnt.poured ? "at most " : "", left, tr.threads, tr.threads == 1 ? "" : "s", tr.steps,
+               tr.bed ? "a bed of the pour's " : "", tr.particles, tr.seconds, steps,
+               cnt.poured ? " with every poured sphere in" : "");
+        if (tr.estimate > 600.0) {
+            printf("warning      the run is estimated at %s, more than 10 minutes: try it first with --steps N "
+                   "(a short run), or more --threads\n",
+                   left);
+            warnings++;
+        }
+    }
+    if (!tr.ok) {
+        printf("run time     unknown: %s\n", tr.msg);
+        printf("check: the scene loads, but its run fails in the first steps\n");
+        sd_world_destroy(w);
+        sd_scene_free(scene);
+        return 1;
     }
     printf("%s\n", warnings ? "check: ok, with warnings" : "check: ok");
     sd_world_destroy(w);

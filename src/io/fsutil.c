@@ -83,6 +83,60 @@ int sd_fs_is_regular_file(const char *path)
     return lstat(path, &st) == 0 && S_ISREG(st.st_mode);
 }
 
+const char *sd_fs_not_regular(const char *path)
+{
+    struct stat st;
+    if (lstat(path, &st) != 0 || S_ISREG(st.st_mode))
+        return NULL;
+    if (S_ISLNK(st.st_mode))
+        return "a symbolic link";
+    if (S_ISDIR(st.st_mode))
+        return "a directory";
+    return "not a regular file";
+}
+
+/* Opens path for writing without following a symbolic link in its last
+ * component (O_NOFOLLOW: ELOOP) and without blocking on a FIFO (O_NONBLOCK:
+ * ENXIO without a reader), and insists on a regular file, so nothing but a
+ * plain file in the output directory is ever written. */
+static FILE *sd_fs_open_plain(const char *path, int flags, const char *mode)
+{
+    int fd = open(path, flags | O_WRONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0666);
+    if (fd < 0)
+        return NULL;
+    struct stat st;
+    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+        close(fd);
+        errno = EINVAL;
+        return NULL;
+    }
+    int fl = fcntl(fd, F_GETFL);
+    if (fl != -1)
+        (void)fcntl(fd, F_SETFL, fl & ~O_NONBLOCK);
+    FILE *fp = fdopen(fd, mode);
+    if (!fp) {
+        int e = errno;
+        close(fd);
+        errno = e;
+    }
+    return fp;
+}
+
+sd_status sd_fs_create_append(const char *path, FILE **fp, sd_error *err)
+{
+    *fp = sd_fs_open_plain(path, O_CREAT | O_EXCL | O_APPEND, "a");
+    if (*fp)
+        return SD_OK;
+    int e = errno;
+    const char *what = e == EEXIST ? sd_fs_not_regular(path) : NULL;
+    if (what)
+        return sd_error_set(err, SD_ERR_IO, path, 0, "",
+                            "cannot create the file: %s is in the way (shapedem does not write through it; "
+                            "remove it or choose another directory)",
+                            what);
+    return sd_error_set(err, SD_ERR_IO, path, 0, "", "cannot create the file: %s", strerror(e));
+}
+
 sd_status sd_fs_list_dir(const char *dir, int (*visit)(const char *name, void *ctx), void *ctx,
                          sd_error *err)
 {
@@ -134,10 +188,18 @@ sd_status sd_fs_atomic_begin(sd_atomic_file *af, const char *dir, const char *na
         sd_atomic_release(af);
         return sd_error_set(err, SD_ERR_MEMORY, dir, 0, "", "out of memory");
     }
-    af->fp = fopen(af->tmp_path, "wb");
+    /* A temporary left by an interrupted run is a plain file and is
+     * truncated; a link under its name is refused (ELOOP), never followed. */
+    af->fp = sd_fs_open_plain(af->tmp_path, O_CREAT | O_TRUNC, "wb");
     if (!af->fp) {
-        sd_status s = sd_error_set(err, SD_ERR_IO, af->tmp_path, 0, "",
-                                   "cannot create file: %s", strerror(errno));
+        int e = errno;
+        const char *what = sd_fs_not_regular(af->tmp_path);
+        sd_status s = what ? sd_error_set(err, SD_ERR_IO, af->tmp_path, 0, "",
+                                          "cannot create file: %s is in the way (shapedem does not write "
+                                          "through it; remove it or choose another directory)",
+                                          what)
+                           : sd_error_set(err, SD_ERR_IO, af->tmp_path, 0, "", "cannot create file: %s",
+                                          strerror(e));
         sd_atomic_release(af);
         return s;
     }

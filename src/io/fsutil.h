@@ -24,6 +24,17 @@ sd_status sd_fs_mkdir_p(const char *path, sd_error *err);
 /* 1 if path names a regular file (symbolic links are not followed). */
 int sd_fs_is_regular_file(const char *path);
 
+/* NULL when path names a regular file or nothing; else what it is ("a
+ * symbolic link", "a directory", "not a regular file"), for messages.
+ * Symbolic links are not followed. */
+const char *sd_fs_not_regular(const char *path);
+
+/* Creates path for appending; fails (SD_ERR_IO, with strerror) when
+ * anything already has that name, a symbolic link included: O_CREAT |
+ * O_EXCL never follows a link, so a link left under one of a run's names
+ * cannot redirect the writes to a file outside the directory. */
+sd_status sd_fs_create_append(const char *path, FILE **fp, sd_error *err);
+
 /* Calls visit(name, ctx) for each entry of dir except "." and "..";
  * stops early when visit returns non-zero. */
 sd_status sd_fs_list_dir(const char *dir, int (*visit)(const char *name, void *ctx), void *ctx,

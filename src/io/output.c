@@ -24,11 +24,14 @@
 
 #include <errno.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #define SD_OUTPUT_MARKER ".shapedem-output"
 #define SD_OUTPUT_KEY "output.directory"
 #define SD_OUTPUT_NAME_MAX 48 /* "particles_" + up to 20 digits + ".vtu" */
+#define SD_OUTPUT_BIAXIAL_HEADER                                                                               \
+    "step,time,width,height,sigma_xx,sigma_yy,strain_axial,strain_lateral,strain_volumetric,stress_ratio\n"
 
 struct sd_output {
     char *dir;
@@ -122,8 +125,19 @@ static int sd_output_clean_visit(const char *name, void *ctx)
         return 1;
     }
     /* Only plain files: a directory or link under one of our names was made
-     * by someone else and is left alone (the rename over it will then fail). */
-    if (sd_fs_is_regular_file(path) && remove(path) != 0) {
+     * by someone else. It is left alone and the run refused before anything
+     * is written: appending to stats.csv through a link would change the
+     * link's target outside the directory (probe F5). */
+    const char *what = sd_fs_not_regular(path);
+    if (what) {
+        c->status = sd_error_set(c->err, SD_ERR_IO, path, 0, SD_OUTPUT_KEY,
+                                 "%s, not a file shapedem wrote, has the name of one of a run's files; "
+                                 "shapedem will not write through it: remove it or choose another directory",
+                                 what);
+        sd_free(path);
+        return 1;
+    }
+    if (remove(path) != 0 && errno != ENOENT) {
         c->status = sd_error_set(c->err, SD_ERR_IO, path, 0, "",
                                  "cannot remove the previous run's file: %s", strerror(errno));
         sd_free(path);
@@ -375,13 +389,10 @@ static sd_status sd_output_biaxial(sd_output *o, const sd_world *w, sd_error *er
     if (!path)
         return sd_error_set(err, SD_ERR_MEMORY, o->dir, 0, "", "out of memory");
     if (!o->biaxial) {
-        o->biaxial = fopen(path, "a");
-        if (!o->biaxial) {
-            s = sd_error_set(err, SD_ERR_IO, path, 0, "", "cannot open for appending: %s", strerror(errno));
+        /* created, never opened through a link (fsutil.h) */
+        if ((s = sd_fs_create_append(path, &o->biaxial, err)) != SD_OK)
             goto done;
-        }
-        fprintf(o->biaxial, "step,time,width,height,sigma_xx,sigma_yy,strain_axial,strain_lateral,"
-                            "strain_volumetric,stress_ratio\n");
+        fputs(SD_OUTPUT_BIAXIAL_HEADER, o->biaxial);
     }
     fprintf(o->biaxial, "%ld,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g\n", sd_world_step_count(w),
             sd_world_time(w), b.width, b.height, b.sigma_xx, b.sigma_yy, b.strain_axial, b.strain_lateral,
@@ -405,13 +416,11 @@ sd_status sd_output_stats(sd_output *o, const sd_world *w, sd_error *err)
     sd_status s = SD_OK;
     size_t nw = sd_world_wall_count(w);
     if (!o->stats) {
-        /* Append mode: a write can never truncate earlier rows. */
-        o->stats = fopen(path, "a");
-        if (!o->stats) {
-            s = sd_error_set(err, SD_ERR_IO, path, 0, "", "cannot open for appending: %s",
-                             strerror(errno));
+        /* Append mode: a write can never truncate earlier rows. Created
+         * new (the previous run's file was removed at open), never opened
+         * through a link (fsutil.h). */
+        if ((s = sd_fs_create_append(path, &o->stats, err)) != SD_OK)
             goto done;
-        }
         s = sd_output_stats_header(o, w, nw, err);
         if (s != SD_OK)
             goto done;
@@ -586,4 +595,80 @@ sd_status sd_output_close(sd_output *o, const sd_world *w, const sd_run_summary 
     sd_free(o->dir);
     sd_free(o);
     return s;
+}
+
+/* ---- size estimate (shapedem check) ------------------------------------------ */
+
+/* Bytes written to a memory stream by the writers themselves, so the
+ * estimate follows any change of format: a walls frame, the stats header
+ * and one row of the world as it is, summary.txt, and the lines of
+ * frames.pvd. Rows and pvd lines vary by a few digits over a run. */
+sd_status sd_output_estimate(const sd_output_def *def, const sd_world *w, size_t particles, long frames,
+                             long rows, double end_time, sd_output_size *out, sd_error *err)
+{
+    memset(out, 0, sizeof *out);
+    sd_output o;
+    memset(&o, 0, sizeof o);
+    o.dir = (char *)".";
+    o.scene = (char *)(def && def->scene ? def->scene : "");
+    o.vtk = def ? def->vtk : 1;
+    o.csv = def ? def->csv : 1;
+    o.frames = frames;
+    char *buf[3] = {NULL, NULL, NULL};
+    size_t len[3] = {0, 0, 0};
+    FILE *fp[3] = {NULL, NULL, NULL};
+    sd_status s = SD_OK;
+    for (int k = 0; k < 3; ++k)
+        if (!(fp[k] = open_memstream(&buf[k], &len[k])))
+            s = sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory");
+    if (s == SD_OK && o.vtk) {
+        out->frame_particles = (double)sd_vtk_particles_bytes(particles);
+        s = sd_vtk_write_walls(fp[0], w, sd_vtk_plane_side(w), err);
+        fflush(fp[0]);
+        out->frame_walls = (double)ftell(fp[0]);
+        /* frames.pvd: its fixed part, then two DataSet lines per frame */
+        sd_vtk_dataset sets[2] = {{end_time, 0, "particles_000000.vtu"}, {end_time, 1, "walls_000000.vtp"}};
+        rewind(fp[0]);
+        if (s == SD_OK)
+            s = sd_vtk_write_collection(fp[0], 0, sets, err);
+        double fixed = (double)ftell(fp[0]);
+        rewind(fp[0]);
+        if (s == SD_OK)
+            s = sd_vtk_write_collection(fp[0], 2, sets, err);
+        out->pvd = fixed + (double)frames * ((double)ftell(fp[0]) - fixed);
+    }
+    if (s == SD_OK && o.csv) {
+        o.stats = fp[1];
+        o.biaxial = fp[2];
+        s = sd_output_stats_header(&o, w, sd_world_wall_count(w), err);
+        out->stats_header = (double)ftell(fp[1]);
+        if (s == SD_OK)
+            s = sd_output_stats(&o, w, err);
+        out->stats_row = (double)ftell(fp[1]) - out->stats_header;
+        long brow = ftell(fp[2]);
+        if (brow > 0) { /* a biaxial world: biaxial.csv gets a row per stats row */
+            out->biaxial_header = (double)strlen(SD_OUTPUT_BIAXIAL_HEADER);
+            out->biaxial_row = (double)brow;
+        }
+    }
+    if (s == SD_OK) {
+        rewind(fp[0]);
+        o.stats_rows = rows;
+        sd_run_summary sum;
+        memset(&sum, 0, sizeof sum);
+        sd_output_summary_text(fp[0], &o, w, &sum);
+        out->summary = (double)ftell(fp[0]);
+    }
+    for (int k = 0; k < 3; ++k) {
+        if (fp[k])
+            fclose(fp[k]);
+        free(buf[k]);
+    }
+    if (s != SD_OK)
+        return s;
+    double nf = o.vtk ? (double)frames : 0.0, nr = o.csv ? (double)rows : 0.0;
+    out->total = nf * (out->frame_particles + out->frame_walls) + out->pvd + out->stats_header +
+                 nr * out->stats_row + (out->biaxial_row > 0 ? out->biaxial_header + nr * out->biaxial_row : 0.0) +
+                 out->summary + (double)sizeof "This directory was written by shapedem" + 160.0;
+    return SD_OK;
 }

@@ -33,6 +33,20 @@ typedef struct sd_run_summary {
 sd_status sd_output_open(const sd_output_def *def, const sd_world *w, sd_output **out, sd_error *err);
 sd_status sd_output_frame(sd_output *o, const sd_world *w, sd_error *err);
 sd_status sd_output_stats(sd_output *o, const sd_world *w, sd_error *err);
+/* What a run of the world w would write (shapedem check), in bytes: one
+ * particle frame at `particles` particles, one walls frame, frames.pvd
+ * after `frames` frames, the stats.csv header and a row, biaxial.csv's
+ * (0 unless the world is a biaxial box), summary.txt, and the total for
+ * `frames` frames and `rows` stats rows. Reads w as it is now; writes
+ * nothing to disk. def gives the formats (NULL: both). */
+typedef struct sd_output_size {
+    double frame_particles, frame_walls, pvd;
+    double stats_header, stats_row, biaxial_header, biaxial_row;
+    double summary, total;
+} sd_output_size;
+sd_status sd_output_estimate(const sd_output_def *def, const sd_world *w, size_t particles, long frames,
+                             long rows, double end_time, sd_output_size *out, sd_error *err);
+
 /* Writes summary.txt and frees o (also on error). */
 sd_status sd_output_close(sd_output *o, const sd_world *w, const sd_run_summary *sum, sd_error *err);
 

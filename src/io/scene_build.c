@@ -9,6 +9,7 @@
  * material i, scene shape i is world shape i, and particle ids follow
  * generation order. Bodies of a shape are checked by their bounding sphere.
  */
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -181,6 +182,97 @@ static sd_status sd_check_planar(const sd_scene *s, const sd_scene_spheres *sp, 
                             "velocity about z only",
                             dk);
     }
+    return SD_OK;
+}
+
+/* |v| without overflow for components up to the largest double. */
+static double sd_norm3(sd_v3d v)
+{
+    double m = fmax(fabs(v.x), fmax(fabs(v.y), fabs(v.z)));
+    if (!(m > 0.0) || !isfinite(m))
+        return m;
+    double x = v.x / m, y = v.y / m, z = v.z / m;
+    return m * sqrt(x * x + y * y + z * z);
+}
+
+/* Start values no run survives (probe F8), refused with the key they came
+ * from instead of a run that ends in NaN or inf with exit 0:
+ *  - a position so far from the origin that doubles there resolve less
+ *    than 1e-3 of the radius (contact depths are differences of
+ *    positions), which also keeps m g z finite;
+ *  - a speed that carries a particle more than its radius in one step, or
+ *    a spin that turns its surface that far (|w| dt > 1 rad): contacts
+ *    are then jumped over, whatever the time step's stability limit says;
+ *  - a mass that is 0, inf or NaN (a density at the ends of the double
+ *    range), and kinetic or potential energies that overflow;
+ *  - gravity that moves a particle from rest more than the smallest
+ *    radius in one step (g dt^2 > r).
+ * Particle k of sp is particle k of w (added in order, before prepare). */
+static sd_status sd_check_state(const sd_scene *s, const sd_scene_spheres *sp, const sd_world *w, sd_error *err)
+{
+    const double dt = s->world.dt;
+    const sd_v3d g = s->world.gravity;
+    double rmin = s->pour.given ? s->pour.radius : HUGE_VAL;
+    char key[112], dk[160];
+    for (size_t k = 0; k < sp->count; ++k) {
+        const sd_sphere_def *d = &sp->defs[k];
+        const sd_v3d x = d->position, v = d->velocity, av = d->angular_velocity;
+        double r = d->radius;
+        rmin = r < rmin ? r : rmin;
+        double far = fmax(fabs(x.x), fmax(fabs(x.y), fabs(x.z)));
+        double speed = sd_norm3(v), spin = sd_norm3(av);
+        sd_particle_state p;
+        double m = sd_world_get_particle(w, k, &p) == SD_OK ? p.mass : (double)NAN;
+        double ke = 0.5 * m * (v.x * v.x + v.y * v.y + v.z * v.z);
+        double pe = -m * (g.x * x.x + g.y * x.y + g.z * x.z);
+        const char *field = NULL;
+        char why[200];
+        if (!(far * DBL_EPSILON <= 1e-3 * r)) {
+            field = "position";
+            snprintf(why, sizeof why,
+                     "is %.3g m from the origin, where doubles resolve only %.3g m, more than 1e-3 of the "
+                     "radius (values are SI: m)",
+                     far, far * DBL_EPSILON);
+        } else if (!(speed * dt <= r)) {
+            field = "velocity";
+            snprintf(why, sizeof why,
+                     "speed %.3g m/s carries it %.3g radii in one step of %g s: contacts would be jumped "
+                     "over (speed x dt must stay below the radius; values are SI: m/s)",
+                     speed, speed * dt / r, dt);
+        } else if (!(spin * dt <= 1.0)) {
+            field = "angular_velocity";
+            snprintf(why, sizeof why,
+                     "spin %.3g rad/s turns it %.3g rad in one step of %g s: at most 1 rad per step "
+                     "(values are SI: rad/s)",
+                     spin, spin * dt, dt);
+        } else if (!(m > 0.0 && isfinite(m))) {
+            const sd_scene_material *mat = &s->materials[d->material];
+            sd_describe(s, sp, k, dk, sizeof dk);
+            snprintf(key, sizeof key, "materials[%d].density", d->material);
+            return sd_error_set(err, SD_ERR_INPUT, s->path, mat->line, key,
+                                "%g kg/m^3 gives %s a mass of %g kg; a mass must be finite and above 0",
+                                mat->def.density, dk, m);
+        } else if (!isfinite(ke)) {
+            field = "velocity";
+            snprintf(why, sizeof why, "gives a kinetic energy that overflows (mass %.3g kg, speed %.3g m/s)", m,
+                     speed);
+        } else if (!isfinite(pe)) {
+            field = "position";
+            snprintf(why, sizeof why, "gives a potential energy m g.x that overflows (mass %.3g kg)", m);
+        }
+        if (!field)
+            continue;
+        sd_origin o = sd_sphere_origin(s, sp, k);
+        snprintf(key, sizeof key, "%s.%s", o.key, field);
+        sd_describe(s, sp, k, dk, sizeof dk);
+        return sd_error_set(err, SD_ERR_INPUT, o.file, o.line, key, "%s %s", dk, why);
+    }
+    double gn = sd_norm3(g);
+    if (isfinite(rmin) && !(gn * dt * dt <= rmin))
+        return sd_error_set(err, SD_ERR_INPUT, s->path, s->simulation_line, "simulation.gravity",
+                            "gravity %.3g m/s^2 moves a particle at rest %.3g m in one step of %g s, more than "
+                            "the smallest radius %.3g m (g dt^2 must stay below it; values are SI: m/s^2)",
+                            gn, gn * dt * dt, dt, rmin);
     return SD_OK;
 }
 
@@ -390,6 +482,8 @@ static sd_status sd_build(const sd_scene *s, sd_world *w, sd_scene_spheres *sp, 
     sd_free(bodies);
     if (st != SD_OK)
         return st;
+    if ((st = sd_check_state(s, sp, w, err)) != SD_OK)
+        return st;
     /* the world holds the particles now: the generated copy goes before
      * the world is prepared (where, with solver grid, the solver takes the
      * spheres over), so the two are never held at once with it */
@@ -418,7 +512,17 @@ static sd_status sd_build(const sd_scene *s, sd_world *w, sd_scene_spheres *sp, 
     double rec = sd_world_recommended_dt(w, &tc);
     /* Five steps per contact is the least that resolves a collision; with
      * fewer, contacts gain energy and the packing explodes. */
-    if (tc > 0.0 && isfinite(tc) && s->world.dt > tc / 5.0)
+    /* An estimate of 0 or NaN comes from values at the ends of the double
+     * range (a modulus whose square overflows, a mass that underflows): the
+     * limit cannot be checked, so the run is refused rather than left to
+     * end in NaN (probe F8). INFINITY means no pair can touch. */
+    if (!(tc > 0.0))
+        return sd_error_set(err, SD_ERR_INPUT, s->path, s->dt_line, "simulation.dt",
+                            "the stability limit cannot be computed: the estimated contact duration is %g s "
+                            "(materials' stiffness or Young's modulus, densities, sizes or speeds at the ends "
+                            "of the double range; values are SI: Pa, N/m, kg/m^3, m, m/s)",
+                            tc);
+    if (isfinite(tc) && s->world.dt > tc / 5.0)
         return sd_error_set(err, SD_ERR_INPUT, s->path, s->dt_line, "simulation.dt",
                             "time step above the stability limit: dt = %g s but the shortest "
                             "contact lasts about %g s, so dt must be at most %g s (1/5 of it); "

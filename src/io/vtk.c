@@ -11,12 +11,16 @@
  * once per array, through a small buffer: writing a frame needs no memory
  * proportional to the particle count.
  */
+#define _POSIX_C_SOURCE 200809L /* open_memstream */
+
 #include "io/vtk.h"
 
 #include "core/error.h"
 
+#include <errno.h>
 #include <inttypes.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 /* ---- little-endian binary stream --------------------------------------- */
@@ -24,14 +28,14 @@
 typedef struct sd_bin {
     FILE *fp;
     size_t used;
-    int failed;
+    int failed;   /* errno of the first failed write (EIO when it gave none), 0 if none */
     unsigned char buf[1 << 14];
 } sd_bin;
 
 static void sd_bin_flush(sd_bin *b)
 {
-    if (b->used && fwrite(b->buf, 1, b->used, b->fp) != b->used)
-        b->failed = 1;
+    if (b->used && fwrite(b->buf, 1, b->used, b->fp) != b->used && !b->failed)
+        b->failed = errno ? errno : EIO;
     b->used = 0;
 }
 
@@ -142,17 +146,30 @@ static sd_status sd_vtk_get(const sd_world *w, size_t i, sd_particle_state *p, s
     return SD_OK;
 }
 
+/* A failed write keeps the system's reason (a full disk says "No space left
+ * on device"): errno of the failing call, else of the stream's last error. */
+static sd_status sd_vtk_write_failed(int e, sd_error *err)
+{
+    return sd_error_set(err, SD_ERR_IO, "", 0, "", "write failed: %s", strerror(e ? e : EIO));
+}
+
+static sd_status sd_vtk_stream_status(FILE *fp, sd_error *err)
+{
+    return ferror(fp) ? sd_vtk_write_failed(errno, err) : SD_OK;
+}
+
 static sd_status sd_vtk_bin_status(sd_bin *b, sd_error *err)
 {
     sd_bin_flush(b);
     if (b->failed || ferror(b->fp))
-        return sd_error_set(err, SD_ERR_IO, "", 0, "", "write failed");
+        return sd_vtk_write_failed(b->failed ? b->failed : errno, err);
     return SD_OK;
 }
 
-sd_status sd_vtk_write_particles(FILE *fp, const sd_world *w, sd_error *err)
+/* The XML head of a particle frame of n particles, up to the '_' that
+ * starts the appended data; returns the appended data's size in bytes. */
+static uint64_t sd_vtk_particles_head(FILE *fp, size_t n)
 {
-    size_t n = sd_world_particle_count(w);
     uint64_t off = 0;
     sd_vtk_file_open(fp, "UnstructuredGrid");
     fprintf(fp, "  <UnstructuredGrid>\n");
@@ -170,6 +187,30 @@ sd_status sd_vtk_write_particles(FILE *fp, const sd_world *w, sd_error *err)
     sd_vtk_array_decl(fp, "        ", "UInt8", "types", 1, n, 1, &off);
     fprintf(fp, "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n");
     sd_vtk_appended_open(fp);
+    return off;
+}
+
+uint64_t sd_vtk_particles_bytes(size_t n)
+{
+    char *text = NULL;
+    size_t len = 0;
+    FILE *fp = open_memstream(&text, &len);
+    if (!fp)
+        return 0;
+    uint64_t data = sd_vtk_particles_head(fp, n);
+    sd_vtk_appended_close(fp);
+    int bad = ferror(fp);
+    fclose(fp);
+    uint64_t total = bad ? 0 : (uint64_t)len + data;
+    free(text);
+    return total;
+}
+
+sd_status sd_vtk_write_particles(FILE *fp, const sd_world *w, sd_error *err)
+{
+    errno = 0; /* so that a failure below reports its own reason */
+    size_t n = sd_world_particle_count(w);
+    sd_vtk_particles_head(fp, n);
 
     static const int comps[SD_VF_COUNT] = {
 #define SD_X_COMPS(e, name, type, c, size) c,
@@ -219,7 +260,7 @@ sd_status sd_vtk_write_particles(FILE *fp, const sd_world *w, sd_error *err)
     if (s != SD_OK)
         return s;
     sd_vtk_appended_close(fp);
-    return ferror(fp) ? sd_error_set(err, SD_ERR_IO, "", 0, "", "write failed") : SD_OK;
+    return sd_vtk_stream_status(fp, err);
 }
 
 /* ---- walls -------------------------------------------------------------- */
@@ -329,6 +370,7 @@ static sd_status sd_vtk_wall(const sd_world *w, size_t i, double side, sd_wall_i
 
 sd_status sd_vtk_write_walls(FILE *fp, const sd_world *w, double plane_side, sd_error *err)
 {
+    errno = 0; /* so that a failure below reports its own reason */
     size_t nw = sd_world_wall_count(w);
     sd_wall_info wi;
     sd_v3d q[6][4];
@@ -394,13 +436,14 @@ sd_status sd_vtk_write_walls(FILE *fp, const sd_world *w, double plane_side, sd_
     if (s != SD_OK)
         return s;
     sd_vtk_appended_close(fp);
-    return ferror(fp) ? sd_error_set(err, SD_ERR_IO, "", 0, "", "write failed") : SD_OK;
+    return sd_vtk_stream_status(fp, err);
 }
 
 /* ---- collection --------------------------------------------------------- */
 
 sd_status sd_vtk_write_collection(FILE *fp, size_t n, const sd_vtk_dataset *sets, sd_error *err)
 {
+    errno = 0; /* so that a failure below reports its own reason */
     static const char *part_names[2] = {"particles", "walls"};
     fprintf(fp, "<?xml version=\"1.0\"?>\n");
     fprintf(fp, "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n");
@@ -413,5 +456,5 @@ sd_status sd_vtk_write_collection(FILE *fp, size_t n, const sd_vtk_dataset *sets
                 sets[i].time, part, part_names[part == 1], sets[i].file);
     }
     fprintf(fp, "  </Collection>\n</VTKFile>\n");
-    return ferror(fp) ? sd_error_set(err, SD_ERR_IO, "", 0, "", "write failed") : SD_OK;
+    return sd_vtk_stream_status(fp, err);
 }

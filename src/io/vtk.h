@@ -18,6 +18,10 @@
  * caller's ferror check) or the world could not be read. */
 sd_status sd_vtk_write_particles(FILE *fp, const sd_world *w, sd_error *err);
 
+/* Bytes of the particle frame sd_vtk_write_particles writes for n
+ * particles (the layout depends on n only); 0 when out of memory. */
+uint64_t sd_vtk_particles_bytes(size_t n);
+
 /* Side (m) of the square drawn for plane walls: 1.2 x the diagonal of the
  * particles' bounding box (radii included), at least 1e-3 m. */
 double sd_vtk_plane_side(const sd_world *w);

@@ -83,7 +83,12 @@ sd_status sd_world_prepare(sd_world *w, sd_error *err)
     return SD_OK;
 }
 
-/* A NaN anywhere ends the run with a clear message rather than garbage. */
+/* A NaN anywhere ends the run with a clear message rather than garbage:
+ * position, velocity, spin and orientation (a NaN spin reaches x only
+ * through contacts, so a free body would carry it silently). The squares
+ * also catch values past ~1e154, whose energies (stats.csv) already
+ * overflow to inf. One sum per particle: a NaN or inf in any term makes
+ * the sum non-finite. */
 static sd_status sd_world_check_finite(const sd_world *w, sd_error *err)
 {
     const sd_particles *p = &w->p;
@@ -91,7 +96,8 @@ static sd_status sd_world_check_finite(const sd_world *w, sd_error *err)
     size_t n = p->n;
 SD_PARALLEL_FOR_REDUCE_OR(bad)
     for (size_t k = 0; k < n; ++k)
-        bad |= !isfinite(p->x[k].x + p->x[k].y + p->x[k].z + p->v[k].x + p->v[k].y + p->v[k].z);
+        bad |= !isfinite(sd_v3_norm2(p->x[k]) + sd_v3_norm2(p->v[k]) + sd_v3_norm2(p->w[k]) + p->q[k].w +
+                         p->q[k].x + p->q[k].y + p->q[k].z);
     if (bad)
         return sd_error_set(err, SD_ERR_PHYSICS, "", 0, "", "a particle state became NaN or infinite at step %ld "
                             "(time step too large for the stiffness?)", w->step);

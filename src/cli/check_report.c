@@ -1,0 +1,272 @@
+/* check_report.c — the estimates of `shapedem check` (see check_report.h).
+ *
+ * The run time comes from a timed trial, not a cost model: a few steps of
+ * the scene's own world (or, when the scene pours, of a bed of the pour's
+ * spheres resting in the scene's box, since the world is empty at the
+ * start), timed on the threads the run will use, scaled by particle-steps.
+ * It is rough: a trial sees the first steps only, and the cost per
+ * particle-step changes as the packing settles (contacts per particle),
+ * as walls move and with the machine's load; expect the run within about
+ * a factor of 2-3 of it. For a pour it is an upper bound (the count
+ * ramps up while the box fills).
+ */
+#define _POSIX_C_SOURCE 200809L
+
+#include "cli/check_report.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "grid/grid.h"
+
+static double sd_check_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* What a material of this density is likely to be: sand, glass, rock,
+ * metals and plastics lie in 300-25000 kg/m^3. */
+static int sd_check_granular_density(double rho) { return rho >= 300.0 && rho <= 25000.0; }
+
+void sd_check_count(const sd_scene *s, const sd_world *w, sd_check_counts *c)
+{
+    memset(c, 0, sizeof *c);
+    c->now = sd_world_particle_count(w);
+    c->rmin = HUGE_VAL;
+    for (size_t k = 0; k < c->now; ++k) {
+        sd_particle_state p;
+        if (sd_world_get_particle(w, k, &p) != SD_OK)
+            continue;
+        c->bodies += p.shape >= 0;
+        if (isfinite(p.mass))
+            c->mass_now += p.mass;
+        c->rmin = fmin(c->rmin, p.radius);
+        c->rmax = fmax(c->rmax, p.radius);
+        double rho = p.material >= 0 && (size_t)p.material < s->material_count
+                         ? s->materials[p.material].def.density
+                         : 0.0;
+        if (sd_check_granular_density(rho) && p.radius > c->big_radius) {
+            c->big_radius = p.radius;
+            c->big_mass = p.mass;
+            c->big_density = rho;
+        }
+    }
+    if (s->pour.given && s->pour.count > 0) {
+        double r = s->pour.radius, rho = s->materials[s->pour.material].def.density;
+        double m = rho * 4.0 / 3.0 * SD_PI_D * r * r * r;
+        c->poured = (size_t)s->pour.count;
+        c->mass_poured = m * (double)c->poured;
+        c->rmin = fmin(c->rmin, r);
+        c->rmax = fmax(c->rmax, r);
+        if (sd_check_granular_density(rho) && r > c->big_radius) {
+            c->big_radius = r;
+            c->big_mass = m;
+            c->big_density = rho;
+        }
+    }
+    if (!isfinite(c->rmin))
+        c->rmin = 0.0;
+}
+
+double sd_check_pour_bytes(size_t poured)
+{
+    /* the solver's arrays per particle (grid.c, sd_grid_get_info's bytes):
+     * record, force and torque, two cell indices, the history slots; a
+     * pour grows them with a quarter of head room */
+    double per = (double)(sizeof(sd_grid_part) + 2 * sizeof(sd_vec3) + 2 * sizeof(uint32_t) +
+                          SD_GRID_SLOTS * (sizeof(uint32_t) + sizeof(sd_vec3)));
+    return per * (1.25 * (double)poured + 64.0);
+}
+
+/* A bed of the pour's spheres resting on the floor of the scene's box
+ * walls: simple cubic, 2 r apart, up to `want` spheres. NULL when the box
+ * holds none or the world refuses it. */
+static sd_world *sd_check_bed(const sd_scene *s, size_t want, size_t *count)
+{
+    sd_error err;
+    memset(&err, 0, sizeof err);
+    sd_world *w = NULL;
+    *count = 0;
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    for (size_t i = 0; i < s->wall_count; ++i) {
+        const sd_scene_wall *wl = &s->walls[i];
+        if (wl->kind != 1)
+            continue;
+        const double a[3] = {wl->lo.x, wl->lo.y, wl->lo.z}, b[3] = {wl->hi.x, wl->hi.y, wl->hi.z};
+        for (int k = 0; k < 3; ++k) {
+            lo[k] = fmin(lo[k], a[k]);
+            hi[k] = fmax(hi[k], b[k]);
+        }
+    }
+    double r = s->pour.radius, h = 2.0 * r * (1.0 + 1e-9);
+    if (!(hi[0] > lo[0]) || !(r > 0))
+        return NULL;
+    long n[3];
+    for (int k = 0; k < 3; ++k)
+        n[k] = (long)floor((hi[k] - lo[k] - 2.0 * r) / h) + 1;
+    if (n[0] < 1 || n[1] < 1 || n[2] < 1)
+        return NULL;
+    size_t layer = (size_t)n[0] * (size_t)n[1];
+    size_t layers = (want + layer - 1) / layer;
+    if (layers > (size_t)n[2])
+        layers = (size_t)n[2];
+    size_t total = layer * layers;
+    sd_sphere_def *d = malloc(total * sizeof *d);
+    if (!d)
+        return NULL;
+    size_t m = 0;
+    for (size_t z = 0; z < layers; ++z)
+        for (long y = 0; y < n[1]; ++y)
+            for (long x = 0; x < n[0]; ++x) {
+                memset(&d[m], 0, sizeof d[m]);
+                d[m].position.x = lo[0] + r + (double)x * h;
+                d[m].position.y = lo[1] + r + (double)y * h;
+                d[m].position.z = lo[2] + r + (double)z * h;
+                d[m].radius = r;
+                d[m].material = s->pour.material;
+                ++m;
+            }
+    int ok = sd_world_create(&s->world, &w, &err) == SD_OK;
+    for (size_t i = 0; ok && i < s->material_count; ++i) {
+        sd_material_def md = s->materials[i].def;
+        md.name = s->materials[i].name;
+        ok = sd_world_add_material(w, &md, &err) >= 0;
+    }
+    for (size_t i = 0; ok && i < s->interaction_count; ++i)
+        ok = sd_world_set_interaction(w, s->interactions[i].mat_a, s->interactions[i].mat_b,
+                                      &s->interactions[i].def, &err) == SD_OK;
+    for (size_t i = 0; ok && i < s->wall_count; ++i) {
+        const sd_scene_wall *wl = &s->walls[i];
+        ok = (wl->kind == 0 ? sd_world_add_plane(w, wl->name, wl->point, wl->normal, wl->material, &err)
+                            : sd_world_add_box(w, wl->name, wl->lo, wl->hi, wl->open_faces, wl->material, &err)) >= 0;
+    }
+    ok = ok && sd_world_add_spheres(w, total, d, &err) == SD_OK && sd_world_prepare(w, &err) == SD_OK;
+    free(d);
+    if (!ok) {
+        sd_world_destroy(w);
+        return NULL;
+    }
+    *count = total;
+    return w;
+}
+
+void sd_check_time(const sd_scene *s, sd_world *w, size_t total, long steps, sd_check_trial *t)
+{
+    memset(t, 0, sizeof *t);
+    t->ok = 1;
+    sd_world *tw = w;
+    if (s->pour.given && s->pour.count > 0) {
+        /* the grid solver is threaded from SD_GRID_PARALLEL_MIN particles:
+         * a bed of at least that many (or all) is timed as the run goes */
+        size_t want = total < 2 * SD_GRID_PARALLEL_MIN ? total : 2 * SD_GRID_PARALLEL_MIN;
+        tw = sd_check_bed(s, want, &t->particles);
+        if (!tw) {
+            tw = w;
+            t->particles = sd_world_particle_count(w);
+        } else {
+            t->bed = 1;
+        }
+    } else {
+        t->particles = sd_world_particle_count(w);
+    }
+    t->threads = sd_world_threads(tw);
+    sd_error err;
+    memset(&err, 0, sizeof err);
+    double t0 = sd_check_now(), psteps = 0;
+    long limit = steps < 200 ? steps : 200;
+    while (t->steps < limit && (t->steps < 2 || sd_check_now() - t0 < 0.25)) {
+        size_t before = sd_world_particle_count(tw);
+        if (sd_world_step(tw, 1, &err) != SD_OK) {
+            char buf[400];
+            sd_error_format(&err, buf, sizeof buf);
+            snprintf(t->msg, sizeof t->msg, "the trial run stopped at step %ld: %s", sd_world_step_count(tw), buf);
+            t->ok = 0;
+            break;
+        }
+        psteps += 0.5 * (double)(before + sd_world_particle_count(tw));
+        t->steps++;
+    }
+    t->seconds = sd_check_now() - t0;
+    if (t->steps > 0 && psteps > 0)
+        t->estimate = t->seconds / psteps * (double)total * (double)steps;
+    else if (t->steps > 0)
+        t->estimate = t->seconds / (double)t->steps * (double)steps;
+    if (tw != w)
+        sd_world_destroy(tw);
+}
+
+/* gravity that is 9.81 m/s^2 written in another unit */
+static const char *sd_check_gravity_unit(double g)
+{
+    if (g > 900.0 && g < 1100.0)
+        return "cm/s^2 (981)";
+    if (g > 9000.0 && g < 11000.0)
+        return "mm/s^2 (9810)";
+    if (g > 0.009 && g < 0.011)
+        return "km/s^2 (0.00981)";
+    return NULL;
+}
+
+int sd_check_units(FILE *f, const sd_scene *s, const sd_check_counts *c, double tc, double dt)
+{
+    int n = 0;
+    if (c->big_radius > 0.5) {
+        fprintf(f,
+                "warning      particles of radius up to %.4g m (%.4g kg each at %.4g kg/m^3) look like a unit "
+                "mistake: scene values are SI (m, kg, s), so a 1 mm radius is radius: 0.001\n",
+                c->big_radius, c->big_mass, c->big_density);
+        n++;
+    }
+    if (isfinite(tc) && tc > 0 && dt > 0 && tc / dt > 1000.0) {
+        fprintf(f,
+                "warning      dt = %.4g s is %.0f times below the shortest contact duration %.4g s (about 50 steps "
+                "resolve a contact): a unit mistake? scene values are SI (s, m, kg)\n",
+                dt, tc / dt, tc);
+        n++;
+    }
+    const sd_v3d g = s->world.gravity;
+    double gn = sqrt(g.x * g.x + g.y * g.y + g.z * g.z);
+    const char *unit = sd_check_gravity_unit(gn);
+    if (unit) {
+        fprintf(f,
+                "warning      gravity %.4g m/s^2 looks like 9.81 m/s^2 written in %s: scene values are SI "
+                "(m/s^2)\n",
+                gn, unit);
+        n++;
+    }
+    for (size_t i = 0; i < s->material_count; ++i) {
+        double rho = s->materials[i].def.density;
+        if (rho > 0 && rho < 20.0) {
+            fprintf(f,
+                    "warning      material '%s' has density %.4g kg/m^3, like a gas: g/cm^3? scene values are SI "
+                    "(kg/m^3; glass is 2500)\n",
+                    s->materials[i].name, rho);
+            n++;
+        }
+        double e = s->materials[i].def.youngs_modulus;
+        if (e > 0 && e < 1000.0) {
+            fprintf(f,
+                    "warning      material '%s' has Young's modulus %.4g Pa, softer than any solid: GPa or MPa? "
+                    "scene values are SI (Pa; glass is 6.3e10)\n",
+                    s->materials[i].name, e);
+            n++;
+        }
+    }
+    return n;
+}
+
+void sd_check_format_bytes(double b, char *buf, size_t size)
+{
+    if (b < 1e3)
+        snprintf(buf, size, "%.0f bytes", b);
+    else if (b < 1e6)
+        snprintf(buf, size, "%.1f kB", b / 1e3);
+    else if (b < 1e9)
+        snprintf(buf, size, "%.1f MB", b / 1e6);
+    else
+        snprintf(buf, size, "%.2f GB", b / 1e9);
+}

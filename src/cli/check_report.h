@@ -1,0 +1,57 @@
+/* check_report.h — what `shapedem check` estimates beyond what the scene
+ * states (cli/check_report.c): the particles the run will hold (the pour's
+ * included), their mass, the memory, the output size, the run time from a
+ * timed trial, and warnings for values that look like a unit mistake.
+ */
+#ifndef SD_CLI_CHECK_REPORT_H
+#define SD_CLI_CHECK_REPORT_H
+
+#include <stdio.h>
+
+#include <shapedem/shapedem.h>
+
+#include "io/scene.h"
+
+typedef struct sd_check_counts {
+    size_t now;            /* particles in the world at the start */
+    size_t bodies;         /* of which shaped bodies */
+    size_t poured;         /* spheres the pour will insert (solver grid) */
+    double mass_now;       /* kg (2D: per 1 m of thickness), movable particles at the start */
+    double mass_poured;    /* kg, all the pour inserts */
+    double rmin, rmax;     /* m, radius (bounding radius for shapes), the pour's included */
+    double big_radius;     /* m, the largest radius of a particle of granular density, 0 if none */
+    double big_mass;       /* kg, that particle's mass */
+    double big_density;    /* kg/m^3, its material's density */
+} sd_check_counts;
+
+void sd_check_count(const sd_scene *s, const sd_world *w, sd_check_counts *c);
+
+/* Bytes the grid solver holds per poured sphere, head room included. */
+double sd_check_pour_bytes(size_t poured);
+
+typedef struct sd_check_trial {
+    int ok;                /* 0: the trial run failed (msg says why) */
+    char msg[512];
+    long steps;            /* steps timed */
+    size_t particles;      /* particles of the world timed */
+    int bed;               /* 1: a bed of poured spheres was timed, not the scene's world */
+    double seconds;        /* wall time of the timed steps */
+    double estimate;       /* s, the whole run */
+    int threads;
+} sd_check_trial;
+
+/* Times a few steps (about 0.25 s of work, at least 2 steps) of w, or of
+ * a bed of the pour's spheres in the scene's walls when the scene pours,
+ * and scales the time per particle-step to the run: `total` particles for
+ * `steps` steps. w is stepped (the caller only destroys it afterwards). */
+void sd_check_time(const sd_scene *s, sd_world *w, size_t total, long steps, sd_check_trial *t);
+
+/* Prints a "warning" line for each value that looks like a unit mistake
+ * (the scene's values are SI) and returns how many. tc is the shortest
+ * contact duration (s), dt the time step. */
+int sd_check_units(FILE *f, const sd_scene *s, const sd_check_counts *c, double tc, double dt);
+
+/* "1.23 MB", "4.5 GB" */
+void sd_check_format_bytes(double b, char *buf, size_t size);
+
+#endif
