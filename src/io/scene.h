@@ -13,6 +13,10 @@
 
 #define SD_SCENE_NAME_MAX 64
 #define SD_SCENE_PATH_MAX 1024
+/* The most OpenMP threads simulation.threads and --threads take: far more
+ * than any node's cores, few enough that the thread stacks (libgomp's
+ * default, 2-8 MiB each) stay within a machine's memory. */
+#define SD_SCENE_MAX_THREADS 1024
 
 typedef enum sd_gen_kind {
     SD_GEN_LATTICE, /* a block of spheres on a simple cubic lattice */
@@ -201,5 +205,9 @@ void sd_scene_spheres_free(sd_scene_spheres *sp);
  * Returns 1 and sets *i, *j when there is one, 0 when none, -1 when out of
  * memory. */
 int sd_scene_find_overlap(size_t n, const sd_sphere_def *defs, double tol, size_t *i, size_t *j);
+/* The same, keeping only the pairs for which accept(ctx, i, j) is non-zero
+ * (the true shapes' test of the bounding spheres that overlap). */
+int sd_scene_find_overlap_if(size_t n, const sd_sphere_def *defs, double tol,
+                             int (*accept)(void *ctx, size_t i, size_t j), void *ctx, size_t *i, size_t *j);
 
 #endif

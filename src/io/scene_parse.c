@@ -20,7 +20,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
+#include <unistd.h>
 #include <yaml.h>
 
 #include "core/alloc.h"
@@ -43,6 +46,7 @@ typedef struct sd_parse {
     const char *path;
     sd_scene *s;
     sd_error *err;
+    double total; /* particles of the generators and the pour read so far */
 } sd_parse;
 
 /* A checked value of any key type (the fields used depend on the type). */
@@ -87,6 +91,10 @@ static const char *sd_kp(char *buf, size_t size, const char *path, const char *k
 
 static const char *sd_scalar(const yaml_node_t *n) { return (const char *)n->data.scalar.value; }
 
+/* The tag the loader gave n: an explicit one, or the default (str) for an
+ * untagged scalar. */
+static const char *sd_tag(const yaml_node_t *n) { return n->tag ? (const char *)n->tag : YAML_STR_TAG; }
+
 static int sd_is_null(const yaml_node_t *n)
 {
     if (!n)
@@ -104,9 +112,25 @@ static const char *sd_desc(const yaml_node_t *n, char *buf, size_t size)
     if (sd_is_null(n)) {
         snprintf(buf, size, "nothing");
     } else if (n->type == YAML_SCALAR_NODE) {
+        /* escaped: a double-quoted "\e[31m" would reach the terminal */
         const char *t = sd_scalar(n);
+        char esc[100];
+        sd_escape(esc, sizeof esc, t, strlen(t) > 60 ? 60 : strlen(t));
         const char *q = n->data.scalar.style == YAML_PLAIN_SCALAR_STYLE ? "" : "\"";
-        snprintf(buf, size, "%s%.60s%s%s", q, t, strlen(t) > 60 ? "..." : "", q);
+        const char *tag = sd_tag(n), *std = "tag:yaml.org,2002:";
+        char pre[48] = "";
+        if (n->data.scalar.style == YAML_ANY_SCALAR_STYLE)
+            snprintf(pre, sizeof pre, "the string !!str ");
+        else if (strcmp(tag, YAML_STR_TAG))
+            snprintf(pre, sizeof pre, "%s%.30s ", strncmp(tag, std, strlen(std)) ? "" : "!!",
+                     strncmp(tag, std, strlen(std)) ? tag : tag + strlen(std));
+        if (pre[0])
+            q = "";
+        char all[160];
+        snprintf(all, sizeof all, "%s%s%s%s%s", pre, q, esc, strlen(t) > 60 ? "..." : "", q);
+        size_t l = strlen(all) < size ? strlen(all) : size - 1; /* cut, as snprintf would */
+        memcpy(buf, all, l);
+        buf[l] = '\0';
     } else if (n->type == YAML_SEQUENCE_NODE) {
         long len = (long)(n->data.sequence.items.top - n->data.sequence.items.start);
         snprintf(buf, size, "a list of %ld item%s", len, len == 1 ? "" : "s");
@@ -142,12 +166,18 @@ static yaml_node_t *sd_map_get(sd_parse *p, const yaml_node_t *map, const char *
 
 /* ---- scalars ------------------------------------------------------------ */
 
-/* A plain scalar that reads as a finite number. Only digits, signs, '.' and
- * exponents are allowed, so "inf", "nan", hex and quoted strings are not
- * numbers (a quoted "2500" is a string in YAML). */
+/* A scalar that reads as a finite number: a plain (untagged) scalar, or one
+ * tagged !!float or !!int in any style (!!float "1.0e7"). Only digits,
+ * signs, '.' and exponents are allowed, so "inf", "nan", hex and strings
+ * are not numbers: a quoted "2500", `!!str 2500` (style
+ * YAML_ANY_SCALAR_STYLE, see sd_mark_tagged) and other tags are strings. */
 static int sd_scalar_number(const yaml_node_t *n, double *out)
 {
-    if (!n || n->type != YAML_SCALAR_NODE || n->data.scalar.style != YAML_PLAIN_SCALAR_STYLE)
+    if (!n || n->type != YAML_SCALAR_NODE)
+        return 0;
+    const char *tag = sd_tag(n);
+    int numeric = !strcmp(tag, YAML_FLOAT_TAG) || !strcmp(tag, YAML_INT_TAG);
+    if (!numeric && (strcmp(tag, YAML_STR_TAG) || n->data.scalar.style != YAML_PLAIN_SCALAR_STYLE))
         return 0;
     const char *t = sd_scalar(n);
     if (!t[0] || strspn(t, "0123456789+-.eE") != strlen(t) || !strpbrk(t, "0123456789"))
@@ -155,7 +185,7 @@ static int sd_scalar_number(const yaml_node_t *n, double *out)
     char *end;
     errno = 0;
     double v = strtod(t, &end);
-    if (*end || !isfinite(v))
+    if (*end || !isfinite(v) || (!strcmp(tag, YAML_INT_TAG) && v != floor(v)))
         return 0;
     *out = v;
     return 1;
@@ -225,9 +255,17 @@ static sd_status sd_read_number(sd_parse *p, const sd_scene_key *k, yaml_node_t 
 {
     char got[96];
     const char *r = sd_scene_range_text(k->range);
-    if (!sd_scalar_number(n, out))
-        return sd_fail(p, sd_line(n), key, "expected a number%s%s%s%s, got %s", r[0] ? " " : "", r,
-                       what, alt, sd_desc(n, got, sizeof got));
+    if (!sd_scalar_number(n, out)) {
+        /* a number written as a string: say why it is not read as one */
+        char *end;
+        const char *t = n && n->type == YAML_SCALAR_NODE ? sd_scalar(n) : "";
+        double x = strtod(t, &end);
+        const char *why = t[0] && !*end && isfinite(x) && !strcmp(sd_tag(n), YAML_STR_TAG)
+                              ? " (a string in YAML: write the number without quotes or !!str)"
+                              : "";
+        return sd_fail(p, sd_line(n), key, "expected a number%s%s%s%s, got %s%s", r[0] ? " " : "", r,
+                       what, alt, sd_desc(n, got, sizeof got), why);
+    }
     if (!sd_scene_range_ok(k->range, *out))
         return sd_fail(p, sd_line(n), key, "expected a number %s%s, got %s", r, what,
                        sd_desc(n, got, sizeof got));
@@ -544,9 +582,11 @@ static sd_status sd_unknown_key(sd_parse *p, sd_scene_section sec, const char *n
             used += w > 0 ? (size_t)w : 0;
         }
     }
+    char esc[96]; /* the scene's bytes, escaped: a "\e[31m" key would reach the terminal */
+    sd_escape(esc, sizeof esc, name, (size_t)-1);
     if (best)
-        return sd_fail(p, line, key, "unknown key '%s' (did you mean '%s'?)", name, best);
-    return sd_fail(p, line, key, "unknown key '%s' (expected one of: %s)", name, known);
+        return sd_fail(p, line, key, "unknown key '%s' (did you mean '%s'?)", esc, best);
+    return sd_fail(p, line, key, "unknown key '%s' (expected one of: %s)", esc, known);
 }
 
 /* Checks every key of map against the table rows of sec for one kind (a
@@ -645,7 +685,9 @@ static sd_status sd_material_ref(sd_parse *p, const char *name, int line, const 
                          p->s->materials[i].name);
         used += w > 0 ? (size_t)w : 0;
     }
-    return sd_fail(p, line, key, "unknown material '%s' (materials: %s)", name, known);
+    char esc[96];
+    sd_escape(esc, sizeof esc, name, (size_t)-1);
+    return sd_fail(p, line, key, "unknown material '%s' (materials: %s)", esc, known);
 }
 
 /* ---- sections ----------------------------------------------------------- */
@@ -702,9 +744,11 @@ static sd_status sd_parse_simulation(sd_parse *p, yaml_node_t *root)
     sd_get(p, sim, SD_SEC_SIMULATION, "seed", path, &v);
     s->world.seed = (uint64_t)v.integer;
     sd_get(p, sim, SD_SEC_SIMULATION, "threads", path, &v);
-    if (v.integer > 4096)
-        return sd_fail(p, v.line, "simulation.threads", "expected at most 4096 threads, got %lld",
-                       v.integer);
+    if (v.integer > SD_SCENE_MAX_THREADS)
+        return sd_fail(p, v.line, "simulation.threads",
+                       "expected at most %d threads, got %lld (results are the same for any thread count; "
+                       "0 uses all cores)",
+                       SD_SCENE_MAX_THREADS, v.integer);
     s->world.threads = (int)v.integer;
     if (sd_get(p, sim, SD_SEC_SIMULATION, "contact_law", path, &v)) {
         s->world.law = sd_contact_law_from_name(v.str);
@@ -895,10 +939,12 @@ static sd_status sd_read_csv(sd_parse *p, sd_scene_generator *g, const char *key
                     if (!strcmp(name, sd_csv_names[j]))
                         idx = j;
                 if (idx < 0 || ncols >= 16 || seen[idx]) {
+                    char esc[64]; /* file bytes, escaped */
+                    sd_escape(esc, sizeof esc, name, (size_t)-1);
                     st = sd_error_set(p->err, SD_ERR_INPUT, g->file, line, key,
                                       "%s column '%s' in the header (expected the columns x, y, z, "
                                       "radius and optionally vx, vy, vz)",
-                                      idx < 0 ? "unknown" : "repeated", name);
+                                      idx < 0 ? "unknown" : "repeated", esc);
                     goto done;
                 }
                 seen[idx] = 1;
@@ -931,8 +977,10 @@ static sd_status sd_read_csv(sd_parse *p, sd_scene_generator *g, const char *key
             double x = strtod(field, &end);
             const char *name = sd_csv_names[col_of[col]];
             if (!field[0] || *end || !isfinite(x)) {
+                char esc[64]; /* file bytes, escaped */
+                sd_escape(esc, sizeof esc, field, 40);
                 st = sd_error_set(p->err, SD_ERR_INPUT, g->file, line, key,
-                                  "column %s: expected a number, got '%.40s'", name, field);
+                                  "column %s: expected a number, got '%s'", name, esc);
                 goto done;
             }
             if (col_of[col] == SD_CSV_R && !(x > 0.0)) {
@@ -1063,6 +1111,8 @@ static double sd_lef32(const unsigned char *b)
  * unless take_hull (then a warning in sh->warning). Errors name the scene
  * line of shapes[i].file and the mesh file. */
 #define SD_MESH_CONVEX_REL 1e-6
+#define SD_MESH_COORD_MAX 1e60 /* largest |coordinate| in a mesh file */
+#define SD_MESH_COORD_MIN 1e-60 /* smallest extent of a mesh file's vertices */
 static sd_status sd_read_mesh(sd_parse *p, sd_scene_shape *sh, const char *key, int line, int take_hull)
 {
     const char *dot = strrchr(sh->file, '.');
@@ -1098,11 +1148,20 @@ static sd_status sd_read_mesh(sd_parse *p, sd_scene_shape *sh, const char *key, 
     int oom = 0;
     if (stl && size >= 84 && 84 + 50 * (long)sd_le32(buf + 80) == size) {
         size_t nt = sd_le32(buf + 80);
-        for (size_t t = 0; t < nt && !oom; ++t) {
+        for (size_t t = 0; t < nt && !oom && st == SD_OK; ++t) {
             for (int c = 0; c < 3 && !oom; ++c) {
                 const unsigned char *q = buf + 84 + 50 * t + 12 + 12 * (size_t)c;
-                oom = !sd_vbuf_push(&vb, sd_lef32(q), sd_lef32(q + 4), sd_lef32(q + 8));
+                double x = sd_lef32(q), y = sd_lef32(q + 4), z = sd_lef32(q + 8);
+                if (!isfinite(x) || !isfinite(y) || !isfinite(z)) {
+                    /* named by the file's facet, before the sorting below */
+                    st = sd_fail(p, line, key, "facet %zu of %zu in '%s': vertex %d is (%g, %g, %g), not finite",
+                                 t + 1, nt, sh->file, c + 1, x, y, z);
+                    break;
+                }
+                oom = !sd_vbuf_push(&vb, x, y, z);
             }
+            if (st != SD_OK)
+                break;
             if (!oom) {
                 const sd_v3d *a = &vb.v[vb.n - 3];
                 oom = !sd_vbuf_push(&fc, (a[0].x + a[1].x + a[2].x) / 3, (a[0].y + a[1].y + a[2].y) / 3,
@@ -1122,19 +1181,31 @@ static sd_status sd_read_mesh(sd_parse *p, sd_scene_shape *sh, const char *key, 
             char *t = c + strspn(c, " \t\r");
             const char *tag = obj ? "v" : "vertex";
             size_t tl = strlen(tag);
-            if (!strncmp(t, tag, tl) && (t[tl] == ' ' || t[tl] == '\t')) {
+            /* OBJ keywords are lower case; STL writers also emit VERTEX */
+            if ((obj ? !strncmp(t, tag, tl) : !strncasecmp(t, tag, tl)) && (t[tl] == ' ' || t[tl] == '\t')) {
                 double x[3];
                 char *at = t + tl, *end;
-                int ok = 1;
+                int ok = 1, range = 0;
                 for (int a = 0; a < 3 && ok; ++a) {
+                    at += strspn(at, " \t");
+                    errno = 0;
                     x[a] = strtod(at, &end);
-                    ok = end != at && isfinite(x[a]);
+                    ok = end != at && isfinite(x[a]) && errno != ERANGE;
+                    if (end != at && errno == ERANGE) {
+                        /* overflow to inf, or underflow to 0 or a subnormal */
+                        char num[64];
+                        sd_escape(num, sizeof num, at, (size_t)(end - at));
+                        st = sd_fail(p, line, key, "%s line %d: coordinate %s is too %s for a double (%g); "
+                                     "write the mesh in other units and set scale:", sh->file, ln, num,
+                                     fabs(x[a]) > 1.0 ? "large" : "small", x[a]);
+                        range = 1;
+                    }
                     at = end;
                 }
-                if (!ok)
+                if (!ok && !range)
                     st = sd_fail(p, line, key, "%s line %d: expected '%s x y z' with 3 numbers",
                                  sh->file, ln, tag);
-                else
+                else if (ok)
                     oom = !sd_vbuf_push(&vb, x[0], x[1], x[2]);
                 if (!oom && st == SD_OK && stl && vb.n % 3 == 0) { /* a facet's third vertex */
                     const sd_v3d *a = &vb.v[vb.n - 3];
@@ -1153,8 +1224,10 @@ static sd_status sd_read_mesh(sd_parse *p, sd_scene_shape *sh, const char *key, 
                     long idx = strtol(at, &end, 10);
                     long k = idx < 0 ? (long)vb.n + idx : idx - 1;
                     if (end == at || idx == 0 || k < 0 || k >= (long)vb.n) {
-                        st = sd_fail(p, line, key, "%s line %d: a face names vertex '%.20s', but %zu vertices "
-                                                   "are defined before it", sh->file, ln, at, vb.n);
+                        char tok[48]; /* file bytes: escaped, they could be terminal controls */
+                        sd_escape(tok, sizeof tok, at, strcspn(at, " \t"));
+                        st = sd_fail(p, line, key, "%s line %d: a face names vertex '%s', but %zu vertices "
+                                                   "are defined before it", sh->file, ln, tok, vb.n);
                         break;
                     }
                     cx += vb.v[k].x;
@@ -1163,7 +1236,10 @@ static sd_status sd_read_mesh(sd_parse *p, sd_scene_shape *sh, const char *key, 
                     ++nfv;
                     at = end + strcspn(end, " \t\r"); /* skip /t/n */
                 }
-                if (st == SD_OK && nfv >= 3)
+                if (st == SD_OK && nfv < 3)
+                    st = sd_fail(p, line, key, "%s line %d: a face needs at least 3 vertices, got %d", sh->file,
+                                 ln, nfv);
+                if (st == SD_OK)
                     oom = !sd_vbuf_push(&fc, cx / nfv, cy / nfv, cz / nfv);
             }
             ++ln;
@@ -1195,6 +1271,26 @@ static sd_status sd_read_mesh(sd_parse *p, sd_scene_shape *sh, const char *key, 
         sd_free(fc.v);
         return sd_fail(p, line, key, "expected at most %d distinct vertices in '%s', got %zu",
                        SD_SHAPE_MAX_VERTICES, sh->file, u);
+    }
+    /* The hull's tests take products of up to four coordinates (normals of
+     * edge cross products), which overflow past 1e77 and underflow below
+     * 1e-77: such a file would read as flat. Refuse it, in the file's own
+     * numbers (scale: is applied later), with a margin. */
+    double big = 0.0, ext = 0.0;
+    for (size_t k = 0; k < u; ++k)
+        big = fmax(big, fmax(fabs(vb.v[k].x), fmax(fabs(vb.v[k].y), fabs(vb.v[k].z))));
+    for (size_t k = 0; k < u; ++k)
+        ext = fmax(ext, fmax(fabs(vb.v[k].x - vb.v[0].x), fmax(fabs(vb.v[k].y - vb.v[0].y),
+                                                               fabs(vb.v[k].z - vb.v[0].z))));
+    if (big > SD_MESH_COORD_MAX || (ext > 0.0 && ext < SD_MESH_COORD_MIN)) {
+        sd_free(fc.v);
+        return sd_fail(p, line, key,
+                       "the vertices of '%s' %s %g in the file's units, too %s to compute its hull (it needs "
+                       "coordinates of at most %g and a span of at least %g): write the mesh in other units "
+                       "and set scale:",
+                       sh->file, big > SD_MESH_COORD_MAX ? "reach" : "span only",
+                       big > SD_MESH_COORD_MAX ? big : ext, big > SD_MESH_COORD_MAX ? "large" : "small",
+                       SD_MESH_COORD_MAX, SD_MESH_COORD_MIN);
     }
     size_t which;
     double msize, depth = sd_mesh_concavity(vb.v, u, fc.v, fc.n, &which, &msize);
@@ -1239,9 +1335,11 @@ static sd_status sd_shape_ref(sd_parse *p, const char *name, int line, const cha
                          p->s->shapes[i].name);
         used += w > 0 ? (size_t)w : 0;
     }
+    char esc[96];
+    sd_escape(esc, sizeof esc, name, (size_t)-1);
     if (!p->s->shape_count)
-        return sd_fail(p, line, key, "unknown shape '%s' (the scene has no shapes: section)", name);
-    return sd_fail(p, line, key, "unknown shape '%s' (shapes: %s)", name, known);
+        return sd_fail(p, line, key, "unknown shape '%s' (the scene has no shapes: section)", esc);
+    return sd_fail(p, line, key, "unknown shape '%s' (shapes: %s)", esc, known);
 }
 
 /* Cylinder and cone: size, or diameter and length (height). */
@@ -1617,6 +1715,55 @@ static sd_status sd_parse_shapes(sd_parse *p, yaml_node_t *list)
 
 /* ---- particles ---------------------------------------------------------- */
 
+/* Bytes a particle takes while the world is built and run: `check`
+ * measures 639-665 allocated bytes per sphere in the general engine (world
+ * arrays and pair lists of spheres-settle-8000, and of copies with 1e6 and
+ * 4e7 spheres) and docs/grid-solver.md 420-455 resident in the grid
+ * solver; the lower ends are taken. */
+#define SD_BYTES_PER_PARTICLE_CELLS 640.0
+#define SD_BYTES_PER_PARTICLE_GRID 420.0
+#define SD_SCENE_MAX_PARTICLES 1e9
+
+/* The memory this process may use: 90 % of the machine's physical memory
+ * (sysconf; the rest is the system's), or the address-space limit (ulimit
+ * -v) when that is lower. what names which; *phys is the whole memory. */
+static double sd_memory_limit(const char **what, double *phys)
+{
+    long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+    *phys = pages > 0 && page > 0 ? (double)pages * (double)page : HUGE_VAL;
+    double lim = 0.9 * *phys;
+    *what = "memory this machine has";
+    struct rlimit rl;
+    if (getrlimit(RLIMIT_AS, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY && (double)rl.rlim_cur < lim) {
+        lim = (double)rl.rlim_cur;
+        *what = "address space this process may use (ulimit -v)";
+    }
+    return lim;
+}
+
+/* Adds n particles (of the generator or pour at line/key) to the scene's
+ * total, and refuses the scene before anything is built when the total
+ * passes 1e9 or its memory will not fit: a one-digit slip in a count
+ * (count: [20, 20, 100000]) would otherwise fill the machine for a minute
+ * before failing. */
+static sd_status sd_count_particles(sd_parse *p, double n, int line, const char *key)
+{
+    p->total += n;
+    if (p->total > SD_SCENE_MAX_PARTICLES)
+        return sd_fail(p, line, key, "the scene makes %.0f particles up to here (%.0f here), more than the %g a scene "
+                       "may have", p->total, n, SD_SCENE_MAX_PARTICLES);
+    const char *what;
+    double phys, per = p->s->world.solver == SD_SOLVER_GRID ? SD_BYTES_PER_PARTICLE_GRID : SD_BYTES_PER_PARTICLE_CELLS;
+    double need = per * p->total, lim = sd_memory_limit(&what, &phys);
+    if (need > lim)
+        return sd_fail(p, line, key,
+                       "the scene makes %.0f particles up to here (%.0f here), which need about %.1f GiB "
+                       "(%.0f bytes each), more than the %.1f GiB of %s%s",
+                       p->total, n, need / 1073741824.0, per, (lim < 0.9 * phys ? lim : phys) / 1073741824.0, what,
+                       lim < 0.9 * phys ? "" : " (90 % of it is taken as usable)");
+    return SD_OK;
+}
+
 static sd_status sd_parse_list(sd_parse *p, sd_scene_generator *g, yaml_node_t *list,
                                const char *path, int has_material)
 {
@@ -1837,6 +1984,13 @@ static sd_status sd_parse_particles(sd_parse *p, yaml_node_t *list, int line)
                 return st;
             break;
         }
+        static const char *const count_key[] = {"count", "number", "spheres", "file"};
+        const char *ck = count_key[g->kind];
+        double made = g->kind == SD_GEN_LATTICE  ? (double)g->count[0] * g->count[1] * g->count[2]
+                      : g->kind == SD_GEN_RANDOM ? (double)g->number
+                                                 : (double)g->list_count;
+        if ((st = sd_count_particles(p, made, sd_line(sd_map_get(p, m, ck)), sd_kp(key, sizeof key, path, ck))))
+            return st;
     }
     return SD_OK;
 }
@@ -2088,6 +2242,9 @@ static sd_status sd_parse_pour(sd_parse *p, yaml_node_t *root)
     if (count > 1000000000LL)
         return sd_fail(p, pr->line, "pour.count", "expected at most 1e9 spheres, got %lld", count);
     pr->count = (long)count;
+    if ((st = sd_count_particles(p, (double)count, has_fill ? v.line : sd_line(sd_map_get(p, m, "count")),
+                                 has_fill ? "pour.fill_height" : "pour.count")))
+        return st;
     return SD_OK;
 }
 
@@ -2180,7 +2337,7 @@ static sd_status sd_check_laws(sd_parse *p)
                 snprintf(key, sizeof key, "materials[%zu].youngs_modulus", a);
                 st = sd_fail(p, m->line, key,
                              "missing youngs_modulus (Pa): the volume contact between '%s' and '%s' "
-                             "needs it (seed 000 eq. 13)",
+                             "needs it (eq. 13 of [Xu n.d.])",
                              m->name, s->materials[b].name);
             } else if (law == SD_LAW_VOLUME_LINEAR && !(m->def.volume_stiffness > 0.0) &&
                        !(in && in->def.volume_stiffness > 0.0)) {
@@ -2289,6 +2446,208 @@ static sd_status sd_parse_root(sd_parse *p, yaml_node_t *root)
     return sd_check_laws(p);
 }
 
+/* ---- reading the file ---------------------------------------------------- */
+
+/* Limits checked before libyaml builds the node tree. libyaml's scanner
+ * costs time quadratic in the depth of flow nesting ([[[...]]]: 30,000
+ * levels take 5 s, 100,000 take 95 s), and its node tree takes about 100
+ * bytes per node, so both are capped first. A scene nests 6 levels (root,
+ * particles, a generator, spheres, an entry, a position); lists of more
+ * particles than a few hundred thousand belong in a CSV file. */
+#define SD_SCENE_MAX_DEPTH 64
+#define SD_SCENE_MAX_BYTES (64L << 20)
+
+/* 1-based line of byte offset off in buf (the reader reports offsets). */
+static int sd_line_of_offset(const unsigned char *buf, size_t len, size_t off)
+{
+    int line = 1;
+    for (size_t k = 0; k < off && k < len; ++k)
+        line += buf[k] == '\n';
+    return line;
+}
+
+/* A libyaml failure as one message with the file's line. */
+static sd_status sd_yaml_error(const yaml_parser_t *parser, const char *path, const unsigned char *buf,
+                               size_t len, sd_error *err)
+{
+    const char *problem = parser->problem ? parser->problem : "syntax error";
+    if (parser->error == YAML_MEMORY_ERROR)
+        return sd_error_set(err, SD_ERR_MEMORY, path, 0, "", "out of memory");
+    if (parser->error == YAML_READER_ERROR) {
+        /* Bad bytes: libyaml gives a byte offset, and a value that is the
+         * offending byte (octet messages) or the decoded character. */
+        char what[32] = "";
+        if (parser->problem_value >= 0 && strstr(problem, "octet"))
+            snprintf(what, sizeof what, " (byte 0x%02X)", (unsigned)parser->problem_value & 0xFFu);
+        else if (parser->problem_value >= 0)
+            snprintf(what, sizeof what, " (U+%04X)", (unsigned)parser->problem_value);
+        int utf = strstr(problem, "UTF-8") != NULL;
+        return sd_error_set(err, SD_ERR_INPUT, path, sd_line_of_offset(buf, len, parser->problem_offset), "",
+                            "cannot read the scene file: %s%s%s", problem, what,
+                            utf ? ": the file must be UTF-8 text (an editor set to Latin-1 writes a mu or "
+                                  "degree sign as one such byte; save the file as UTF-8)"
+                                : "");
+    }
+    if (parser->context)
+        return sd_error_set(err, SD_ERR_INPUT, path, (int)parser->problem_mark.line + 1, "",
+                            "invalid YAML: %s (%s at line %d)", problem, parser->context,
+                            (int)parser->context_mark.line + 1);
+    return sd_error_set(err, SD_ERR_INPUT, path, (int)parser->problem_mark.line + 1, "", "invalid YAML: %s",
+                        problem);
+}
+
+/* The whole file, NUL-terminated, at most SD_SCENE_MAX_BYTES. */
+static sd_status sd_read_scene_file(const char *path, unsigned char **out, size_t *len, sd_error *err)
+{
+    *out = NULL;
+    *len = 0;
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return sd_error_set(err, SD_ERR_INPUT, path, 0, "", "cannot open the scene file: %s", strerror(errno));
+    size_t cap = 0, n = 0;
+    unsigned char *buf = NULL;
+    sd_status st = SD_OK;
+    for (;;) {
+        if (n + 1 >= cap) {
+            size_t nc = cap ? 2 * cap : 65536;
+            unsigned char *nb = sd_realloc(buf, nc);
+            if (!nb) {
+                st = sd_error_set(err, SD_ERR_MEMORY, path, 0, "", "out of memory");
+                break;
+            }
+            buf = nb;
+            cap = nc;
+        }
+        size_t got = fread(buf + n, 1, cap - 1 - n, f);
+        n += got;
+        if (n > (size_t)SD_SCENE_MAX_BYTES) {
+            st = sd_error_set(err, SD_ERR_INPUT, path, 0, "",
+                              "the scene file is larger than %ld MiB (long particle lists belong in a CSV "
+                              "file: generator: csv)",
+                              SD_SCENE_MAX_BYTES >> 20);
+            break;
+        }
+        if (got == 0) {
+            if (ferror(f))
+                st = sd_error_set(err, SD_ERR_IO, path, 0, "", "cannot read the scene file: %s", strerror(errno));
+            break;
+        }
+    }
+    fclose(f);
+    if (st != SD_OK) {
+        sd_free(buf);
+        return st;
+    }
+    buf[n] = '\0';
+    *out = buf;
+    *len = n;
+    return SD_OK;
+}
+
+/* Explicitly tagged string scalars, by their start index: libyaml's loader
+ * gives `!!str 1.0` the same tag and style as a plain 1.0, so the events
+ * are the only place that tells them apart. */
+typedef struct sd_tagged {
+    size_t *index;
+    size_t n, cap;
+} sd_tagged;
+
+/* One pass over the events before loading: refuses nesting deeper than
+ * SD_SCENE_MAX_DEPTH at the line where it passes the limit (the scanner's
+ * cost stays linear up to there), and lists the scalars tagged !!str or !.
+ * Syntax errors are reported here, as the loader would. */
+static sd_status sd_yaml_prescan(const unsigned char *buf, size_t len, const char *path, sd_tagged *tg,
+                                 sd_error *err)
+{
+    yaml_parser_t parser;
+    if (!yaml_parser_initialize(&parser))
+        return sd_error_set(err, SD_ERR_MEMORY, path, 0, "", "out of memory");
+    yaml_parser_set_input_string(&parser, buf, len);
+    sd_status st = SD_OK;
+    int depth = 0, done = 0, docs = 0, end_line = 0; /* end_line: the '...' of the first document */
+    while (!done && st == SD_OK) {
+        yaml_event_t ev;
+        if (!yaml_parser_parse(&parser, &ev)) {
+            if (end_line && parser.problem && strstr(parser.problem, "<document start>"))
+                st = sd_error_set(err, SD_ERR_INPUT, path, (int)parser.problem_mark.line + 1, "",
+                                  "text after '...' (line %d), which ends the YAML document, would be ignored; "
+                                  "a scene is one document: remove the '...' line",
+                                  end_line);
+            else
+                st = sd_yaml_error(&parser, path, buf, len, err);
+            break;
+        }
+        switch (ev.type) {
+        case YAML_DOCUMENT_START_EVENT:
+            /* A second document would be dropped without a word. */
+            if (docs++)
+                st = sd_error_set(err, SD_ERR_INPUT, path, (int)ev.start_mark.line + 1, "",
+                                  "'---' starts a second YAML document%s, which would be ignored; a scene is "
+                                  "one document: remove this line",
+                                  end_line ? " after '...'" : "");
+            break;
+        case YAML_DOCUMENT_END_EVENT:
+            if (!ev.data.document_end.implicit && !end_line)
+                end_line = (int)ev.start_mark.line + 1;
+            break;
+        case YAML_SEQUENCE_START_EVENT:
+        case YAML_MAPPING_START_EVENT:
+            if (++depth > SD_SCENE_MAX_DEPTH)
+                st = sd_error_set(err, SD_ERR_INPUT, path, (int)ev.start_mark.line + 1, "",
+                                  "lists and mappings nested more than %d deep (a scene needs 6 levels)",
+                                  SD_SCENE_MAX_DEPTH);
+            break;
+        case YAML_SEQUENCE_END_EVENT:
+        case YAML_MAPPING_END_EVENT: --depth; break;
+        case YAML_SCALAR_EVENT: {
+            const char *tag = (const char *)ev.data.scalar.tag;
+            if (tag && (!strcmp(tag, YAML_STR_TAG) || !strcmp(tag, "!"))) {
+                if (tg->n == tg->cap) {
+                    size_t nc = tg->cap ? 2 * tg->cap : 16;
+                    size_t *ni = sd_realloc(tg->index, nc * sizeof *ni);
+                    if (!ni) {
+                        st = sd_error_set(err, SD_ERR_MEMORY, path, 0, "", "out of memory");
+                        break;
+                    }
+                    tg->index = ni;
+                    tg->cap = nc;
+                }
+                tg->index[tg->n++] = ev.start_mark.index; /* increasing: events come in file order */
+            }
+            break;
+        }
+        case YAML_STREAM_END_EVENT: done = 1; break;
+        default: break;
+        }
+        yaml_event_delete(&ev);
+    }
+    yaml_parser_delete(&parser);
+    return st;
+}
+
+/* Marks the scalars the prescan found tagged as strings with the style no
+ * loaded scalar has (YAML_ANY_SCALAR_STYLE), so that they read as strings,
+ * never as numbers or null. */
+static void sd_mark_tagged(yaml_document_t *doc, const sd_tagged *tg)
+{
+    if (!tg->n)
+        return;
+    for (yaml_node_t *n = doc->nodes.start; n < doc->nodes.top; ++n) {
+        if (n->type != YAML_SCALAR_NODE)
+            continue;
+        size_t lo = 0, hi = tg->n, at = n->start_mark.index;
+        while (lo < hi) {
+            size_t mid = lo + (hi - lo) / 2;
+            if (tg->index[mid] < at)
+                lo = mid + 1;
+            else
+                hi = mid;
+        }
+        if (lo < tg->n && tg->index[lo] == at)
+            n->data.scalar.style = YAML_ANY_SCALAR_STYLE;
+    }
+}
+
 sd_status sd_scene_load(const char *path, sd_scene **out, sd_error *err)
 {
     sd_error_clear(err);
@@ -2301,50 +2660,58 @@ sd_status sd_scene_load(const char *path, sd_scene **out, sd_error *err)
         return sd_error_set(err, SD_ERR_INPUT, path, 0, "", "is a directory, not a scene file");
     if (strlen(path) >= SD_SCENE_PATH_MAX)
         return sd_error_set(err, SD_ERR_INPUT, path, 0, "", "path too long");
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return sd_error_set(err, SD_ERR_INPUT, path, 0, "", "cannot open the scene file: %s",
-                            strerror(errno));
-
-    yaml_parser_t parser;
-    yaml_document_t doc;
-    if (!yaml_parser_initialize(&parser)) {
-        fclose(f);
-        return sd_error_set(err, SD_ERR_MEMORY, path, 0, "", "out of memory");
-    }
-    yaml_parser_set_input_file(&parser, f);
-    if (!yaml_parser_load(&parser, &doc)) {
-        sd_status st;
-        if (parser.error == YAML_MEMORY_ERROR) {
-            st = sd_error_set(err, SD_ERR_MEMORY, path, 0, "", "out of memory");
-        } else if (parser.error == YAML_READER_ERROR) {
-            st = sd_error_set(err, SD_ERR_INPUT, path, 0, "", "cannot read the scene file: %s",
-                              parser.problem ? parser.problem : "read error");
-        } else if (parser.context) {
-            st = sd_error_set(err, SD_ERR_INPUT, path, (int)parser.problem_mark.line + 1, "",
-                              "invalid YAML: %s (%s at line %d)", parser.problem, parser.context,
-                              (int)parser.context_mark.line + 1);
-        } else {
-            st = sd_error_set(err, SD_ERR_INPUT, path, (int)parser.problem_mark.line + 1, "",
-                              "invalid YAML: %s", parser.problem ? parser.problem : "syntax error");
-        }
-        yaml_parser_delete(&parser);
-        fclose(f);
+    unsigned char *buf;
+    size_t len;
+    sd_status st = sd_read_scene_file(path, &buf, &len, err);
+    if (st != SD_OK)
+        return st;
+    sd_tagged tg = {NULL, 0, 0};
+    if ((st = sd_yaml_prescan(buf, len, path, &tg, err)) != SD_OK) {
+        sd_free(tg.index);
+        sd_free(buf);
         return st;
     }
 
-    sd_scene *s = sd_calloc(1, sizeof *s);
-    sd_status st;
-    if (!s) {
-        st = sd_error_set(err, SD_ERR_MEMORY, path, 0, "", "out of memory");
+    yaml_parser_t parser;
+    yaml_document_t doc, next;
+    if (!yaml_parser_initialize(&parser)) {
+        sd_free(tg.index);
+        sd_free(buf);
+        return sd_error_set(err, SD_ERR_MEMORY, path, 0, "", "out of memory");
+    }
+    yaml_parser_set_input_string(&parser, buf, len);
+    if (!yaml_parser_load(&parser, &doc)) {
+        st = sd_yaml_error(&parser, path, buf, len, err);
+        yaml_parser_delete(&parser);
+        sd_free(tg.index);
+        sd_free(buf);
+        return st;
+    }
+    /* A scene is one document: anything after a '...' line or a second
+     * '---' would otherwise be dropped without a word. */
+    if (!yaml_parser_load(&parser, &next)) {
+        st = sd_yaml_error(&parser, path, buf, len, err);
     } else {
+        if (yaml_document_get_root_node(&next)) /* the prescan refuses it first */
+            st = sd_error_set(err, SD_ERR_INPUT, path, (int)next.start_mark.line + 1, "",
+                              "a second YAML document starts here, which would be ignored; a scene is "
+                              "one document");
+        yaml_document_delete(&next);
+    }
+    sd_mark_tagged(&doc, &tg);
+    sd_free(tg.index);
+
+    sd_scene *s = NULL;
+    if (st == SD_OK && !(s = sd_calloc(1, sizeof *s))) {
+        st = sd_error_set(err, SD_ERR_MEMORY, path, 0, "", "out of memory");
+    } else if (st == SD_OK) {
         snprintf(s->path, sizeof s->path, "%s", path);
-        sd_parse p = {&doc, path, s, err};
+        sd_parse p = {&doc, path, s, err, 0.0};
         st = sd_parse_root(&p, yaml_document_get_root_node(&doc));
     }
     yaml_document_delete(&doc);
     yaml_parser_delete(&parser);
-    fclose(f);
+    sd_free(buf);
     if (st != SD_OK) {
         sd_scene_free(s);
         return st;
