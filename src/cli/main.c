@@ -303,8 +303,9 @@ static int sd_cmd_run(const sd_cli *c)
     } else if (!c->quiet) {
         sd_stats st;
         sd_world_stats(w, &st);
-        printf("shapedem: %zu particles, %ld steps (t = %.6g s) in %.2f s: %.3g particle-steps/s on %d thread%s\n", n,
-               done, sd_world_time(w), stepping, sum.particle_steps_per_second, sum.threads,
+        /* the count at the end, as summary.txt (a pour starts from none) */
+        printf("shapedem: %zu particles, %ld steps (t = %.6g s) in %.2f s: %.3g particle-steps/s on %d thread%s\n",
+               sd_world_particle_count(w), done, sd_world_time(w), stepping, sum.particle_steps_per_second, sum.threads,
                sum.threads == 1 ? "" : "s");
         printf("          kinetic energy %.6g J, %ld contacts, max overlap %.3g %% of radius; output in %s\n",
                st.kinetic_translational + st.kinetic_rotational, st.contacts, 100 * st.max_overlap_ratio, dir);

@@ -559,12 +559,20 @@ void sd_grid_remove_outside(sd_world *w)
     for (size_t k = 0; k < n; ++k) {
         if (g->where[k] == SD_GRID_OUTSIDE) {
             const sd_grid_kind *kd = &g->kinds[g->part[k].kind];
+            double mass = kd->inv_mass > 0 ? 1.0 / (double)kd->inv_mass : 0.0;
             g->info.removed++;
-            if (kd->inv_mass > 0)
-                g->info.removed_mass += 1.0 / (double)kd->inv_mass;
+            g->info.removed_mass += mass;
+            /* below the floor inside the hole: discharged; anywhere else (an
+             * open top or side face) it escaped, counted apart so that the
+             * discharge curve holds the outlet's mass only */
             sd_vec3 x = g->part[k].x;
-            if (g->outlet && x.z < g->dom_lo.z && x.x > g->hx0 && x.x < g->hx1 && x.y > g->hy0 && x.y < g->hy1)
+            if (g->outlet && x.z < g->dom_lo.z && x.x > g->hx0 && x.x < g->hx1 && x.y > g->hy0 && x.y < g->hy1) {
                 g->info.removed_outlet++;
+                g->info.removed_outlet_mass += mass;
+            } else {
+                g->info.escaped++;
+                g->info.escaped_mass += mass;
+            }
             continue;
         }
         if (m != k) {
@@ -610,6 +618,47 @@ sd_status sd_grid_place_all(sd_world *w, sd_error *err)
     sd_grid_mark_rows(g, g->n);
     sd_grid_set_parallel(w);
     return SD_OK;
+}
+
+void sd_grid_fail(sd_world *w, long step)
+{
+    sd_grid_state *g = w->grid_state;
+    if (!g || !g->ncell)
+        return;
+    /* A failed step leaves where[] at the new positions while cell[] and
+     * home[] still hold the old ones (the rebinning stopped at its checks),
+     * or leaves a sheet half poured: rebuild the cells from the positions
+     * now held, without allocating where it can be helped (this is an error
+     * path; the overflow list grows only if it can). A particle outside the
+     * inner grid (it escaped, or its position is NaN) keeps no cell and is
+     * not in the overflow list: the stencil never reads around it, and it is
+     * kept, not removed, so the statistics still show it. */
+    for (size_t c = 0; c < g->ncell; ++c)
+        g->cell[c] = -1;
+    g->nover = 0;
+    for (size_t k = 0; k < g->n; ++k) {
+        g->where[k] = sd_grid_cell_of(g, g->part[k].x);
+        g->home[k] = SD_GRID_OVER;
+        if (g->where[k] == SD_GRID_OUTSIDE)
+            continue;
+        if (g->cell[g->where[k]] < 0) {
+            g->cell[g->where[k]] = (int32_t)k;
+            g->home[k] = g->where[k];
+            continue;
+        }
+        if (g->nover == g->over_cap) {
+            size_t cap = g->over_cap * 2 + 64;
+            uint32_t *o = sd_realloc(g->over, cap * sizeof *o);
+            if (!o)
+                continue; /* left out of the contact statistics only */
+            g->over = o;
+            g->over_cap = cap;
+        }
+        g->over[g->nover++] = (uint32_t)k;
+    }
+    sd_grid_mark_rows(g, g->n);
+    if (!g->info.failed_step)
+        g->info.failed_step = step;
 }
 
 void sd_grid_mark_rows(sd_grid_state *g, size_t n)

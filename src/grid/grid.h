@@ -78,8 +78,13 @@ typedef struct sd_grid_info {
     size_t max_overflow;      /* the most at any step */
     long slot_overflows;      /* contact evaluations without a history slot */
     size_t removed;           /* particles that left the domain */
-    size_t removed_outlet;    /* of which through the outlet hole */
-    double removed_mass;      /* kg */
+    size_t removed_outlet;    /* of which through the outlet hole (stats.csv `discharged`) */
+    size_t escaped;           /* of which elsewhere: an open face, or past the grid (stats.csv `escaped`) */
+    double removed_mass;      /* kg, of all removed particles */
+    double removed_outlet_mass; /* kg, of those through the outlet (`discharged_mass`) */
+    double escaped_mass;      /* kg, of those that escaped elsewhere (`escaped_mass`) */
+    long failed_step;         /* the step that failed (the state is that step's drift; no further
+                               * step is taken), 0 when none failed */
     size_t poured, pour_layers, pour_skipped;
     int outlet_open;          /* the outlet hole is open */
     double outlet_time;       /* s, when it opened (or will open) */
@@ -213,6 +218,14 @@ void sd_grid_set_parallel(sd_world *w);
 sd_status sd_grid_set_parallel_min(sd_world *w, size_t n);
 /* Recomputes the row flags from the particles' cells. */
 void sd_grid_mark_rows(sd_grid_state *g, size_t n);
+
+/* After a step failed part way (eq. 11, NaN, out of memory): puts every
+ * particle whose centre lies in the inner grid back in a cell from its
+ * current position (the others keep none and are left out of the stencil
+ * statistics), so the grid invariants hold again for the statistics, and
+ * records the step in info.failed_step: the forces are those of the step
+ * before, so the solver takes no further step (sd_grid_step refuses). */
+void sd_grid_fail(sd_world *w, long step);
 
 /* outlet.c: opens a scheduled outlet when its time has come (each step). */
 void sd_grid_outlet_step(sd_world *w);

@@ -244,9 +244,25 @@ static double sd_grid_dt_limit(const sd_world *w)
     return SD_PI_D / 5.0 * sqrt(mmin / kmax);
 }
 
+/* After a failed step (sd_grid_fail) the particles hold that step's drift
+ * but the forces of the step before: stepping on would integrate with the
+ * wrong forces, so the world refuses (the statistics still read it). */
+static sd_status sd_grid_refuse_failed(const sd_world *w, sd_error *err)
+{
+    const sd_grid_state *g = w->grid_state;
+    if (g && g->info.failed_step)
+        return sd_error_set(err, SD_ERR_PHYSICS, "", 0, "",
+                            "the grid solver stopped at step %ld and cannot go on; build the world again",
+                            g->info.failed_step);
+    return SD_OK;
+}
+
 sd_status sd_grid_prepare(sd_world *w, sd_error *err)
 {
-    sd_status st = sd_world_mix_materials(w, err);
+    sd_status st = sd_grid_refuse_failed(w, err);
+    if (st != SD_OK)
+        return st;
+    st = sd_world_mix_materials(w, err);
     if (st != SD_OK)
         return st;
     st = sd_world_check_params(w, err);
@@ -289,6 +305,8 @@ sd_status sd_grid_prepare(sd_world *w, sd_error *err)
 sd_status sd_grid_step(sd_world *w, long nsteps, sd_error *err)
 {
     sd_status st;
+    if ((st = sd_grid_refuse_failed(w, err)) != SD_OK)
+        return st;
     if (!w->prepared && (st = sd_grid_prepare(w, err)) != SD_OK)
         return st;
     sd_grid_state *g = w->grid_state;
@@ -298,12 +316,16 @@ sd_status sd_grid_step(sd_world *w, long nsteps, sd_error *err)
         int fused = !g->pour.active;
         if (g->outlet_pending)
             sd_grid_outlet_step(w);
-        if (g->pour.active && (st = sd_grid_pour_step(w, err)) != SD_OK)
+        if (g->pour.active && (st = sd_grid_pour_step(w, err)) != SD_OK) {
+            sd_grid_fail(w, w->step + 1); /* a sheet may be half poured */
             return st;
+        }
         if (!fused || s == 0)
             sd_grid_kick(w, 1, 1);                 /* v(t + dt/2), x(t + dt) */
-        if ((st = sd_grid_rebin(w, err)) != SD_OK) /* cells at t + dt */
+        if ((st = sd_grid_rebin(w, err)) != SD_OK) { /* cells at t + dt */
+            sd_grid_fail(w, w->step + 1);          /* cells back in step with the moved particles */
             return st;
+        }
         sd_grid_forces(w);                         /* F(t + dt) */
         if (fused && s + 1 < nsteps)
             sd_grid_kick(w, 2, 1);                 /* v(t + dt); v(t + 3dt/2), x(t + 2dt) */
@@ -317,6 +339,38 @@ sd_status sd_grid_step(sd_world *w, long nsteps, sd_error *err)
 
 /* ---- statistics ---------------------------------------------------------------- */
 
+/* One particle pair of the statistics: counted when the spheres overlap. */
+static void sd_grid_stats_pair(const sd_world *w, size_t k, size_t j, long *contacts, double *energy,
+                               double *max_overlap_ratio)
+{
+    const sd_grid_state *g = w->grid_state;
+    const sd_grid_part *part = g->part;
+    const sd_grid_kind *kk = &g->kinds[part[k].kind], *kj = &g->kinds[part[j].kind];
+    sd_real d = sd_v3_norm(sd_v3_sub(part[k].x, part[j].x));
+    sd_real delta = kk->radius + kj->radius - d;
+    if (!(delta > 0))
+        return;
+    (*contacts)++;
+    const sd_pair_params *prm = &w->mix[(size_t)kk->material * w->material_count + (size_t)kj->material];
+    sd_vec3 s = sd_grid_pair_spring(g->tag, g->ds, k, j, part);
+    double kn = (double)prm->kn, kt = (double)(prm->kt_ratio * prm->kn);
+    if (prm->law == SD_LAW_LINEAR)
+        *energy += 0.5 * kn * (double)(delta * delta) + 0.5 * kt * (double)sd_v3_norm2(s);
+    double ratio = (double)(delta / sd_min(kk->radius, kj->radius));
+    if (ratio > *max_overlap_ratio)
+        *max_overlap_ratio = ratio;
+}
+
+/* A read-only pass in a fixed order (storage order, then the overflow list
+ * in its order): the same sums for any thread count. A particle in a cell
+ * scans the stencil around the cell it holds (home[k], which cell[] agrees
+ * with), so the pass reads inside the grid even when where[] has moved on;
+ * its pairs with other cell holders count once, from the lower stable id.
+ * A particle without a cell (a conflict) is in no cell a stencil reads, so
+ * it counts its pairs with every cell holder around where[k] and with the
+ * overflow particles after it. Particles outside the inner grid (only after
+ * a failed step, sd_grid_fail) hold no cell and are not listed: their
+ * pairs are not counted. */
 void sd_grid_contact_stats(const sd_world *w, long *contacts, long *wall_contacts, double *energy,
                            double *max_overlap_ratio)
 {
@@ -330,35 +384,36 @@ void sd_grid_contact_stats(const sd_world *w, long *contacts, long *wall_contact
     long nxy = g->nx * g->ny;
     const sd_grid_part *part = g->part;
     for (size_t k = 0; k < g->n; ++k) {
+        /* walls: the slots tagged with a wall are the touching ones */
         const uint32_t *tag = g->tag + k * SD_GRID_SLOTS;
-        const sd_grid_kind *kk = &g->kinds[part[k].kind];
-        /* particle pairs, each once (from its lower stable id) */
-        long c = (long)g->where[k];
+        for (int s = 0; s < SD_GRID_SLOTS; ++s)
+            if (tag[s] & SD_GRID_TAG_WALL)
+                (*wall_contacts)++;
+        if (g->home[k] == SD_GRID_OVER)
+            continue;
+        long c = (long)g->home[k];
         for (int dz = -g->reach; dz <= g->reach; ++dz)
             for (int dy = -g->reach; dy <= g->reach; ++dy)
                 for (int dx = -g->reach; dx <= g->reach; ++dx) {
                     int32_t j = g->cell[c + dz * nxy + dy * g->nx + dx];
                     if (j < 0 || part[j].id <= part[k].id)
                         continue;
-                    const sd_grid_kind *kj = &g->kinds[part[j].kind];
-                    sd_real d = sd_v3_norm(sd_v3_sub(part[k].x, part[j].x));
-                    sd_real delta = kk->radius + kj->radius - d;
-                    if (delta <= 0)
-                        continue;
-                    (*contacts)++;
-                    const sd_pair_params *prm =
-                        &w->mix[(size_t)kk->material * w->material_count + (size_t)kj->material];
-                    sd_vec3 s = sd_grid_pair_spring(g->tag, g->ds, k, (size_t)j, part);
-                    double kn = (double)prm->kn, kt = (double)(prm->kt_ratio * prm->kn);
-                    if (prm->law == SD_LAW_LINEAR)
-                        *energy += 0.5 * kn * (double)(delta * delta) + 0.5 * kt * (double)sd_v3_norm2(s);
-                    double ratio = (double)(delta / sd_min(kk->radius, kj->radius));
-                    if (ratio > *max_overlap_ratio)
-                        *max_overlap_ratio = ratio;
+                    sd_grid_stats_pair(w, k, (size_t)j, contacts, energy, max_overlap_ratio);
                 }
-        /* walls: the slots tagged with a wall are the touching ones */
-        for (int s = 0; s < SD_GRID_SLOTS; ++s)
-            if (tag[s] & SD_GRID_TAG_WALL)
-                (*wall_contacts)++;
+    }
+    for (size_t e = 0; e < g->nover; ++e) {
+        size_t k = g->over[e];
+        if (g->where[k] == SD_GRID_OUTSIDE)
+            continue;
+        long c = (long)g->where[k];
+        for (int dz = -g->reach; dz <= g->reach; ++dz)
+            for (int dy = -g->reach; dy <= g->reach; ++dy)
+                for (int dx = -g->reach; dx <= g->reach; ++dx) {
+                    int32_t j = g->cell[c + dz * nxy + dy * g->nx + dx];
+                    if (j >= 0)
+                        sd_grid_stats_pair(w, k, (size_t)j, contacts, energy, max_overlap_ratio);
+                }
+        for (size_t e2 = e + 1; e2 < g->nover; ++e2)
+            sd_grid_stats_pair(w, k, g->over[e2], contacts, energy, max_overlap_ratio);
     }
 }

@@ -362,13 +362,13 @@ static sd_status sd_output_stats_header(sd_output *o, const sd_world *w, size_t 
                           "max_overlap_ratio,max_speed,rebuilds");
         for (size_t i = 0; i < nw; ++i) {
             const char *p = pre + i * SD_OUTPUT_PREFIX_MAX;
-            fprintf(o->stats, ",%s_fx,%s_fy,%s_fz", p, p, p);
+            fprintf(o->stats, ",%s_fx,%s_fy,%s_fz,%s_tx,%s_ty,%s_tz", p, p, p, p, p, p);
         }
         sd_grid_info gi; /* solver grid: pouring, outlet, cell conflicts (src/grid) */
         sd_grid_get_info(w, &gi);
         o->stats_grid = gi.active;
         if (gi.active)
-            fprintf(o->stats, ",poured,in_domain,discharged,discharged_mass,removed,conflicts");
+            fprintf(o->stats, ",poured,in_domain,discharged,discharged_mass,escaped,escaped_mass,removed,conflicts");
         fputc('\n', o->stats);
         o->stats_walls = nw;
     }
@@ -447,13 +447,16 @@ sd_status sd_output_stats(sd_output *o, const sd_world *w, sd_error *err)
             memset(&wi, 0, sizeof wi);
             s = sd_error_set(err, SD_ERR_INTERNAL, "", 0, "", "cannot read wall %zu", i);
         }
-        fprintf(o->stats, ",%.10g,%.10g,%.10g", wi.force.x, wi.force.y, wi.force.z);
+        /* the torque about the wall's reference point (a plane's point, a
+         * box's centre), summed by each solver in a fixed order */
+        fprintf(o->stats, ",%.10g,%.10g,%.10g,%.10g,%.10g,%.10g", wi.force.x, wi.force.y, wi.force.z, wi.torque.x,
+                wi.torque.y, wi.torque.z);
     }
     if (o->stats_grid) {
         sd_grid_info gi;
         sd_grid_get_info(w, &gi);
-        fprintf(o->stats, ",%zu,%zu,%zu,%.10g,%zu,%ld", gi.poured, sd_world_particle_count(w), gi.removed_outlet,
-                gi.removed_mass, gi.removed, gi.conflicts);
+        fprintf(o->stats, ",%zu,%zu,%zu,%.10g,%zu,%.10g,%zu,%ld", gi.poured, sd_world_particle_count(w),
+                gi.removed_outlet, gi.removed_outlet_mass, gi.escaped, gi.escaped_mass, gi.removed, gi.conflicts);
     }
     fputc('\n', o->stats);
     if (fflush(o->stats) != 0 || ferror(o->stats)) {
@@ -518,8 +521,12 @@ static void sd_output_summary_text(FILE *fp, const sd_output *o, const sd_world 
         fprintf(fp, "grid_poured: %zu\n", gi.poured);
         fprintf(fp, "grid_in_domain: %zu\n", sd_world_particle_count(w));
         fprintf(fp, "grid_discharged: %zu\n", gi.removed_outlet);
-        fprintf(fp, "grid_discharged_mass_kg: %.10g\n", gi.removed_mass);
+        fprintf(fp, "grid_discharged_mass_kg: %.10g\n", gi.removed_outlet_mass);
+        fprintf(fp, "grid_escaped: %zu\n", gi.escaped);
+        fprintf(fp, "grid_escaped_mass_kg: %.10g\n", gi.escaped_mass);
         fprintf(fp, "grid_removed: %zu\n", gi.removed);
+        if (gi.failed_step)
+            fprintf(fp, "grid_failed_at_step: %ld\n", gi.failed_step);
         fprintf(fp, "grid_domain_min_m: %.10g %.10g %.10g\n", gi.domain_lo[0], gi.domain_lo[1], gi.domain_lo[2]);
         fprintf(fp, "grid_domain_max_m: %.10g %.10g %.10g\n", gi.domain_hi[0], gi.domain_hi[1], gi.domain_hi[2]);
         fprintf(fp, "grid_outlet_open: %d\n", gi.outlet_open);
@@ -541,6 +548,8 @@ static void sd_output_summary_text(FILE *fp, const sd_output *o, const sd_world 
             continue;
         fprintf(fp, "wall %zu (%s) force_N: %.10g %.10g %.10g\n", i,
                 wi.name && wi.name[0] ? wi.name : "unnamed", wi.force.x, wi.force.y, wi.force.z);
+        fprintf(fp, "wall %zu (%s) torque_N_m: %.10g %.10g %.10g\n", i,
+                wi.name && wi.name[0] ? wi.name : "unnamed", wi.torque.x, wi.torque.y, wi.torque.z);
     }
     /* convex narrow phase per pair type: mean GJK (+EPA) iterations and
      * support calls per evaluation over the whole run */

@@ -440,14 +440,15 @@ static void test_run(const char *root)
         free(pvd);
     }
 
-    printf("checking: stats.csv has a header and one row per call, all with 12 + 3 x walls columns\n");
+    printf("checking: stats.csv has a header and one row per call, all with 12 + 6 x walls columns\n");
     char *csv = read_all(path_join(path, sizeof path, dir, "stats.csv"), NULL);
     CHECK(csv != NULL);
     if (csv) {
         CHECK(strncmp(csv, "step,time,kinetic_translational,", 32) == 0);
-        CHECK(strstr(csv, ",floor_fx,floor_fy,floor_fz,wall1_fx,wall1_fy,wall1_fz\n") != NULL);
+        CHECK(strstr(csv, ",floor_fx,floor_fy,floor_fz,floor_tx,floor_ty,floor_tz,"
+                          "wall1_fx,wall1_fy,wall1_fz,wall1_tx,wall1_ty,wall1_tz\n") != NULL);
         int lines = 0, bad = 0;
-        const int want = 12 + 3 * 2;
+        const int want = 12 + 6 * 2; /* per wall: force and torque */
         for (const char *p = csv; *p;) {
             const char *e = strchr(p, '\n');
             if (!e) {
