@@ -1199,6 +1199,11 @@ static sd_status sd_read_mesh(sd_parse *p, sd_scene_shape *sh, const char *key, 
                                      "write the mesh in other units and set scale:", sh->file, ln, num,
                                      fabs(x[a]) > 1.0 ? "large" : "small", x[a]);
                         range = 1;
+                    } else if (end != at && !isfinite(x[a])) {
+                        char num[64];
+                        sd_escape(num, sizeof num, at, (size_t)(end - at));
+                        st = sd_fail(p, line, key, "%s line %d: coordinate %s is not finite", sh->file, ln, num);
+                        range = 1;
                     }
                     at = end;
                 }

@@ -95,6 +95,10 @@ printf 'solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1e-400 0 0
 scene under under.stl
 refused under "under.stl line 5: coordinate 1e-400 is too small for a double"
 
+printf 'v 0 0 0\nv 1 0 0\nv 0 NaN 0\nv 0 0 1\n' >nan.obj
+scene nanobj nan.obj
+refused nanobj "nan.obj line 3: coordinate NaN is not finite"
+
 # Raw bytes of the file (an ANSI colour and a carriage return) come back
 # escaped, never as bytes that act on the terminal.
 printf 'v 0 0 0\nv 0.01 0 0\nv 0 0.01 0\nv 0 0 0.01\nf 1 2 \033[31mRED\r\n' >esc.obj
