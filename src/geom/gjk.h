@@ -260,41 +260,65 @@ SD_HD static SD_INLINE sd_vec3 sd_gjk_sv_triangle(const sd_vec3 *p, int i, int j
  * when the origin is enclosed (then v = 0 and all four weights are kept). */
 SD_HD static SD_INLINE sd_vec3 sd_gjk_sv_tetrahedron(const sd_vec3 *p, sd_gjk_sel *s, int *inside)
 {
-    /* face f is opposite vertex f; the origin's weight for vertex f is the
-     * signed volume (origin, face f) over the volume (vertex f, face f) */
+    /* face f is opposite vertex f, and the four faces are wound alike, so
+     * so[f] = 6 × the signed volume of (face f, origin) and their sum is
+     * 6 × the signed volume of the tetrahedron (Montanari et al. 2017 §3.3:
+     * det M is the sum of the cofactors C_j). The origin's weight for vertex
+     * f is so[f] / Σ so, and the origin is enclosed when every so[f] has one
+     * strict sign.
+     *
+     * Why not so[f] / sv[f], with sv[f] = n_f · (p_f − a) measured per face
+     * (what this function did before)? On curved cores GJK's late support
+     * points cluster (three within 3e-9 m of each other on a 2.6 mm
+     * cylinder's rim), and the tetrahedron becomes a needle: each sv[f] is
+     * then the difference of terms ~1e8 times larger than itself, its sign is
+     * rounding noise, and with four independent noisy signs the test "so[f]
+     * and sv[f] agree for every f" passed for an origin 4.5e-5 m outside K
+     * (weights 3e9 instead of summing to 1). GJK reported OVERLAP, EPA then
+     * found the cores touching (depth 0), and a margined pair's overlap
+     * jumped from 7.7e-6 m to ra + rb = 5.24e-5 m for one step: a 16-fold
+     * energy gain (issue 11 §5). The so[f] of that needle are accurate
+     * (relative error ~1e-9; they measure the origin's distance from each
+     * face, not the needle's thickness), and their signs are mixed, as they
+     * must be. Which tetrahedra appear depends on the warm-start direction,
+     * hence on friction (the spin) and on the pair-list rebuilds. */
     const int fi[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
     sd_vec3 nrm[4];
-    sd_real so[4], sv[4];
-    int enclosed = 1;
+    sd_real so[4], det = SD_R(0.0), sabs = SD_R(0.0);
+    int npos = 0, nneg = 0;
     for (int f = 0; f < 4; ++f) {
         sd_vec3 a = p[fi[f][0]];
         nrm[f] = sd_v3_cross(sd_v3_sub(p[fi[f][1]], a), sd_v3_sub(p[fi[f][2]], a));
-        so[f] = -sd_v3_dot(nrm[f], a);                  /* origin side */
-        sv[f] = sd_v3_dot(nrm[f], sd_v3_sub(p[f], a)); /* vertex side: ±6 × volume */
-        /* a flat tetrahedron (sv = 0) encloses nothing */
-        if (sv[f] == SD_R(0.0) || so[f] * sv[f] < SD_R(0.0))
-            enclosed = 0;
+        so[f] = -sd_v3_dot(nrm[f], a); /* origin side */
+        det += so[f];
+        sabs += sd_fabs(so[f]);
+        npos += so[f] > SD_R(0.0);
+        nneg += so[f] < SD_R(0.0);
     }
     *inside = 0;
-    if (enclosed) {
+    if (npos == 4 || nneg == 4) {
+        /* one sign: Σ so adds like terms, no cancellation, weights in (0, 1) */
         s->n = 4;
         for (int f = 0; f < 4; ++f) {
             s->idx[f] = f;
-            s->lambda[f] = so[f] / sv[f];
+            s->lambda[f] = so[f] / det;
         }
         *inside = 1;
         return sd_v3_zero();
     }
-    /* the origin is outside: the nearest point is on a face whose weight is
-     * not positive (or nearly so: rounding blurs the side tests) */
+    /* the origin is outside: the nearest point is on a face whose weight
+     * so[f] / det is not positive (or nearly so: rounding blurs the signs).
+     * When det itself is lost in the cancellation of Σ so (a flat or needle
+     * tetrahedron) no sign can be trusted and every face is tried. */
+    const int trust = sd_fabs(det) > SD_R(1e-6) * sabs;
     sd_gjk_sel best, t;
     sd_vec3 bestv = sd_v3_zero();
     sd_real bestd = SD_R(-1.0);
     best.n = 0;
-    for (int pass = 0; pass < 2 && bestd < SD_R(0.0); ++pass)
+    for (int pass = trust ? 0 : 1; pass < 2 && bestd < SD_R(0.0); ++pass)
         for (int f = 0; f < 4; ++f) {
-            /* pass 0: the candidates; pass 1 (none was): every face */
-            if (pass == 0 && !(sv[f] == SD_R(0.0) || so[f] * sv[f] <= SD_GJK_SV_NEAR * sv[f] * sv[f]))
+            /* pass 0: the candidates; pass 1 (none was, or det is noise): every face */
+            if (pass == 0 && !(so[f] * det <= SD_GJK_SV_NEAR * det * det))
                 continue;
             sd_vec3 v = sd_gjk_sv_triangle_n(p, fi[f][0], fi[f][1], fi[f][2], nrm[f], &t);
             sd_real d = sd_v3_norm2(v);
