@@ -114,7 +114,7 @@ static const char *sd_desc(const yaml_node_t *n, char *buf, size_t size)
     } else if (n->type == YAML_SCALAR_NODE) {
         /* escaped: a double-quoted "\e[31m" would reach the terminal */
         const char *t = sd_scalar(n);
-        char esc[100];
+        char esc[100]; /* sd_escape ends it with "..." when the escapes do not fit */
         sd_escape(esc, sizeof esc, t, strlen(t) > 60 ? 60 : strlen(t));
         const char *q = n->data.scalar.style == YAML_PLAIN_SCALAR_STYLE ? "" : "\"";
         const char *tag = sd_tag(n), *std = "tag:yaml.org,2002:";
@@ -260,7 +260,8 @@ static sd_status sd_read_number(sd_parse *p, const sd_scene_key *k, yaml_node_t 
         char *end;
         const char *t = n && n->type == YAML_SCALAR_NODE ? sd_scalar(n) : "";
         double x = strtod(t, &end);
-        const char *why = t[0] && !*end && isfinite(x) && !strcmp(sd_tag(n), YAML_STR_TAG)
+        const char *why = t[0] && !*end && isfinite(x) && !strcmp(sd_tag(n), YAML_STR_TAG) &&
+                                  n->data.scalar.style != YAML_PLAIN_SCALAR_STYLE
                               ? " (a string in YAML: write the number without quotes or !!str)"
                               : "";
         return sd_fail(p, sd_line(n), key, "expected a number%s%s%s%s, got %s%s", r[0] ? " " : "", r,
