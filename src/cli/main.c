@@ -23,6 +23,9 @@
 #include "io/output.h"
 #include "io/scene.h"
 
+#define SD_STR(x) #x
+#define SD_XSTR(x) SD_STR(x) /* a macro's value as a string literal */
+
 static volatile sig_atomic_t sd_interrupted;
 
 static void sd_on_signal(int sig)
@@ -60,7 +63,7 @@ static void sd_usage(FILE *f)
             "  run     simulate the scene; writes frames.pvd (VTK), stats.csv and summary.txt\n"
             "          to DIR (default: output.directory of the scene, else out/<scene name>)\n"
             "  check   validate the scene and print what it would simulate\n"
-            "  shape fit-fourier  fit a convex Fourier-series support function (seed 002) to a\n"
+            "  shape fit-fourier  fit a convex Fourier-series support function ([Huang 2021]) to a\n"
             "          closed outline; prints coefficients, convexity, reduction, coverage\n"
             "  help    this text; 'help scene' lists every scene key with unit and default\n"
             "\n"
@@ -125,8 +128,10 @@ static int sd_parse_args(int argc, char **argv, sd_cli *c)
                 return sd_usage_error("%s needs a directory", a);
             c->outdir = argv[++k];
         } else if (!strcmp(a, "--threads")) {
-            if (!next || sd_parse_long(next, 1, &c->threads))
-                return sd_usage_error("--threads needs a whole number >= 1, got '%s'", next ? next : "");
+            if (!next || sd_parse_long(next, 1, &c->threads) || c->threads > SD_SCENE_MAX_THREADS)
+                return sd_usage_error("--threads needs a whole number from 1 to " SD_XSTR(SD_SCENE_MAX_THREADS)
+                                      ", got '%s'",
+                                      next ? next : "");
             ++k;
         } else if (!strcmp(a, "--steps")) {
             if (!next || sd_parse_long(next, 0, &c->steps))
@@ -342,7 +347,7 @@ static int sd_cmd_check(const sd_cli *c)
         printf(", and %zu spheres the pour inserts: %zu in all", cnt.poured, total);
     if (total)
         printf("; radius (bounding radius for shapes) %.4g .. %.4g m", cnt.rmin, cnt.rmax);
-    printf("\nsolver       %s", scene->world.solver == SD_SOLVER_GRID ? "grid (dense grid stencil, seed 001)"
+    printf("\nsolver       %s", scene->world.solver == SD_SOLVER_GRID ? "grid (dense grid stencil, [Naderi 2024])"
                                                                      : "cells (cell binning + pair lists)");
     printf("\nmaterials    %zu:", scene->material_count);
     for (size_t k = 0; k < scene->material_count; ++k)
