@@ -589,7 +589,8 @@ static const char *const sd_scene_rules[] = {
     "(§4.1 of [Naderi 2024]); with fill_height, count = packing_fraction x floor area x fill_height / "
     "sphere volume. particles may then be omitted. outlet opens a hole in the box's floor at "
     "open_at; spheres falling through are removed and counted (stats.csv and summary.txt: "
-    "poured, in_domain, discharged, discharged_mass, conflicts).",
+    "poured, in_domain, discharged, discharged_mass; spheres leaving elsewhere, e.g. an open top, "
+    "apart as escaped, escaped_mass; removed, conflicts).",
     "simulation.dimension: 2 is the planar mode (after [Huang 2021]): every position, velocity, gravity "
     "and plane normal has z = 0 (generators place particles at z = 0 and ignore the z range of "
     "their box), rotations are about z (random orientations draw a uniform angle), masses are "
