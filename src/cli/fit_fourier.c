@@ -27,8 +27,8 @@ static int sd_fit_usage(void)
             "  OUTLINE.csv  closed outline, one 'x,y' point (m) per line ('#' comments, optional header)\n"
             "  --order N       Fourier order, 0..%d (default 8)\n"
             "  --directions M  support directions sampled (default 720)\n"
-            "  --beta B        coefficient-reduction factor in (0, 1) (default 0.9)\n",
-            SD_SHAPE2D_MAX_ORDER);
+            "  --beta B        coefficient-reduction factor in (0, %g] (default 0.9)\n",
+            SD_SHAPE2D_MAX_ORDER, (double)SD_FOURIER_BETA_MAX);
     return 2;
 }
 
@@ -121,6 +121,10 @@ int sd_cmd_fit_fourier(int argc, char **argv)
            (double)f.area_hull, (double)f.area_fs);
     printf("coverage           %.3f %% (1 - area(Fourier xor outline) / area(outline)); area ratio %.3f %%\n",
            100.0 * (double)f.coverage, 100.0 * (double)f.coverage_area_ratio);
+    if (f.area_sym_diff > f.area_ref) /* the floor at 0 applied: say so rather than print a negative coverage */
+        printf("note               the Fourier shape and the outline differ by %.6g m^2, more than the outline's "
+               "area: a poor fit (a higher --order may help)\n",
+               (double)f.area_sym_diff);
     printf("\n  n  %-20s %-20s\n", "a_n (m)", "b_n (m)");
     for (int k = 0; k <= N; ++k)
         printf("%3d  % -20.12g % -20.12g\n", k, (double)f.a[k], (double)f.b[k]);

@@ -41,6 +41,14 @@ typedef struct sd_fourier_fit_opts {
 
 sd_fourier_fit_opts sd_fourier_fit_opts_default(void);
 
+/* Bounds on the reduction's work: the largest β the fit accepts (steps per
+ * pair grow as ln(1/ε)/(1 − β): ~1,400 at 0.99), and a cap on the β steps
+ * of sd_fourier_reduce for any β (past it the pairs n >= 2 are dropped). */
+#define SD_FOURIER_BETA_MAX          SD_R(0.99)
+#define SD_FOURIER_REDUCE_MAX_STEPS  200000
+/* the least outline area, relative to its convex hull's, a fit accepts */
+#define SD_FOURIER_MIN_HULL_FRACTION SD_R(1e-3)
+
 typedef struct sd_fourier_fit {
     int order;                           /* N asked for */
     int effective_order;                 /* highest n with a nonzero pair after reduction */
@@ -56,13 +64,16 @@ typedef struct sd_fourier_fit {
     int reduction_steps;                  /* β multiplications */
     sd_real area_ref, area_hull, area_fs; /* m² */
     sd_real area_common;                  /* m², area of FS ∩ reference */
-    sd_real coverage;                     /* 1 − area(FS △ ref)/area(ref), fraction */
-    sd_real coverage_area_ratio;          /* 1 − |A_FS − A_ref|/A_ref, fraction */
+    sd_real area_sym_diff;                /* m², area(FS △ ref) */
+    sd_real coverage;                     /* 1 − area(FS △ ref)/area(ref), fraction, floored at 0 */
+    sd_real coverage_area_ratio;          /* 1 − |A_FS − A_ref|/A_ref, fraction, floored at 0 */
 } sd_fourier_fit;
 
 /* Fits the outline pts[0 .. n) (a closed curve, either orientation; the
- * closing point may repeat the first). SD_ERR_INPUT for too few points, a
- * flat outline or bad options; SD_ERR_MEMORY when an allocation fails. */
+ * closing point may repeat the first). SD_ERR_INPUT for too few points, an
+ * outline sd_outline_check refuses (self-intersecting, flat, a span out of
+ * range), one whose area is below SD_FOURIER_MIN_HULL_FRACTION of its
+ * hull's, or bad options; SD_ERR_MEMORY when an allocation fails. */
 sd_status sd_fourier_fit_outline(const sd_vec2 *pts, size_t n, const sd_fourier_fit_opts *opts, sd_fourier_fit *out,
                                  sd_error *err);
 
@@ -74,12 +85,16 @@ sd_status sd_fourier_fit_outline(const sd_vec2 *pts, size_t n, const sd_fourier_
 sd_real sd_fourier_lstsq(const sd_real *theta, const sd_real *h, size_t m, int N, sd_real *coef);
 
 /* The reduction of step 5 on interleaved coefficients; returns the number
- * of β steps and leaves the coefficients convex by the margin test. */
+ * of β steps (at most SD_FOURIER_REDUCE_MAX_STEPS) and leaves the
+ * coefficients convex by the margin test. */
 int sd_fourier_reduce(sd_real *coef, int N, sd_real beta, sd_real eps_rel, int grid);
 
-/* 1 − area(F △ R)/area(R) for the Fourier shape (interleaved coefficients,
- * about `origin`) and the closed reference polygon R (any orientation,
- * simple, may be concave); also returns the areas (may be NULL). */
+/* 1 − area(F △ R)/area(R), floored at 0, for the Fourier shape
+ * (interleaved coefficients, about `origin`; a 4096-gon of its support
+ * points) and the closed reference polygon R (any orientation, simple, may
+ * be concave); also returns the areas (may be NULL). area(F ∩ R) by a fan
+ * over R's edges clipped to the convex F, O(n log 4096) for a star-shaped
+ * R (fourier.c). */
 sd_status sd_fourier_coverage(const sd_real *coef, int N, sd_vec2 origin, const sd_vec2 *ref, size_t n,
                               sd_real *coverage, sd_real *area_fs, sd_real *area_common);
 

@@ -22,6 +22,21 @@
  * *pts is allocated (sd_free it); at least 3 points. */
 sd_status sd_outline_read_csv(const char *path, sd_vec2 **pts, size_t *n, sd_error *err);
 
+/* Limits of sd_outline_check: the span (larger side of the bounding box,
+ * m) and the least area relative to span² (below it the outline is flat). */
+#define SD_OUTLINE_SPAN_MIN SD_R(1e-145)
+#define SD_OUTLINE_SPAN_MAX SD_R(1e145)
+#define SD_OUTLINE_FLAT     SD_R(1e-9)
+
+/* Checks that pts[0 .. n) (the closing point may repeat the first) is an
+ * outline a fit can measure itself against: finite, a span whose square
+ * neither over- nor underflows, not too far from the origin for its size
+ * (at least 7 significant digits of its shape), a simple closed curve (no
+ * crossing, touching, repeated vertex or turning back; consecutive repeated
+ * points are allowed), and not flat. O(n log n) (a Shamos–Hoey sweep).
+ * SD_ERR_INPUT with a message naming the points; SD_ERR_MEMORY. */
+sd_status sd_outline_check(const sd_vec2 *pts, size_t n, sd_error *err);
+
 /* A rock-like outline: radius R (1 + Σ_{k=2}^{8} A_k cos(kφ + φ_k)) with
  * seeded amplitudes A_k ∝ roughness · k^-1.2 and phases, and an aspect ratio
  * (x stretched) — star-shaped, concave where roughness is large. n points

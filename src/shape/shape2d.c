@@ -77,26 +77,59 @@ sd_shape2d_desc sd_shape2d_desc_default(void)
 
 sd_real sd_polygon2d_area(const sd_vec2 *p, size_t n)
 {
+    /* the fan from p[0], not from the origin: an outline far from the
+     * origin (a 2 cm circle at (1e8, 1e8)) would otherwise lose its area to
+     * cancellation between products of size |p|² */
     sd_real s = SD_R(0.0);
-    for (size_t i = 0; i < n; ++i)
-        s += sd_v2_cross(p[i], p[(i + 1) % n]);
+    for (size_t i = 1; i + 1 < n; ++i)
+        s += sd_v2_cross(sd_v2_sub(p[i], p[0]), sd_v2_sub(p[i + 1], p[0]));
     return SD_R(0.5) * s;
 }
 
-static int sd_v2_less(const sd_vec2 *a, const sd_vec2 *b)
+int sd_points2d_extent(const sd_vec2 *p, size_t n, sd_real *span, sd_real *reach)
 {
-    return a->x < b->x || (a->x == b->x && a->y < b->y);
+    sd_real x0 = SD_R(0.0), x1 = SD_R(0.0), y0 = SD_R(0.0), y1 = SD_R(0.0), r = SD_R(0.0);
+    for (size_t i = 0; i < n; ++i) {
+        const sd_real x = p[i].x, y = p[i].y;
+        if (!isfinite(x) || !isfinite(y))
+            return 0;
+        if (i == 0 || x < x0)
+            x0 = x;
+        if (i == 0 || x > x1)
+            x1 = x;
+        if (i == 0 || y < y0)
+            y0 = y;
+        if (i == 0 || y > y1)
+            y1 = y;
+        r = sd_max(r, sd_max(sd_fabs(x), sd_fabs(y)));
+    }
+    /* halves first: x1 - x0 overflows for coordinates of opposite sign near DBL_MAX */
+    if (span)
+        *span = SD_R(2.0) * sd_max(SD_R(0.5) * x1 - SD_R(0.5) * x0, SD_R(0.5) * y1 - SD_R(0.5) * y0);
+    if (reach)
+        *reach = r;
+    return 1;
 }
 
-/* insertion-free merge sort of points by (x, y); tmp holds n points */
-static void sd_sort_points(sd_vec2 *p, sd_vec2 *tmp, size_t n)
+/* a hull point: q scaled into [-1, 1] (the orientation tests), p as given (the output) */
+typedef struct sd_hull_pt {
+    sd_vec2 q, p;
+} sd_hull_pt;
+
+static int sd_hull_less(const sd_hull_pt *a, const sd_hull_pt *b)
+{
+    return a->q.x < b->q.x || (a->q.x == b->q.x && a->q.y < b->q.y);
+}
+
+/* bottom-up merge sort of points by (x, y) (stable, no recursion); tmp holds n points */
+static void sd_sort_points(sd_hull_pt *p, sd_hull_pt *tmp, size_t n)
 {
     for (size_t w = 1; w < n; w *= 2) {
         for (size_t lo = 0; lo < n; lo += 2 * w) {
             size_t mid = lo + w < n ? lo + w : n, hi = lo + 2 * w < n ? lo + 2 * w : n;
             size_t i = lo, j = mid, k = lo;
             while (i < mid && j < hi)
-                tmp[k++] = sd_v2_less(&p[j], &p[i]) ? p[j++] : p[i++];
+                tmp[k++] = sd_hull_less(&p[j], &p[i]) ? p[j++] : p[i++];
             while (i < mid)
                 tmp[k++] = p[i++];
             while (j < hi)
@@ -106,14 +139,24 @@ static void sd_sort_points(sd_vec2 *p, sd_vec2 *tmp, size_t n)
     }
 }
 
+/* keep c after the chain's last two points a, b only for a strict left turn.
+ * The points are scaled into [-1, 1], so the products cannot overflow and
+ * the test never sees NaN; `!(x > 0)` pops on NaN all the same, so that no
+ * input can make the chain skip its pops and outgrow its buffer. */
+static int sd_hull_keep(sd_vec2 a, sd_vec2 b, sd_vec2 c)
+{
+    return sd_v2_cross(sd_v2_sub(b, a), sd_v2_sub(c, a)) > SD_R(0.0);
+}
+
 size_t sd_hull2d(const sd_vec2 *pts, size_t n, sd_vec2 *hull, int *oom)
 {
     if (oom)
         *oom = 0;
-    if (n < 3)
-        return 0;
-    sd_vec2 *p = sd_malloc(2 * n * sizeof *p);
-    sd_vec2 *h = sd_malloc(2 * n * sizeof *h);
+    sd_real span, reach;
+    if (n < 3 || !sd_points2d_extent(pts, n, &span, &reach) || !(span > SD_R(0.0)))
+        return 0; /* too few, not finite, or all one point */
+    sd_hull_pt *p = sd_malloc(2 * n * sizeof *p);
+    size_t *h = sd_malloc(2 * n * sizeof *h);
     if (!p || !h) {
         sd_free(p);
         sd_free(h);
@@ -121,22 +164,35 @@ size_t sd_hull2d(const sd_vec2 *pts, size_t n, sd_vec2 *hull, int *oom)
             *oom = 1;
         return 0;
     }
-    memcpy(p, pts, n * sizeof *p);
+    /* Scaling by a power of two is exact (short of underflow), so the
+     * orientation tests decide as they would unscaled, but their products
+     * stay below 8: coordinates of 1e155 (whose squares overflow) or 1e-160
+     * (whose squares underflow to 0) give the same hull as at unit size. */
+    int e;
+    (void)frexp((double)reach, &e);
+    for (size_t i = 0; i < n; ++i) {
+        p[i].p = pts[i];
+        p[i].q = sd_v2((sd_real)ldexp((double)pts[i].x, -e), (sd_real)ldexp((double)pts[i].y, -e));
+    }
     sd_sort_points(p, p + n, n);
-    /* Andrew's monotone chain; collinear points are dropped (cross ≤ 0) */
+    /* Andrew's monotone chain; collinear points are dropped. Each point is
+     * pushed at most once per chain, so k < 2n: h (2n) never overflows. */
     size_t k = 0;
     for (size_t i = 0; i < n; ++i) {
-        while (k >= 2 && sd_v2_cross(sd_v2_sub(h[k - 1], h[k - 2]), sd_v2_sub(p[i], h[k - 2])) <= SD_R(0.0))
+        while (k >= 2 && !sd_hull_keep(p[h[k - 2]].q, p[h[k - 1]].q, p[i].q))
             --k;
-        h[k++] = p[i];
+        h[k++] = i;
     }
     for (size_t i = n - 1, t = k + 1; i-- > 0;) {
-        while (k >= t && sd_v2_cross(sd_v2_sub(h[k - 1], h[k - 2]), sd_v2_sub(p[i], h[k - 2])) <= SD_R(0.0))
+        while (k >= t && !sd_hull_keep(p[h[k - 2]].q, p[h[k - 1]].q, p[i].q))
             --k;
-        h[k++] = p[i];
+        h[k++] = i;
     }
     size_t m = k > 1 ? k - 1 : 0; /* the last point repeats the first */
-    memcpy(hull, h, m * sizeof *h);
+    if (m > n) /* a hull has each point at most once; cannot happen with the test above */
+        m = 0;
+    for (size_t j = 0; j < m; ++j) /* from the copy: hull may alias pts */
+        hull[j] = p[h[j]].p;
     sd_free(p);
     sd_free(h);
     return m >= 3 ? m : 0;
@@ -561,6 +617,26 @@ static int sd_polybezier_convex(const sd_real *v, uint32_t n, sd_real *total)
     return sd_fabs(turn - SD_R(2.0) * SD_PI) <= SD_R(1e-6);
 }
 
+/* Sizes whose fourth power (the polar moment, m^4) over- or underflows in
+ * double precision are refused here, with the size, rather than later as
+ * "no area" or a NaN moment of inertia. */
+#define SD_SHAPE2D_SPAN_MAX SD_R(1e70)
+#define SD_SHAPE2D_SPAN_MIN SD_R(1e-70)
+
+static int sd_points_out_of_range(const sd_vec2 *p, size_t n, sd_error *err, const char *key, const char *what)
+{
+    sd_real span = SD_R(0.0);
+    (void)sd_points2d_extent(p, n, &span, (sd_real *)0);
+    if (span > SD_SHAPE2D_SPAN_MAX || (span > SD_R(0.0) && span < SD_SHAPE2D_SPAN_MIN)) {
+        SD_FAIL2(key,
+                 "the %s span %g m: its area and moment of inertia (m^2, m^4) would over- or underflow; "
+                 "sizes are in metres and must lie between %g and %g m",
+                 what, (double)span, (double)SD_SHAPE2D_SPAN_MIN, (double)SD_SHAPE2D_SPAN_MAX);
+        return 1;
+    }
+    return 0;
+}
+
 sd_status sd_shape2d_make(const sd_shape2d_desc *desc, sd_shape2d *out, sd_real *pool, size_t pool_cap,
                           size_t *pool_used, sd_error *err)
 {
@@ -589,19 +665,21 @@ sd_status sd_shape2d_make(const sd_shape2d_desc *desc, sd_shape2d *out, sd_real 
     case SD_SHAPE2D_POLYGON: {
         const size_t n = desc->points ? desc->point_count : 0;
         if (n < 3)
-            return SD_FAIL2("vertices", "a polygon needs at least 3 vertices, got %zu", n);
+            return SD_FAIL2("points", "a polygon needs at least 3 vertices, got %zu", n);
         if (n > SD_SHAPE2D_MAX_POINTS)
-            return SD_FAIL2("vertices", "a polygon may have at most %d vertices, got %zu", SD_SHAPE2D_MAX_POINTS, n);
+            return SD_FAIL2("points", "a polygon may have at most %d vertices, got %zu", SD_SHAPE2D_MAX_POINTS, n);
         for (size_t i = 0; i < n; ++i)
             if (!isfinite(desc->points[i].x) || !isfinite(desc->points[i].y))
-                return SD_FAIL2("vertices", "vertex %zu is not a finite number", i + 1);
+                return SD_FAIL2("points", "vertex %zu is not a finite number", i + 1);
+        if (sd_points_out_of_range(desc->points, n, err, "points", "polygon's vertices"))
+            return SD_ERR_INPUT;
         sd_vec2 hull[SD_SHAPE2D_MAX_POINTS];
         int oom;
         const size_t h = sd_hull2d(desc->points, n, hull, &oom);
         if (oom)
             return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory building a polygon template");
         if (h < 3)
-            return SD_FAIL2("vertices", "the polygon's vertices are collinear (no area)");
+            return SD_FAIL2("points", "the polygon's vertices are collinear (no area)");
         if (pool_cap < 2 * h)
             return sd_error_set(err, SD_ERR_INTERNAL, "", 0, "", "pool too small for a %zu-vertex polygon", h);
         for (size_t i = 0; i < h; ++i) {
@@ -615,19 +693,21 @@ sd_status sd_shape2d_make(const sd_shape2d_desc *desc, sd_shape2d *out, sd_real 
     case SD_SHAPE2D_POLYBEZIER: {
         const size_t n = desc->points ? desc->point_count : 0;
         if (n < 3 || n % 3 != 0)
-            return SD_FAIL2("control_points",
+            return SD_FAIL2("points",
                             "a polybezier needs 3m control points (m cubic segments, m >= 1), got %zu", n);
         if (n > SD_SHAPE2D_MAX_POINTS)
-            return SD_FAIL2("control_points", "a polybezier may have at most %d control points, got %zu",
+            return SD_FAIL2("points", "a polybezier may have at most %d control points, got %zu",
                             SD_SHAPE2D_MAX_POINTS, n);
         if (pool_cap < 2 * n)
             return sd_error_set(err, SD_ERR_INTERNAL, "", 0, "", "pool too small for %zu control points", n);
         for (size_t i = 0; i < n; ++i) {
             if (!isfinite(desc->points[i].x) || !isfinite(desc->points[i].y))
-                return SD_FAIL2("control_points", "control point %zu is not a finite number", i + 1);
+                return SD_FAIL2("points", "control point %zu is not a finite number", i + 1);
             pool[2 * i] = desc->points[i].x;
             pool[2 * i + 1] = desc->points[i].y;
         }
+        if (sd_points_out_of_range(desc->points, n, err, "points", "polybezier's control points"))
+            return SD_ERR_INPUT;
         s.count = (uint32_t)n;
         used = 2 * n;
         sd_fan f = {0, 0, 0, 0};
@@ -641,12 +721,12 @@ sd_status sd_shape2d_make(const sd_shape2d_desc *desc, sd_shape2d *out, sd_real 
         }
         sd_real turn = SD_R(0.0);
         if (!(sd_fabs(f.A) > SD_R(0.0)))
-            return SD_FAIL2("control_points", "the polybezier encloses no area");
+            return SD_FAIL2("points", "the polybezier encloses no area");
         if (!sd_polybezier_convex(pool, s.count, &turn)) {
             if (turn < SD_R(0.0))
-                return SD_FAIL2("control_points", "the polybezier is not convex: its tangent turns back somewhere "
+                return SD_FAIL2("points", "the polybezier is not convex: its tangent turns back somewhere "
                                                   "(a convex closed curve turns one way only)");
-            return SD_FAIL2("control_points",
+            return SD_FAIL2("points",
                             "the polybezier is not a simple convex closed curve: its tangent turns by %.6g rad in "
                             "all, not 2 pi",
                             (double)turn);
@@ -680,7 +760,7 @@ sd_status sd_shape2d_make(const sd_shape2d_desc *desc, sd_shape2d *out, sd_real 
         const sd_real lo = sd_fourier_min_curvature_radius(pool, N, 64 * N + 1024, (sd_real *)0);
         if (lo < SD_R(-1e-9) * SD_R(0.5) * pool[0])
             return SD_FAIL2("coefficients",
-                            "the Fourier series is not convex: p + p'' reaches %.6g < 0 (seed 002 eq. 5); "
+                            "the Fourier series is not convex: p + p'' reaches %.6g < 0 (eq. 5 of [Huang 2021]); "
                             "reduce the higher-order coefficients (shapedem shape fit-fourier does this)",
                             (double)lo);
         break;
@@ -689,13 +769,26 @@ sd_status sd_shape2d_make(const sd_shape2d_desc *desc, sd_shape2d *out, sd_real 
         return SD_FAIL2("type", "unknown 2D shape kind %d", s.kind);
     }
 
-    /* mass properties in the given frame, then move to the centroid */
+    /* mass properties about the first point (a polygon given far from the
+     * origin would lose its digits to a fan from the origin), then move to
+     * the centroid */
+    sd_vec2 p0 = sd_v2_zero();
+    if (s.kind == SD_SHAPE2D_POLYGON || s.kind == SD_SHAPE2D_POLYBEZIER) {
+        p0 = sd_v2(pool[0], pool[1]);
+        for (uint32_t i = 0; i < s.count; ++i) {
+            pool[2 * i] -= p0.x;
+            pool[2 * i + 1] -= p0.y;
+        }
+    }
     sd_real area, polar;
     sd_vec2 c;
     sd_shape2d_mass(&s, pool, &area, &c, &polar);
-    if (!(area > SD_R(0.0)) || !isfinite(area) || !isfinite(polar))
+    if (!isfinite(area) || !isfinite(polar))
+        return SD_FAIL2("type", "the %s's area or moment of inertia overflows (sizes are in metres)",
+                        sd_shape2d_kind_name(s.kind));
+    if (!(area > SD_R(0.0)))
         return SD_FAIL2("type", "the %s has no area", sd_shape2d_kind_name(s.kind));
-    s.given_com = c;
+    s.given_com = sd_v2_add(p0, c);
     if (s.kind == SD_SHAPE2D_POLYGON || s.kind == SD_SHAPE2D_POLYBEZIER) {
         for (uint32_t i = 0; i < s.count; ++i) {
             pool[2 * i] -= c.x;

@@ -309,13 +309,23 @@ int sd_shape2d_kind_from_name(const char *name);
 void sd_shape2d_mass(const sd_shape2d *s, const sd_real *pool, sd_real *area, sd_vec2 *centroid, sd_real *polar);
 
 /* Convex hull of n points (Andrew's monotone chain): writes the extreme
- * vertices counter-clockwise to hull (capacity n), returns their number
- * (< 3 for collinear or too few points). Uses O(n) scratch from the
- * allocator; returns 0 (and *oom = 1 when oom is not NULL) if it fails. */
+ * vertices counter-clockwise to hull (capacity n; it may be pts itself),
+ * returns their number (0 for collinear, coincident, too few or
+ * non-finite points). Never writes more than n points, whatever the input:
+ * the orientation tests run on the points scaled by a power of two into
+ * [-1, 1], so huge or tiny coordinates cannot overflow them. Uses O(n)
+ * scratch from the allocator; returns 0 (and *oom = 1 when oom is not
+ * NULL) if it fails. */
 size_t sd_hull2d(const sd_vec2 *pts, size_t n, sd_vec2 *hull, int *oom);
 
-/* Signed area of a closed polygon (> 0 counter-clockwise). */
+/* Signed area of a closed polygon (> 0 counter-clockwise), summed as a
+ * fan from p[0] (so far from the origin it keeps its digits). */
 sd_real sd_polygon2d_area(const sd_vec2 *p, size_t n);
+
+/* Extent of n points: *span the larger side of their bounding box, *reach
+ * the largest |coordinate| (either may be NULL). Returns 0 (and sets
+ * nothing) when a coordinate is not finite. */
+int sd_points2d_extent(const sd_vec2 *p, size_t n, sd_real *span, sd_real *reach);
 
 /* Smallest p(θ) + p″(θ) of a Fourier series (interleaved coefficients, order
  * n) over k equally spaced θ; *bound_slack (may be NULL) receives the most
