@@ -6,6 +6,8 @@
  *    read the moved spheres without leaving the grid (the crash of F3 was an
  *    out-of-bounds stencil read), they agree with a brute-force count over
  *    the spheres inside the grid, and a further step or prepare is refused;
+ *  - a speed whose square overflows: the NaN guard stops the step, the
+ *    sphere keeps no cell, the statistics read nothing out of the grid;
  *  - two spheres in one cell (a conflict): the pair of the sphere without a
  *    cell is counted once, like any other (it was missed before).
  * Brute force: every pair of spheres closer than the sum of their radii.
@@ -133,6 +135,38 @@ int main(void)
     failed_pour(1e4, 1); /* carried past the grid's bottom and its open top */
     failed_pour(1e4, 0);
     failed_pour(1000, 1); /* 6.7 cells: still inside the grid */
+
+    /* the NaN guard's path: a sphere whose speed squared overflows stops
+     * the first step; it keeps no cell, its neighbour in the grid does */
+    {
+        sd_error err;
+        memset(&err, 0, sizeof err);
+        sd_world *w = world(1e-5, 0);
+        sd_sphere_def sp[2];
+        memset(sp, 0, sizeof sp);
+        sp[0].position = sd_test_v(0.03, 0.02, 0.1);
+        sp[0].velocity = sd_test_v(1e200, 0, 0);
+        sp[1].position = sd_test_v(0.07, 0.02, 0.1);
+        sp[0].radius = sp[1].radius = 0.003;
+        sp[0].material = sp[1].material = mat;
+        if (sd_world_add_spheres(w, 2, sp, &err) != SD_OK) {
+            printf("a speed of 1e200 m/s is refused when added (%s): nothing to step\n", err.msg);
+        } else {
+            sd_status st = sd_world_step(w, 1, &err);
+            printf("overflowing speed: %s\n", err.msg);
+            CHECK(st == SD_ERR_PHYSICS && strstr(err.msg, "NaN or infinite") != NULL);
+            sd_grid_info gi;
+            sd_grid_get_info(w, &gi);
+            const sd_grid_state *g = w->grid_state;
+            CHECK(gi.failed_step == 1 && g->n == 2);
+            CHECK(g->home[0] == SD_GRID_OVER && g->home[1] != SD_GRID_OVER && g->nover == 0);
+            sd_stats s;
+            sd_world_stats(w, &s); /* reads nothing out of the grid */
+            printf("overflowing speed: contacts %ld, kinetic energy %g J\n", s.contacts, s.kinetic_translational);
+            CHECK(s.contacts == 0 && !isfinite(s.kinetic_translational));
+        }
+        sd_world_destroy(w);
+    }
 
     /* a conflict: centres 0.0015 m apart in one 0.003 m cell; the sphere
      * without a cell has the larger id, so its pair is counted from the
