@@ -209,5 +209,9 @@ int sd_scene_find_overlap(size_t n, const sd_sphere_def *defs, double tol, size_
  * (the true shapes' test of the bounding spheres that overlap). */
 int sd_scene_find_overlap_if(size_t n, const sd_sphere_def *defs, double tol,
                              int (*accept)(void *ctx, size_t i, size_t j), void *ctx, size_t *i, size_t *j);
+/* The same, keeping only the pairs for which accept(ctx, i, j) is non-zero
+ * (the true shapes' test of the bounding spheres that overlap). */
+int sd_scene_find_overlap_if(size_t n, const sd_sphere_def *defs, double tol,
+                             int (*accept)(void *ctx, size_t i, size_t j), void *ctx, size_t *i, size_t *j);
 
 #endif

@@ -7,7 +7,9 @@
  * every check, or an error naming the scene file (or the CSV file a sphere
  * came from), the line and the key, and no world. Scene material i is world
  * material i, scene shape i is world shape i, and particle ids follow
- * generation order. Bodies of a shape are checked by their bounding sphere.
+ * generation order. Overlaps at the start are measured with the true
+ * shapes (world/start_overlap.h; planar shapes by their bounding circle),
+ * walls with the bounding sphere.
  */
 #include <float.h>
 #include <math.h>
@@ -21,6 +23,7 @@
 #include "io/scene_keys.h"
 #include "shape/shape.h"
 #include "shape/shape2d.h"
+#include "world/start_overlap.h"
 
 /* Scene type names in sd_shape_kind order: what sd_shape_desc.kind takes. */
 static const char *const sd_shape_type_names[] = {
@@ -29,11 +32,16 @@ static const char *const sd_shape_type_names[] = {
 #undef SD_X_NAME
 };
 
-/* Overlap at the start allowed, as a fraction of the smaller radius: what
- * rounding leaves of spheres meant to touch. */
-#define SD_SCENE_OVERLAP_TOL 1e-6
-/* How far (x radius) a sphere may cross a closed wall at the start. */
-#define SD_SCENE_WALL_TOL 1e-6
+/* Overlap at the start allowed, as a fraction of the smaller size (a
+ * sphere's radius, half a shape's smallest outer dimension): what a packing
+ * written from a settled run carries in its resting contacts (well-resolved
+ * DEM keeps overlaps below about 1 % of the radius), so that such a
+ * packing loads again; more is a placement mistake. */
+#define SD_SCENE_OVERLAP_TOL 1e-2
+/* How far a particle may cross a closed wall at the start, as a fraction
+ * of its size: the same resting-contact allowance as between particles
+ * (a plane: how far its centre may lie behind it, x radius). */
+#define SD_SCENE_WALL_TOL 1e-2
 
 /* An error from the world API, completed with where in the scene it comes from. */
 static sd_status sd_where(sd_error *err, sd_status st, const sd_scene *s, int line, const char *key)
@@ -86,30 +94,65 @@ static const char *sd_describe(const sd_scene *s, const sd_scene_spheres *sp, si
     return buf;
 }
 
-static sd_status sd_check_overlaps(const sd_scene *s, const sd_scene_spheres *sp, sd_error *err)
+/* The true shapes' test of a pair whose bounding spheres overlap
+ * (world/start_overlap.h); planar shapes keep their bounding circles. */
+typedef struct sd_overlap_ctx {
+    const sd_scene *s;
+    const sd_scene_spheres *sp;
+    const sd_world *w;
+    double depth, size; /* m, of the last pair accepted */
+} sd_overlap_ctx;
+
+static int sd_overlap_accept(void *ctx, size_t i, size_t j)
+{
+    sd_overlap_ctx *c = ctx;
+    const sd_scene_spheres *sp = c->sp;
+    const sd_sphere_def *a = &sp->defs[i], *b = &sp->defs[j];
+    double depth, size;
+    if (c->s->world.dimension == 2 && (sp->shape[i] >= 0 || sp->shape[j] >= 0)) {
+        double dx = a->position.x - b->position.x, dy = a->position.y - b->position.y;
+        depth = a->radius + b->radius - sqrt(dx * dx + dy * dy);
+        size = a->radius < b->radius ? a->radius : b->radius;
+    } else {
+        sd_start_particle pa = {a->position, {1, 0, 0, 0}, a->radius, sp->shape[i], a->material};
+        sd_start_particle pb = {b->position, {1, 0, 0, 0}, b->radius, sp->shape[j], b->material};
+        memcpy(pa.q, sp->quat[i], sizeof pa.q);
+        memcpy(pb.q, sp->quat[j], sizeof pb.q);
+        depth = sd_start_overlap(c->w, &pa, &pb, &size);
+    }
+    if (!(depth > SD_SCENE_OVERLAP_TOL * size))
+        return 0;
+    c->depth = depth;
+    c->size = size;
+    return 1;
+}
+
+static sd_status sd_check_overlaps(const sd_scene *s, const sd_scene_spheres *sp, const sd_world *w, sd_error *err)
 {
     size_t i, j;
-    int found = sd_scene_find_overlap(sp->count, sp->defs, SD_SCENE_OVERLAP_TOL, &i, &j);
+    sd_overlap_ctx ctx = {s, sp, w, 0.0, 0.0};
+    /* candidates: bounding spheres that overlap at all; the true shapes decide */
+    int found = sd_scene_find_overlap_if(sp->count, sp->defs, 0.0, sd_overlap_accept, &ctx, &i, &j);
     if (found < 0)
         return sd_error_set(err, SD_ERR_MEMORY, s->path, 0, "", "out of memory");
     if (!found)
         return SD_OK;
-    const sd_sphere_def *a = &sp->defs[i], *b = &sp->defs[j];
-    double dx = a->position.x - b->position.x, dy = a->position.y - b->position.y,
-           dz = a->position.z - b->position.z;
-    double overlap = a->radius + b->radius - sqrt(dx * dx + dy * dy + dz * dz);
-    double smaller = a->radius < b->radius ? a->radius : b->radius;
+    int shaped = sp->shape[i] >= 0 || sp->shape[j] >= 0;
     sd_origin oa = sd_sphere_origin(s, sp, i), ob = sd_sphere_origin(s, sp, j);
     char da[160], db[160];
     return sd_error_set(err, SD_ERR_INPUT, ob.file, ob.line, ob.key,
-                        "particles overlap at the start by %.3g m (%.3g%% of the smaller radius): "
-                        "%s and %s from %s (line %d)",
-                        overlap, 100.0 * overlap / smaller, sd_describe(s, sp, j, db, sizeof db),
+                        "particles overlap at the start by %.3g m (%.3g%% of the smaller %s; at most %g%% is "
+                        "taken): %s and %s from %s (line %d)",
+                        ctx.depth, 100.0 * ctx.depth / ctx.size,
+                        shaped ? "size, a radius or half a shape's smallest outer dimension" : "radius",
+                        100.0 * SD_SCENE_OVERLAP_TOL, sd_describe(s, sp, j, db, sizeof db),
                         sd_describe(s, sp, i, da, sizeof da), oa.key, oa.line);
 }
 
-/* How far sphere d crosses wall w (m, > 0 means outside), and which side. */
-static double sd_wall_excess(const sd_scene_wall *w, const sd_sphere_def *d, const char **side, int planar)
+/* How far particle d crosses wall w (m, > 0 means outside), and which
+ * side; [lo, hi] is the particle's extent along each axis (its true shape). */
+static double sd_wall_excess(const sd_scene_wall *w, const sd_sphere_def *d, const double xlo[3],
+                             const double xhi[3], const char **side, int planar)
 {
     if (w->kind == 0) {
         *side = "plane";
@@ -119,34 +162,53 @@ static double sd_wall_excess(const sd_scene_wall *w, const sd_sphere_def *d, con
                  (d->position.z - w->point.z) * w->normal.z);
     }
     static const char *const faces[6] = {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
-    const double c[3] = {d->position.x, d->position.y, d->position.z};
     const double lo[3] = {w->lo.x, w->lo.y, w->lo.z}, hi[3] = {w->hi.x, w->hi.y, w->hi.z};
     double worst = -HUGE_VAL;
     *side = "";
     for (int a = 0; a < (planar ? 2 : 3); ++a) { /* the planar mode has no z faces */
         /* Open faces do not hold anything in: spheres may start beyond them
          * (poured into an open-top box from above). */
-        if (!(w->open_faces & (1u << (2 * a))) && lo[a] - (c[a] - d->radius) > worst) {
-            worst = lo[a] - (c[a] - d->radius);
+        if (!(w->open_faces & (1u << (2 * a))) && lo[a] - xlo[a] > worst) {
+            worst = lo[a] - xlo[a];
             *side = faces[2 * a];
         }
-        if (!(w->open_faces & (1u << (2 * a + 1))) && (c[a] + d->radius) - hi[a] > worst) {
-            worst = (c[a] + d->radius) - hi[a];
+        if (!(w->open_faces & (1u << (2 * a + 1))) && xhi[a] - hi[a] > worst) {
+            worst = xhi[a] - hi[a];
             *side = faces[2 * a + 1];
         }
     }
     return worst;
 }
 
-static sd_status sd_check_walls(const sd_scene *s, const sd_scene_spheres *sp, sd_error *err)
+static sd_status sd_check_walls(const sd_scene *s, const sd_scene_spheres *sp, const sd_world *world,
+                                sd_error *err)
 {
+    int boxes = 0;
+    for (size_t wi = 0; wi < s->wall_count; ++wi)
+        boxes |= s->walls[wi].kind == 1;
     for (size_t k = 0; k < sp->count; ++k) {
         const sd_sphere_def *d = &sp->defs[k];
+        /* the extent along the axes: the true shape's support points in 3D
+         * (a packing resting on a box floor loads again), the bounding
+         * circle in the planar mode */
+        const double c[3] = {d->position.x, d->position.y, d->position.z};
+        double xlo[3] = {0, 0, 0}, xhi[3] = {0, 0, 0}, size = d->radius;
+        sd_start_particle p = {d->position, {1, 0, 0, 0}, d->radius, sp->shape[k], d->material};
+        int shaped = sp->shape[k] >= 0 && s->world.dimension != 2;
+        if (shaped) {
+            memcpy(p.q, sp->quat[k], sizeof p.q);
+            size = sd_start_size(world, &p);
+        }
+        for (int a = 0; a < 3 && boxes; ++a) {
+            sd_v3d e = {a == 0, a == 1, a == 2}, me = {-(a == 0), -(a == 1), -(a == 2)};
+            xlo[a] = shaped ? -sd_start_reach(world, &p, me) : c[a] - d->radius;
+            xhi[a] = shaped ? sd_start_reach(world, &p, e) : c[a] + d->radius;
+        }
         for (size_t wi = 0; wi < s->wall_count; ++wi) {
             const sd_scene_wall *w = &s->walls[wi];
             const char *side;
-            double excess = sd_wall_excess(w, d, &side, s->world.dimension == 2);
-            if (!(excess > SD_SCENE_WALL_TOL * d->radius))
+            double excess = sd_wall_excess(w, d, xlo, xhi, &side, s->world.dimension == 2);
+            if (!(excess > SD_SCENE_WALL_TOL * size))
                 continue;
             sd_origin o = sd_sphere_origin(s, sp, k);
             char dk[160];
@@ -455,9 +517,9 @@ static sd_status sd_build(const sd_scene *s, sd_world *w, sd_scene_spheres *sp, 
         return st;
     /* Check the spheres before the world sees them: cheaper, and the
      * messages can name the scene line each sphere came from. */
-    if ((st = sd_check_overlaps(s, sp, err)) != SD_OK)
+    if ((st = sd_check_overlaps(s, sp, w, err)) != SD_OK)
         return st;
-    if ((st = sd_check_walls(s, sp, err)) != SD_OK)
+    if ((st = sd_check_walls(s, sp, w, err)) != SD_OK)
         return st;
     if ((st = sd_check_planar(s, sp, err)) != SD_OK)
         return st;

@@ -85,10 +85,11 @@ static void sd_grid_insert(sd_grid *g, size_t i, sd_v3d p)
     g->head[b] = i;
 }
 
-/* Smallest index of an inserted sphere that overlaps (p, r) by more than
- * tol x the smaller radius, or SD_GRID_NONE. */
+/* Smallest index of an inserted sphere that overlaps sphere q = (p, r) by
+ * more than tol x the smaller radius and that accept (if any) keeps, or
+ * SD_GRID_NONE. */
 static size_t sd_grid_first_overlap(const sd_grid *g, const sd_sphere_def *defs, sd_v3d p, double r,
-                                    double tol)
+                                    double tol, int (*accept)(void *, size_t, size_t), void *ctx, size_t q)
 {
     int64_t cx = sd_grid_coord(g, p.x), cy = sd_grid_coord(g, p.y), cz = sd_grid_coord(g, p.z);
     size_t best = SD_GRID_NONE;
@@ -106,7 +107,7 @@ static size_t sd_grid_first_overlap(const sd_grid *g, const sd_sphere_def *defs,
                     double d2 = ex * ex + ey * ey + ez * ez;
                     if (d2 >= rs * rs)
                         continue;
-                    if (rs - sqrt(d2) > tol * smaller)
+                    if (rs - sqrt(d2) > tol * smaller && (!accept || accept(ctx, k, q)))
                         best = k;
                 }
             }
@@ -114,6 +115,12 @@ static size_t sd_grid_first_overlap(const sd_grid *g, const sd_sphere_def *defs,
 }
 
 int sd_scene_find_overlap(size_t n, const sd_sphere_def *defs, double tol, size_t *oi, size_t *oj)
+{
+    return sd_scene_find_overlap_if(n, defs, tol, NULL, NULL, oi, oj);
+}
+
+int sd_scene_find_overlap_if(size_t n, const sd_sphere_def *defs, double tol,
+                             int (*accept)(void *ctx, size_t i, size_t j), void *ctx, size_t *oi, size_t *oj)
 {
     double rmax = 0.0;
     for (size_t k = 0; k < n; ++k)
@@ -126,7 +133,7 @@ int sd_scene_find_overlap(size_t n, const sd_sphere_def *defs, double tol, size_
         return -1;
     int found = 0;
     for (size_t j = 0; j < n && !found; ++j) {
-        size_t i = sd_grid_first_overlap(&g, defs, defs[j].position, defs[j].radius, tol);
+        size_t i = sd_grid_first_overlap(&g, defs, defs[j].position, defs[j].radius, tol, accept, ctx, j);
         if (i != SD_GRID_NONE) {
             *oi = i;
             *oj = j;
@@ -235,7 +242,7 @@ static sd_status sd_gen_random(const sd_scene *s, size_t gi, double bound, sd_rn
             if (s->world.dimension == 2)
                 p.z = 0.0; /* the planar mode: z range ignored (one draw kept for the stream) */
             /* Zero tolerance: generated spheres may touch, never overlap. */
-            if (sd_grid_first_overlap(&grid, defs, p, r, 0.0) == SD_GRID_NONE) {
+            if (sd_grid_first_overlap(&grid, defs, p, r, 0.0, NULL, NULL, 0) == SD_GRID_NONE) {
                 memset(d, 0, sizeof *d);
                 d->position = p;
                 d->radius = r;

@@ -565,9 +565,11 @@ static const char *const sd_scene_rules[] = {
     "sphere per row of a CSV file with a header line naming the columns x, y, z, radius and "
     "optionally vx, vy, vz (comma-separated; blank lines and lines starting with # are "
     "skipped).",
-    "Particles may not overlap at the start by more than 1e-6 of the smaller radius, and must "
-    "start inside every wall: on the side a plane's normal points to, and inside each closed "
-    "face of a box.",
+    "Particles may not overlap at the start by more than 1 % of the smaller size (a sphere's "
+    "radius, half a shape's smallest outer dimension), measured with the true shapes, so a "
+    "packing written from a settled run (positions and orientations) loads again; and they "
+    "must start inside every wall: with the centre on the side a plane's normal points to, and "
+    "inside each closed face of a box (by the true shape, again within 1 % of its size).",
     "Random choices (radii in {min, max}, velocity_jitter, the random generator, random "
     "orientations) come from simulation.seed: the same scene gives the same particles.",
     "shapes: each entry is a template (a convex core swept by a sphere), moved to its principal "
@@ -579,8 +581,8 @@ static const char *const sd_scene_rules[] = {
     "vertex_count), at least 4 points, not coplanar.",
     "A generator makes spheres (radius) or bodies of one shape (shape: NAME), never both; list "
     "entries each give radius or shape (or take the generator's shape). Shaped bodies are "
-    "placed, spaced and checked for overlaps and walls by their bounding sphere (the smallest "
-    "sphere about the centre of mass holding the shape), so they never start in contact; "
+    "placed and spaced by their bounding sphere (the smallest sphere about the centre of mass "
+    "holding the shape), so generated bodies never start in contact; "
     "orientation random (the default) draws uniform rotations (Shoemake) from the generator's "
     "stream. Spheres and shaped bodies may be mixed in one scene.",
     "pour and outlet need simulation.solver: grid and a box wall (the grid's domain). pour "
