@@ -50,7 +50,9 @@ sd_shape_def sd_shape_def_default(void);
  * verts_out[0 .. *verts_used); out->vstart is 0 and out->vcount = *verts_used,
  * so a caller that copies them into a pool at offset k sets vstart = k.
  * verts_cap must hold the hull's vertices: at most vertex_count without a
- * margin; with a margin the shrunk core may have up to 2 * vertex_count.
+ * margin; with a margin the shrunk core may have up to 4 * vertex_count
+ * (one corner per face of the dual hull of its at most 2 vertex_count - 4
+ * face planes).
  * Other kinds use no vertices (*verts_used = 0). Returns SD_ERR_INPUT with a
  * message for a bad def, SD_ERR_MEMORY when an allocation fails. */
 sd_status sd_shape_make(const sd_shape_def *def, sd_shape *out, sd_vec3 *verts_out, size_t verts_cap,
@@ -71,7 +73,7 @@ sd_status sd_shape_make(const sd_shape_def *def, sd_shape *out, sd_vec3 *verts_o
  * 2 s->vcount planes and 4 s->vcount dual triangles are ever written. Other
  * kinds get no planes. SD_ERR_INPUT for a template whose planes do not close
  * (a bad hull), SD_ERR_MEMORY when an allocation fails. */
-#define SD_SHAPE_WELD_REL SD_R(1e-6)
+#define SD_SHAPE_WELD_REL SD_R(1e-5)
 sd_status sd_shape_faces(sd_shape *s, const sd_vec3 *verts, sd_plane *planes, size_t planes_cap, size_t *nplanes,
                          sd_dtri *tris, size_t tris_cap, size_t *ntris, sd_error *err);
 

@@ -88,10 +88,10 @@ int sd_world_add_shape(sd_world *w, const char *name, const sd_shape_desc *desc,
     def.vertices = in;
     def.vertex_count = desc->vertex_count;
 
-    /* room for the hull vertices in the pool */
     /* room for the core's vertices in the pool: with a margin the shrunk
-     * core of a polyhedron can have more corners than its input */
-    size_t room = 2 * desc->vertex_count + 1;
+     * core of a polyhedron can have more corners than its input, one per
+     * face of the dual hull of its F <= 2V - 4 face planes: 2F - 4 <= 4V */
+    size_t room = 4 * desc->vertex_count + 1;
     sd_vec3 *pool = sd_realloc(w->verts, (w->vert_count + room) * sizeof *pool);
     sd_shape *shapes = sd_realloc(w->shapes, (w->shape_count + 1) * sizeof *shapes);
     char(*names)[64] = sd_realloc(w->shape_names, (w->shape_count + 1) * sizeof *names);
