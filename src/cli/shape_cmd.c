@@ -10,6 +10,7 @@
 #include <shapedem/shapedem.h>
 
 #include "cli/commands.h"
+#include "core/alloc.h"
 #include "io/scene.h"
 #include "shape/polylib.h"
 #include "shape/shape.h"
@@ -117,6 +118,89 @@ static int sd_parse_v3(const char *s, sd_v3d *out)
     return 0;
 }
 
+static int sd_ends_with(const char *s, const char *tail)
+{
+    size_t n = strlen(s), k = strlen(tail);
+    if (n <= k)
+        return 0;
+    for (size_t i = 0; i < k; ++i)
+        if ((s[n - k + i] | 0x20) != (tail[i] | 0x20)) /* ASCII, any case */
+            return 0;
+    return 1;
+}
+
+/* `shape info mesh.obj|mesh.stl`: a polyhedron from a mesh file, read and
+ * checked as a scene's `file:` is, with the options of such a shape
+ * (--scale, --rounding, --margin, --nonconvex reject|hull) and --density. */
+static int sd_mesh_info(const char *path, int argc, char **argv)
+{
+    sd_shape_desc d = sd_shape_desc_default();
+    d.kind = "polyhedron";
+    double density = 1000.0;
+    int take_hull = 0;
+    for (int k = 4; k < argc; k += 2) {
+        const char *a = argv[k], *v = k + 1 < argc ? argv[k + 1] : NULL;
+        sd_v3d x;
+        int num = v && !sd_parse_v3(v, &x);
+        if (!v) {
+            fprintf(stderr, "shapedem: %s needs a value\n", a);
+            return 2;
+        }
+        if (!strcmp(a, "--nonconvex") && (!strcmp(v, "hull") || !strcmp(v, "reject")))
+            take_hull = !strcmp(v, "hull");
+        else if (!strcmp(a, "--scale") && num)
+            d.scale = x.x;
+        else if (!strcmp(a, "--rounding") && num)
+            d.rounding = x.x;
+        else if (!strcmp(a, "--margin") && num)
+            d.margin = x.x;
+        else if (!strcmp(a, "--density") && num)
+            density = x.x;
+        else {
+            fprintf(stderr, "shapedem: bad option or value '%s %s' for a mesh file (--scale S, --rounding R, "
+                            "--margin M, --nonconvex reject|hull, --density RHO)\n", a, v);
+            return 2;
+        }
+    }
+    sd_error err;
+    memset(&err, 0, sizeof err);
+    sd_v3d *verts = NULL;
+    size_t n = 0;
+    char warning[400];
+    if (sd_scene_read_mesh(path, take_hull, &verts, &n, warning, sizeof warning, &err) != SD_OK) {
+        /* the scene key's advice, in this command's words */
+        char *at = strstr(err.msg, "set nonconvex: hull");
+        if (at && strlen(err.msg) + 8 < sizeof err.msg) {
+            char tail[sizeof err.msg];
+            snprintf(tail, sizeof tail, "%s", at + strlen("set nonconvex: hull"));
+            snprintf(at, sizeof err.msg - (size_t)(at - err.msg), "add --nonconvex hull%s", tail);
+        }
+        return sd_cli_fail_input(&err);
+    }
+    d.vertices = verts;
+    d.vertex_count = n;
+    sd_world_def wd = sd_world_def_default();
+    sd_world *w;
+    int rc = 0;
+    if (sd_world_create(&wd, &w, &err) != SD_OK) {
+        sd_free(verts);
+        return sd_cli_fail_input(&err);
+    }
+    const char *base = strrchr(path, '/');
+    if (sd_world_add_shape(w, base ? base + 1 : path, &d, &err) < 0) {
+        if (!err.file[0])
+            snprintf(err.file, sizeof err.file, "%s", path);
+        rc = sd_cli_fail_input(&err);
+    } else {
+        sd_print_shape(w, 0, density);
+        if (warning[0])
+            printf("warning            %s\n", warning);
+    }
+    sd_world_destroy(w);
+    sd_free(verts);
+    return rc;
+}
+
 int sd_cmd_shape(int argc, char **argv)
 {
     if (argc >= 3 && !strcmp(argv[2], "fit-fourier"))
@@ -126,6 +210,8 @@ int sd_cmd_shape(int argc, char **argv)
                         "[--density RHO]\n       shapedem shape info PRESET --size D|--edge A [--sides N] "
                         "[--faces N|--vertex-count N] [--seed S]\n         (PRESET: tetrahedron, cube, octahedron, "
                         "dodecahedron, icosahedron, prism, polycylinder, random)\n"
+                        "       shapedem shape info MESH.obj|MESH.stl [--scale S] [--rounding R|--margin M]\n"
+                        "         [--nonconvex reject|hull] [--density RHO]\n"
                         "       shapedem shape info SCENE.yaml\n");
         return 2;
     }
@@ -136,8 +222,12 @@ int sd_cmd_shape(int argc, char **argv)
     if ((len > 5 && !strcmp(what + len - 5, ".yaml")) || (len > 4 && !strcmp(what + len - 4, ".yml"))) {
         sd_scene *scene;
         sd_world *w;
-        if (sd_scene_load(what, &scene, &err) != SD_OK || sd_scene_build(scene, &w, &err) != SD_OK)
+        if (sd_scene_load(what, &scene, &err) != SD_OK)
             return sd_cli_fail_input(&err);
+        if (sd_scene_build(scene, &w, &err) != SD_OK) {
+            sd_scene_free(scene); /* the loaded scene is ours to free on every path */
+            return sd_cli_fail_input(&err);
+        }
         size_t n = sd_world_shape_count(w);
         if (n == 0)
             printf("%s defines no shapes (its particles are plain spheres)\n", what);
@@ -153,6 +243,8 @@ int sd_cmd_shape(int argc, char **argv)
         sd_scene_free(scene);
         return 0;
     }
+    if (sd_ends_with(what, ".obj") || sd_ends_with(what, ".stl"))
+        return sd_mesh_info(what, argc, argv);
     sd_shape_desc d = sd_shape_desc_default();
     d.kind = what;
     double density = 1000.0;

@@ -163,6 +163,14 @@ typedef struct sd_scene {
 sd_status sd_scene_load(const char *path, sd_scene **out, sd_error *err);
 void sd_scene_free(sd_scene *s);
 
+/* The vertices of a mesh file (.obj or .stl), read and checked as a scene's
+ * polyhedron `file:` is (distinct vertices, convexity unless take_hull,
+ * then a warning in warning[], "" otherwise), without a scene: for
+ * `shapedem shape info mesh.obj`. *vertices is sd_malloc'd, the caller
+ * frees it with sd_free. */
+sd_status sd_scene_read_mesh(const char *path, int take_hull, sd_v3d **vertices, size_t *count, char *warning,
+                             size_t warning_size, sd_error *err);
+
 /* Builds the world: materials, interactions, walls, shapes (scene shape i
  * is world shape i), generated particles (spheres and bodies).
  * Rejects overlaps at start beyond tolerance, particles outside walls and a
@@ -205,10 +213,6 @@ void sd_scene_spheres_free(sd_scene_spheres *sp);
  * Returns 1 and sets *i, *j when there is one, 0 when none, -1 when out of
  * memory. */
 int sd_scene_find_overlap(size_t n, const sd_sphere_def *defs, double tol, size_t *i, size_t *j);
-/* The same, keeping only the pairs for which accept(ctx, i, j) is non-zero
- * (the true shapes' test of the bounding spheres that overlap). */
-int sd_scene_find_overlap_if(size_t n, const sd_sphere_def *defs, double tol,
-                             int (*accept)(void *ctx, size_t i, size_t j), void *ctx, size_t *i, size_t *j);
 /* The same, keeping only the pairs for which accept(ctx, i, j) is non-zero
  * (the true shapes' test of the bounding spheres that overlap). */
 int sd_scene_find_overlap_if(size_t n, const sd_sphere_def *defs, double tol,

@@ -1326,6 +1326,34 @@ static sd_status sd_read_mesh(sd_parse *p, sd_scene_shape *sh, const char *key, 
     return SD_OK;
 }
 
+sd_status sd_scene_read_mesh(const char *path, int take_hull, sd_v3d **vertices, size_t *count, char *warning,
+                             size_t warning_size, sd_error *err)
+{
+    *vertices = NULL;
+    *count = 0;
+    sd_scene_shape sh;
+    memset(&sh, 0, sizeof sh);
+    if (strlen(path) >= sizeof sh.file)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "", "mesh file path longer than %zu bytes",
+                            sizeof sh.file - 1);
+    snprintf(sh.file, sizeof sh.file, "%s", path);
+    /* no scene: messages name the mesh file alone (they all quote it) */
+    sd_parse p;
+    memset(&p, 0, sizeof p);
+    p.path = "";
+    p.err = err;
+    sd_status st = sd_read_mesh(&p, &sh, "", 0, take_hull);
+    if (st != SD_OK) {
+        sd_free(sh.vertices);
+        return st;
+    }
+    *vertices = sh.vertices;
+    *count = sh.vertex_count;
+    if (warning && warning_size)
+        snprintf(warning, warning_size, "%s", sh.warning);
+    return SD_OK;
+}
+
 static sd_status sd_shape_ref(sd_parse *p, const char *name, int line, const char *key, int *out)
 {
     for (size_t i = 0; i < p->s->shape_count; ++i)

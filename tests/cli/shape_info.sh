@@ -45,6 +45,78 @@ vol=$(awk '/^volume/ {print $2}' <<<"$out")
 check "non-convex mesh with nonconvex: hull: exit 0 (got $rc), hull volume 1e-9 m^3 (got $vol)" \
     "$([[ $rc == 0 ]] && awk -v v="$vol" 'BEGIN {print (v > 0.999999e-9 && v < 1.000001e-9)}' || echo 0)"
 check "non-convex mesh with nonconvex: hull: a warning" "$(grep -c '^warning .*not convex' <<<"$out")"
+# a mesh file given directly, with the options of a polyhedron from a file:
+# the unit octahedron |x| + |y| + |z| <= 1 (OBJ) and a unit cube (ASCII STL),
+# volumes 4/3 and 1 before scale
+cat >"$tmp/octa.obj" <<'EOF'
+v 1 0 0
+v -1 0 0
+v 0 1 0
+v 0 -1 0
+v 0 0 1
+v 0 0 -1
+f 1 3 5
+f 3 2 5
+f 2 4 5
+f 4 1 5
+f 3 1 6
+f 2 3 6
+f 4 2 6
+f 1 4 6
+EOF
+out=$("$bin" shape info "$tmp/octa.obj" --scale 0.001 --density 2500 2>&1)
+rc=$?
+vol=$(awk '/^volume/ {print $2}' <<<"$out")
+check "mesh file octa.obj --scale 0.001: exit 0 (got $rc), volume 1.333333e-09 m^3 (got $vol)" \
+    "$([[ $rc == 0 ]] && awk -v v="$vol" 'BEGIN {print (v > 1.3333332e-9 && v < 1.3333334e-9)}' || echo 0)"
+check "mesh file octa.obj: 6 hull vertices, 8 welded faces" \
+    "$([[ $(grep -c 'hull vertices *6$' <<<"$out") == 1 && $(grep -c 'welded faces *8 ' <<<"$out") == 1 ]] && echo 1 || echo 0)"
+{
+    echo "solid cube"
+    for f in "0 0 0 1 1 0 1 0 0" "0 0 0 0 1 0 1 1 0" "0 0 1 1 0 1 1 1 1" "0 0 1 1 1 1 0 1 1" \
+        "0 0 0 1 0 0 1 0 1" "0 0 0 1 0 1 0 0 1" "0 1 0 0 1 1 1 1 1" "0 1 0 1 1 1 1 1 0" \
+        "0 0 0 0 0 1 0 1 1" "0 0 0 0 1 1 0 1 0" "1 0 0 1 1 0 1 1 1" "1 0 0 1 1 1 1 0 1"; do
+        read -r a b c d e g h i j <<<"$f"
+        printf ' facet normal 0 0 0\n  outer loop\n   vertex %s %s %s\n   vertex %s %s %s\n   vertex %s %s %s\n  endloop\n endfacet\n' \
+            "$a" "$b" "$c" "$d" "$e" "$g" "$h" "$i" "$j"
+    done
+    echo "endsolid cube"
+} >"$tmp/cube.STL"
+out=$("$bin" shape info "$tmp/cube.STL" --scale 0.002 --margin 0.1 2>&1)
+rc=$?
+vol=$(awk '/^volume/ {print $2}' <<<"$out")
+# margin 0.1 x 0.002: the outer size kept, edges rounded: V = 0.8^3 + 6 (0.8^2)(0.1)
+# + 3 pi (0.8)(0.1^2) + 4/3 pi 0.1^3, times 0.002^3
+exp_vol=$(awk 'BEGIN {pi = atan2(0, -1); printf "%.10g", (0.512 + 6 * 0.64 * 0.1 + 3 * pi * 0.8 * 0.01 + 4 / 3 * pi * 0.001) * 8e-9}')
+check "mesh file cube.STL --scale 0.002 --margin 0.1: exit 0 (got $rc), volume $exp_vol m^3 (got $vol)" \
+    "$([[ $rc == 0 ]] && awk -v v="$vol" -v e="$exp_vol" 'BEGIN {print (v > e * (1 - 1e-9) && v < e * (1 + 1e-9))}' || echo 0)"
+out=$("$bin" shape info "$tmp/nonconvex-mesh.obj" --scale 0.001 2>&1)
+rc=$?
+check "non-convex mesh file without --nonconvex hull: exit 2 (got $rc), says --nonconvex hull" \
+    "$([[ $rc == 2 && $(wc -l <<<"$out") == 1 ]] && grep -c 'not convex.*--nonconvex hull' <<<"$out" || echo 0)"
+out=$("$bin" shape info "$tmp/nonconvex-mesh.obj" --scale 0.001 --nonconvex hull 2>&1)
+rc=$?
+check "non-convex mesh file with --nonconvex hull: exit 0 (got $rc), with a warning" \
+    "$([[ $rc == 0 ]] && grep -c '^warning .*not convex' <<<"$out" || echo 0)"
+out=$("$bin" shape info "$tmp/missing.obj" 2>&1)
+rc=$?
+check "missing mesh file: exit 2 (got $rc), one line naming it" \
+    "$([[ $rc == 2 && $(wc -l <<<"$out") == 1 ]] && grep -c "missing.obj" <<<"$out" || echo 0)"
+"$bin" shape info "$tmp/octa.obj" --sides 5 >/dev/null 2>&1
+rc=$?
+check "mesh file with an option it does not take: exit 2 (got $rc)" "$([[ $rc == 2 ]] && echo 1 || echo 0)"
+# a scene that loads but does not build (a body behind the floor): exit 2,
+# one line, and (under the sanitizer build) the loaded scene freed
+cat >"$tmp/crossing.yaml" <<'EOF'
+simulation: {dt: 1.0e-6, steps: 5}
+materials: [{name: m, density: 2500, youngs_modulus: 1.0e7}]
+shapes: [{name: b, type: box, size: [0.01, 0.01, 0.01]}]
+walls: [{name: floor, type: plane, point: [0, 0, 0], normal: [0, 0, 1], material: m}]
+particles: [{generator: list, material: m, spheres: [{position: [0, 0, -0.02], shape: b}]}]
+EOF
+out=$("$bin" shape info "$tmp/crossing.yaml" 2>&1)
+rc=$?
+check "scene that fails to build: exit 2 (got $rc), one line" "$([[ $rc == 2 && $(wc -l <<<"$out") == 1 ]] && echo 1 || echo 0)"
 rm -rf "$tmp"
 echo "$pass passed, $fail failed"
 [[ $fail == 0 ]]
