@@ -207,6 +207,9 @@ static int sd_cmd_run(const sd_cli *c)
     int rc = sd_load_world(c, &scene, &w);
     if (rc)
         return rc;
+    for (size_t k = 0; k < scene->shape_count; ++k)
+        if (scene->shapes[k].warning[0]) /* a mesh taken as its hull (nonconvex: hull) */
+            fprintf(stderr, "shapedem: warning: shape %s: %s\n", scene->shapes[k].name, scene->shapes[k].warning);
     sd_error err;
     memset(&err, 0, sizeof err);
     long steps = scene->steps;
@@ -405,6 +408,11 @@ static int sd_cmd_check(const sd_cli *c)
         warnings++;
     }
     warnings += sd_check_units(stdout, scene, &cnt, tc, dt);
+    for (size_t k = 0; k < scene->shape_count; ++k)
+        if (scene->shapes[k].warning[0]) { /* a mesh taken as its hull (nonconvex: hull) */
+            printf("warning      shape %s: %s\n", scene->shapes[k].name, scene->shapes[k].warning);
+            warnings++;
+        }
     /* last: the trial steps the world */
     sd_check_trial tr;
     sd_check_time(scene, w, total, steps, &tr);
