@@ -658,7 +658,7 @@ sd_status sd_shape2d_make(const sd_shape2d_desc *desc, sd_shape2d *out, sd_real 
         break;
     case SD_SHAPE2D_ELLIPSE:
         if (!sd_ok_pos(desc->a.x) || !sd_ok_pos(desc->a.y))
-            return SD_FAIL2("semi_axes", "an ellipse needs semi-axes > 0, got (%g, %g)", (double)desc->a.x,
+            return SD_FAIL2("axes", "an ellipse needs semi-axes > 0, got (%g, %g)", (double)desc->a.x,
                             (double)desc->a.y);
         s.a = desc->a;
         break;
@@ -783,9 +783,15 @@ sd_status sd_shape2d_make(const sd_shape2d_desc *desc, sd_shape2d *out, sd_real 
     sd_real area, polar;
     sd_vec2 c;
     sd_shape2d_mass(&s, pool, &area, &c, &polar);
-    if (!isfinite(area) || !isfinite(polar))
-        return SD_FAIL2("type", "the %s's area or moment of inertia overflows (sizes are in metres)",
+    if (!isfinite(area) || !isfinite(polar)) {
+        /* the key the size came from */
+        const char *size_key = s.kind == SD_SHAPE2D_ELLIPSE ? "axes"
+                               : s.kind == SD_SHAPE2D_FOURIER ? "fourier_a"
+                               : s.kind == SD_SHAPE2D_CIRCLE  ? "radius"
+                                                              : "points";
+        return SD_FAIL2(size_key, "the %s's area or moment of inertia (m^2, m^4) overflows: sizes are in metres",
                         sd_shape2d_kind_name(s.kind));
+    }
     if (!(area > SD_R(0.0)))
         return SD_FAIL2("type", "the %s has no area", sd_shape2d_kind_name(s.kind));
     s.given_com = sd_v2_add(p0, c);

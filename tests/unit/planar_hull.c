@@ -165,6 +165,17 @@ int main(void)
         CHECK(st == SD_ERR_INPUT && strcmp(err.key, "points") == 0);
     }
     {
+        /* an overflowing size of the other kinds names its key (it said "the circle has no area", key 'type') */
+        sd_shape2d_desc d = sd_shape2d_desc_default();
+        d.kind = SD_SHAPE2D_CIRCLE;
+        d.radius = 1e160;
+        sd_error_clear(&err);
+        const sd_status st = sd_shape2d_make(&d, &s, pool, sizeof pool / sizeof pool[0], &used, &err);
+        printf("%-4s circle of radius 1e160: refused (status %d, key '%s': %s)\n",
+               st == SD_ERR_INPUT && strcmp(err.key, "radius") == 0 ? "ok" : "FAIL", (int)st, err.key, err.msg);
+        CHECK(st == SD_ERR_INPUT && strcmp(err.key, "radius") == 0);
+    }
+    {
         /* a 12-gon of radius 1 cm, rounded by 1 mm, about the origin and about (1e5, 1e5) */
         sd_vec2 at0[12], far[12];
         for (int i = 0; i < 12; ++i) {
