@@ -2,6 +2,10 @@
  * (host code), seed 002 §2.3 and §3.1.
  *
  * The procedure (seed 002 Fig. 3):
+ *   0. the outline is checked (sd_outline_check: a simple closed curve, not
+ *      flat, a span whose square stays in range; and an area of at least
+ *      SD_FOURIER_MIN_HULL_FRACTION of its hull's), so that the coverage
+ *      below means something;
  *   1. the outline's convex hull (a reference shape must be made convex);
  *   2. support values h_j = max_i P_i·n(θ_j) of the hull about its area
  *      centroid, for M equally spaced directions (eq. 1);
@@ -19,8 +23,9 @@
  *      never matters: (n² − 1) = 0 in eq. 6);
  *   6. percent coverage (§3.1, area based): 1 − area(FS △ reference) /
  *      area(reference), the symmetric difference of the fitted shape and the
- *      ORIGINAL outline (not its hull); the plain area ratio
- *      1 − |A_FS − A_ref| / A_ref is reported too.
+ *      ORIGINAL outline (not its hull), floored at 0 (in [0, 1] by
+ *      construction); the plain area ratio 1 − |A_FS − A_ref| / A_ref is
+ *      reported too.
  * Invariant: a fit returned with status SD_OK is convex (eq. 5 proved on
  * the grid with the margin), so sd_shape2d_make accepts it.
  */
