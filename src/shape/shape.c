@@ -592,8 +592,10 @@ static void sd_gauss_legendre(int n, sd_real *x, sd_real *w)
 }
 
 /* Grading of the composite rule: panel widths shrink by this factor toward
- * each end of [0, π/2] (hp-quadrature of an integrand with near-singular
- * points close to the ends; Schwab 1998, p-/hp-FEM, ch. 4). */
+ * each end of [0, π/2], geometric grading for an integrand with
+ * near-singular points close to the ends (C. Schwab, "Variable order
+ * composite quadrature of singular and nearly singular integrals",
+ * Computing 53, 1994). */
 #define SD_ELLIPSOID_GRADE SD_R(0.25)
 
 /* Composite m-point Gauss–Legendre rule on [0, π/2]: `levels` panels
