@@ -623,6 +623,22 @@ static int sd_polybezier_convex(const sd_real *v, uint32_t n, sd_real *total)
 #define SD_SHAPE2D_SPAN_MAX SD_R(1e70)
 #define SD_SHAPE2D_SPAN_MIN SD_R(1e-70)
 
+/* span and reach (as sd_points2d_extent) of n points stored x0, y0, x1, y1, ... */
+static int sd_pool_extent(const sd_real *v, uint32_t n, sd_real *span, sd_real *reach)
+{
+    sd_real x0 = v[0], x1 = v[0], y0 = v[1], y1 = v[1], r = SD_R(0.0);
+    for (uint32_t i = 0; i < n; ++i) {
+        x0 = sd_min(x0, v[2 * i]);
+        x1 = sd_max(x1, v[2 * i]);
+        y0 = sd_min(y0, v[2 * i + 1]);
+        y1 = sd_max(y1, v[2 * i + 1]);
+        r = sd_max(r, sd_max(sd_fabs(v[2 * i]), sd_fabs(v[2 * i + 1])));
+    }
+    *span = sd_max(x1 - x0, y1 - y0);
+    *reach = r;
+    return 1;
+}
+
 static int sd_points_out_of_range(const sd_vec2 *p, size_t n, sd_error *err, const char *key, const char *what)
 {
     sd_real span = SD_R(0.0);
@@ -769,11 +785,17 @@ sd_status sd_shape2d_make(const sd_shape2d_desc *desc, sd_shape2d *out, sd_real 
         return SD_FAIL2("type", "unknown 2D shape kind %d", s.kind);
     }
 
-    /* mass properties about the first point (a polygon given far from the
-     * origin would lose its digits to a fan from the origin), then move to
-     * the centroid */
+    /* mass properties in the given frame, then move to the centroid. A
+     * polygon given far from the origin (vertices around (1e5, 1e5) for a
+     * 1 cm body) would lose its digits to the fan from the origin — its
+     * polar moment came out negative — so such a shape is integrated about
+     * its first point instead. Only then: a shape near the origin keeps the
+     * bits of its template (chaotic packings such as the biaxial validation
+     * would otherwise change run to run of the code, not of the physics). */
     sd_vec2 p0 = sd_v2_zero();
-    if (s.kind == SD_SHAPE2D_POLYGON || s.kind == SD_SHAPE2D_POLYBEZIER) {
+    sd_real span = SD_R(0.0), reach = SD_R(0.0);
+    if ((s.kind == SD_SHAPE2D_POLYGON || s.kind == SD_SHAPE2D_POLYBEZIER) &&
+        sd_pool_extent(pool, s.count, &span, &reach) && reach > SD_R(4.0) * span) {
         p0 = sd_v2(pool[0], pool[1]);
         for (uint32_t i = 0; i < s.count; ++i) {
             pool[2 * i] -= p0.x;
