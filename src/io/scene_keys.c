@@ -644,11 +644,13 @@ static void sd_print_wrapped(FILE *f, const char *text, int indent, const char *
     }
 }
 
-/* One table row: each cell wrapped inside its column, the columns side by
- * side, no trailing spaces. */
+/* One table row of at most four cells, indented by two spaces: each cell
+ * wrapped inside its column, the columns side by side, no trailing spaces. */
 static void sd_print_row(FILE *f, const char *const *cells, const int *widths, size_t ncols)
 {
     const char *rest[4];
+    if (ncols > 4)
+        ncols = 4;
     for (size_t c = 0; c < ncols; ++c)
         rest[c] = cells[c];
     for (int more = 1; more;) {

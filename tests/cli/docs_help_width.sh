@@ -27,11 +27,13 @@ for t in "${topics[@]}"; do
     name="shapedem${t:+ $t}"
     # shellcheck disable=SC2086
     "$bin" $t >"$tmp/out" 2>&1
+    rc=$?
     lines=$(wc -l <"$tmp/out")
     long=$(awk 'length($0) > m {m = length($0)} END {print m + 0}' "$tmp/out")
     over=$(awk 'length($0) > 120' "$tmp/out" | wc -l)
-    check "'$name': $lines lines, longest $long columns (at most 120), $over over" \
-        "$([[ $lines -gt 0 && $over == 0 ]] && echo 1 || echo 0)"
+    # exit 0 for help, 2 for a usage error; anything else is a crash
+    check "'$name': exit $rc, $lines lines, longest $long columns (at most 120), $over over" \
+        "$([[ ($rc == 0 || $rc == 2) && $lines -gt 0 && $over == 0 ]] && echo 1 || echo 0)"
     awk -v n="$name" 'length($0) > 120 {printf "  %s: line %d, %d columns: %.100s...\n", n, NR, length($0), $0}' \
         "$tmp/out" | head -5
 done
