@@ -64,6 +64,7 @@ typedef struct sd_epa_result {
 
 typedef struct sd_epa_face {
     int i[3];     /* vertex indices, wound outward */
+    int adj[3];   /* adj[m]: the face across edge (i[m] → i[m+1]), which holds (i[m+1] → i[m]) */
     sd_vec3 n;    /* unit outward normal */
     sd_real dist; /* n·v: signed distance of the plane from the origin */
 } sd_epa_face;
@@ -94,7 +95,8 @@ SD_HD static SD_INLINE int sd_epa_face_make(const sd_epa_poly *P, sd_epa_face *f
     return 1;
 }
 
-/* The face that holds directed edge (e0 → e1), or −1. */
+/* The face that holds directed edge (e0 → e1), or −1 (a search over all
+ * faces: only to link the start tetrahedron). */
 SD_HD static SD_INLINE int sd_epa_edge_owner(const sd_epa_poly *P, int e0, int e1)
 {
     for (int g = 0; g < P->nf; ++g)
@@ -106,13 +108,23 @@ SD_HD static SD_INLINE int sd_epa_edge_owner(const sd_epa_poly *P, int e0, int e
 
 /* Adds vertex p (already stored at index pi) to P, starting the visible set
  * at face `seed` (−1: any visible face). Returns 1 if added, 0 if p is not
- * beyond any face (nothing changes), −1 on overflow or a zero-area face. */
+ * beyond any face (nothing changes), −1 on overflow, a zero-area face or a
+ * horizon that is not one simple loop (P unchanged).
+ *
+ * Each face keeps its three neighbours (adj), so the flood fill reads the
+ * face across an edge in O(1); the former search over all faces for the
+ * owner of each reversed edge (O(faces) per edge) was most of EPA's time
+ * on curved cores, whose polytopes reach 40–60 faces (issue 11 §5: sharp
+ * cylinders 11 times as costly per contact as cubes). The faces, their
+ * order and the horizon order are those of that search (the neighbour
+ * across an edge of a closed mesh is unique), so the results are the same
+ * bits. */
 SD_HD static SD_INLINE int sd_epa_expand(sd_epa_poly *P, int pi, int seed)
 {
     sd_vec3 p = P->v[pi].w;
     unsigned char vis[SD_EPA_MAX_FACES];
     int stack[SD_EPA_MAX_FACES];
-    int horizon[SD_EPA_MAX_FACES + 8][2];
+    int horizon[SD_EPA_MAX_FACES + 8][3]; /* edge (e0, e1) and the kept face beyond it */
     int nh = 0, ns = 0;
     for (int g = 0; g < P->nf; ++g)
         vis[g] = 0;
@@ -137,7 +149,7 @@ SD_HD static SD_INLINE int sd_epa_expand(sd_epa_poly *P, int pi, int seed)
         int g = stack[--ns];
         for (int m = 0; m < 3; ++m) {
             int e0 = P->f[g].i[m], e1 = P->f[g].i[(m + 1) % 3];
-            int h = sd_epa_edge_owner(P, e1, e0);
+            int h = P->f[g].adj[m];
             if (h >= 0 && vis[h])
                 continue;
             /* a neighbour whose plane holds p (within rounding) goes too:
@@ -153,6 +165,7 @@ SD_HD static SD_INLINE int sd_epa_expand(sd_epa_poly *P, int pi, int seed)
                 return -1;
             horizon[nh][0] = e0;
             horizon[nh][1] = e1;
+            horizon[nh][2] = h;
             nh++;
         }
     }
@@ -162,16 +175,62 @@ SD_HD static SD_INLINE int sd_epa_expand(sd_epa_poly *P, int pi, int seed)
             nkeep++;
     if (nkeep + nh > SD_EPA_MAX_FACES)
         return -1;
+    /* the horizon must be one simple loop beyond kept faces: each vertex
+     * starts one edge and ends one (a face made visible after its edge was
+     * taken as horizon, possible when rounding blurs the coplanar test, would
+     * leave a hole; refuse the point rather than break P) */
+    int next[SD_EPA_MAX_FACES + 8], prev[SD_EPA_MAX_FACES + 8];
+    for (int e = 0; e < nh; ++e) {
+        if (horizon[e][2] < 0 || vis[horizon[e][2]])
+            return -1;
+        next[e] = prev[e] = -1;
+    }
+    for (int e = 0; e < nh; ++e)
+        for (int q = 0; q < nh; ++q) {
+            if (horizon[q][0] == horizon[e][1]) {
+                if (next[e] >= 0)
+                    return -1;
+                next[e] = q;
+            }
+            if (horizon[q][1] == horizon[e][0]) {
+                if (prev[e] >= 0)
+                    return -1;
+                prev[e] = q;
+            }
+        }
+    for (int e = 0; e < nh; ++e)
+        if (next[e] < 0 || prev[e] < 0)
+            return -1;
     sd_epa_face nf[SD_EPA_MAX_FACES + 8];
     for (int e = 0; e < nh; ++e)
         if (!sd_epa_face_make(P, &nf[e], horizon[e][0], horizon[e][1], pi))
             return -1;
+    /* compact: kept faces in their order, then the fan in horizon order */
+    int newidx[SD_EPA_MAX_FACES];
     int k = 0;
     for (int g = 0; g < P->nf; ++g)
-        if (!vis[g])
-            P->f[k++] = P->f[g];
-    for (int e = 0; e < nh; ++e)
+        newidx[g] = vis[g] ? -1 : k++;
+    k = 0;
+    for (int g = 0; g < P->nf; ++g)
+        if (!vis[g]) {
+            P->f[k] = P->f[g];
+            for (int m = 0; m < 3; ++m)
+                P->f[k].adj[m] = P->f[k].adj[m] >= 0 ? newidx[P->f[k].adj[m]] : -1;
+            k++;
+        }
+    for (int e = 0; e < nh; ++e) {
+        /* new face (e0, e1, p): across (e0 → e1) the kept face, across
+         * (e1 → p) the fan face that starts at e1, across (p → e0) the one
+         * that ends at e0 */
+        int h = newidx[horizon[e][2]];
+        nf[e].adj[0] = h;
+        nf[e].adj[1] = nkeep + next[e];
+        nf[e].adj[2] = nkeep + prev[e];
+        for (int m = 0; m < 3; ++m)
+            if (P->f[h].i[m] == horizon[e][1] && P->f[h].i[(m + 1) % 3] == horizon[e][0])
+                P->f[h].adj[m] = nkeep + e;
         P->f[k++] = nf[e];
+    }
     P->nf = k;
     return 1;
 }
@@ -235,6 +294,10 @@ SD_HD static SD_INLINE int sd_epa_start(sd_epa_poly *P, const sd_gjk_vertex *c, 
         !sd_epa_face_make(P, &P->f[2], 1, 3, 2) || !sd_epa_face_make(P, &P->f[3], 0, 2, 3))
         return 0;
     P->nf = 4;
+    /* link the four faces; expansions keep the links */
+    for (int g = 0; g < 4; ++g)
+        for (int m = 0; m < 3; ++m)
+            P->f[g].adj[m] = sd_epa_edge_owner(P, P->f[g].i[(m + 1) % 3], P->f[g].i[m]);
     /* the rest of the candidates join as ordinary expansions */
     for (int m = 0; m < nc; ++m) {
         if (m == i0 || m == i1 || m == i2 || m == i3)
