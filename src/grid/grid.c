@@ -705,7 +705,7 @@ SD_PARALLEL_FOR_REDUCE_MAX(vmax2)
     double dt = (double)w->dt, hh = (double)g->h;
     if (vmax2 * dt * dt > hh * hh)
         return sd_error_set(err, SD_ERR_PHYSICS, "", 0, "simulation.dt",
-                            "seed 001 eq. 11 violated at step %ld: a particle moves %.3g m/s, so dt %g s "
+                            "eq. 11 of [Naderi 2024] violated at step %ld: a particle moves %.3g m/s, so dt %g s "
                             "carries it %.3g cells in one step (at most 1); use dt <= %.3g s",
                             w->step + 1, sqrt(vmax2), dt, sqrt(vmax2) * dt / hh, hh / sqrt(vmax2));
 

@@ -270,7 +270,7 @@ sd_status sd_grid_prepare(sd_world *w, sd_error *err)
         return st;
     if (w->dim2)
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.solver",
-                            "solver grid is three-dimensional (seed 001); use solver cells in dimension 2");
+                            "solver grid is three-dimensional; use solver cells in dimension 2");
     if (!sd_grid_state_get(w))
         return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory");
     st = sd_grid_absorb(w, err); /* the world's spheres become the solver's */
@@ -284,7 +284,7 @@ sd_status sd_grid_prepare(sd_world *w, sd_error *err)
     g->info.dt_contact_limit = lim;
     if ((double)w->dt > lim)
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.dt",
-                            "time step %g s above the limit pi/5 sqrt(m/k) = %g s of seed 001 eq. 11",
+                            "time step %g s above the limit pi/5 sqrt(m/k) = %g s of eq. 11 of [Naderi 2024]",
                             (double)w->dt, lim);
     if (g->pour.active) {
         const sd_grid_pour_def *d = &g->pour.def;
