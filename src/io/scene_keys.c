@@ -91,7 +91,7 @@ const sd_scene_key sd_scene_keys[] = {
     {SD_SEC_SIMULATION, "seed", SD_KT_INT, SD_KR_NONNEG, NULL, ALL, 0, "", "1",
      "seed of every random choice (random generator, radii, velocity jitter)"},
     {SD_SEC_SIMULATION, "threads", SD_KT_INT, SD_KR_NONNEG, NULL, ALL, 0, "", "0",
-     "OpenMP threads; 0 = OMP_NUM_THREADS or all cores"},
+     "OpenMP threads, at most 1024; 0 = OMP_NUM_THREADS or all cores"},
     {SD_SEC_SIMULATION, "contact_law", SD_KT_ENUM, SD_KR_ANY, SD_LAW_CHOICES, ALL, 0, "",
      "hertz_mindlin", "default contact law for every pair of materials"},
     {SD_SEC_SIMULATION, "skin", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "m", "0",
@@ -552,6 +552,10 @@ static void sd_default_text(const sd_scene_key *k, char *buf, size_t size)
 static const char *const sd_scene_rules[] = {
     "Numbers may be written as YAML integers or floats (2500, 1e7, 1.0e-5); keys are "
     "case-sensitive; a key not listed here is an error.",
+    "A scene is one YAML document in UTF-8 (a second document, or text after '...', is an "
+    "error), at most 64 MiB, with lists and mappings nested at most 64 deep; it may make at most "
+    "1e9 particles, and no more than the memory of the machine holds (checked before anything "
+    "is built).",
     "simulation: give exactly one of steps and duration; with duration, steps = "
     "ceil(duration / dt).",
     "simulation.dt above 1/5 of the shortest contact duration is rejected (time step above "

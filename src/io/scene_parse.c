@@ -1205,6 +1205,13 @@ static sd_status sd_read_mesh(sd_parse *p, sd_scene_shape *sh, const char *key, 
                         sd_escape(num, sizeof num, at, (size_t)(end - at));
                         st = sd_fail(p, line, key, "%s line %d: coordinate %s is not finite", sh->file, ln, num);
                         range = 1;
+                    } else if (end != at && strpbrk(at, "xX") && strpbrk(at, "xX") < end) {
+                        /* strtod reads C's hexadecimal floats; YAML scenes and outline CSVs
+                         * take decimal numbers only, and so do mesh files */
+                        st = sd_fail(p, line, key, "%s line %d: hexadecimal numbers (0x...) are not "
+                                     "accepted; write decimal numbers", sh->file, ln);
+                        ok = 0;
+                        range = 1;
                     }
                     at = end;
                 }

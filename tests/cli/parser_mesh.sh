@@ -99,6 +99,11 @@ printf 'v 0 0 0\nv 1 0 0\nv 0 NaN 0\nv 0 0 1\n' >nan.obj
 scene nanobj nan.obj
 refused nanobj "nan.obj line 3: coordinate NaN is not finite"
 
+# C's hexadecimal floats are refused, as in scenes and outline CSVs.
+printf 'v 0x1p-7 0 0\nv 0.01 0 0\nv 0 0.01 0\nv 0 0 0.01\n' >hex.obj
+scene hexobj hex.obj
+refused hexobj "hex.obj line 1: hexadecimal numbers (0x...) are not accepted"
+
 # Raw bytes of the file (an ANSI colour and a carriage return) come back
 # escaped, never as bytes that act on the terminal.
 printf 'v 0 0 0\nv 0.01 0 0\nv 0 0.01 0\nv 0 0 0.01\nf 1 2 \033[31mRED\r\n' >esc.obj
