@@ -146,6 +146,9 @@ void sd_world_destroy(sd_world *w);
 int sd_world_add_material(sd_world *w, const sd_material_def *def, sd_error *err);
 /* Index of a material by name, or -1. */
 int sd_world_find_material(const sd_world *w, const char *name);
+/* Name of material index (as given to sd_world_add_material, "" when it had
+ * none), or NULL past the last; frames name materials with it. */
+const char *sd_world_material_name(const sd_world *w, size_t index);
 sd_status sd_world_set_interaction(sd_world *w, int mat_a, int mat_b, const sd_interaction_def *def,
                                    sd_error *err);
 

@@ -631,7 +631,7 @@ sd_status sd_output_estimate(const sd_output_def *def, const sd_world *w, size_t
         if (!(fp[k] = open_memstream(&buf[k], &len[k])))
             s = sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory");
     if (s == SD_OK && o.vtk) {
-        out->frame_particles = (double)sd_vtk_particles_bytes(particles);
+        out->frame_particles = (double)sd_vtk_particles_bytes(w, particles);
         s = sd_vtk_write_walls(fp[0], w, sd_vtk_plane_side(w), err);
         fflush(fp[0]);
         out->frame_walls = (double)ftell(fp[0]);

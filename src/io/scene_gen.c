@@ -316,7 +316,8 @@ static int sd_gen_shaped(const sd_scene_generator *g)
 {
     if (g->shape >= 0)
         return 1;
-    if (g->kind == SD_GEN_LIST)
+    /* list and csv: a shape per entry */
+    if ((g->kind == SD_GEN_LIST || g->kind == SD_GEN_CSV) && g->list_shape)
         for (size_t k = 0; k < g->list_count; ++k)
             if (g->list_shape[k] >= 0)
                 return 1;
@@ -354,11 +355,13 @@ sd_status sd_scene_generate(const sd_scene *s, const double *shape_bound, sd_sce
         sd_sphere_def *defs = out->defs + at;
         double(*quat)[4] = out->quat + at;
         double bound = g->shape >= 0 ? shape_bound[g->shape] : 0.0;
+        /* list and csv entries carry their own shape (the generator's is their default) */
+        const int *entry_shape = (g->kind == SD_GEN_LIST || g->kind == SD_GEN_CSV) ? g->list_shape : NULL;
         for (size_t k = 0; k < n; ++k) {
-            out->shape[at + k] = g->kind == SD_GEN_LIST ? g->list_shape[k] : g->shape;
+            out->shape[at + k] = entry_shape ? entry_shape[k] : g->shape;
             sd_gen_orient(&rng, SD_ORIENT_IDENTITY, NULL, quat[k], s->world.dimension == 2); /* no draw */
         }
-        if (g->shape >= 0 && g->kind != SD_GEN_LIST) {
+        if (g->shape >= 0 && g->kind != SD_GEN_LIST && g->kind != SD_GEN_CSV) {
             sd_status st = sd_gen_check_bound(s, gi, bound, err);
             if (st != SD_OK) {
                 sd_scene_spheres_free(out);
@@ -400,7 +403,7 @@ sd_status sd_scene_generate(const sd_scene *s, const double *shape_bound, sd_sce
         case SD_GEN_CSV:
             for (size_t k = 0; k < n; ++k) {
                 defs[k] = g->list[k];
-                if (g->kind == SD_GEN_LIST && g->list_shape[k] >= 0) {
+                if (entry_shape && entry_shape[k] >= 0) {
                     defs[k].radius = shape_bound[g->list_shape[k]];
                     sd_gen_orient(&rng, g->list_orient[k], g->list_quat[k], quat[k], s->world.dimension == 2);
                 }

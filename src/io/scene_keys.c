@@ -221,10 +221,10 @@ const sd_scene_key sd_scene_keys[] = {
      "required unless shape",
      "sphere radius, or {min, max} for radii uniform in [min, max]; give radius or shape, "
      "exactly one"},
-    {SD_SEC_PARTICLES, "shape", SD_KT_STRING, SD_KR_NONEMPTY, NULL, LAT | RND | LST, 0, "", "-",
+    {SD_SEC_PARTICLES, "shape", SD_KT_STRING, SD_KR_NONEMPTY, NULL, LAT | RND | LST | CSV, 0, "", "-",
      "name of a shape in shapes: the generator makes rigid bodies of that shape instead of "
-     "spheres (list: the shape of entries that give neither radius nor shape)"},
-    {SD_SEC_PARTICLES, "orientation", SD_KT_ORIENTATION, SD_KR_ANY, NULL, LAT | RND | LST, 0, "",
+     "spheres (list, csv: the shape of entries and rows that give neither radius nor shape)"},
+    {SD_SEC_PARTICLES, "orientation", SD_KT_ORIENTATION, SD_KR_ANY, NULL, LAT | RND | LST | CSV, 0, "",
      "random",
      "orientation of shaped bodies: identity, random (uniform over all rotations, from "
      "simulation.seed) or a quaternion [w, x, y, z] (normalised)"},
@@ -244,8 +244,11 @@ const sd_scene_key sd_scene_keys[] = {
      "the particles, one mapping each (keys under particles[].spheres[]): spheres, or bodies "
      "of a shape"},
     {SD_SEC_PARTICLES, "file", SD_KT_STRING, SD_KR_NONEMPTY, NULL, CSV, CSV, "", "required",
-     "CSV file, relative to the scene file; header x,y,z,radius[,vx,vy,vz]; spheres only (no "
-     "shape)"},
+     "CSV file, relative to the scene file; a header naming the columns, in any order: x, y, "
+     "z, and radius (a sphere) or shape (a name from shapes; one of the two per row), "
+     "optionally vx, vy, vz, qw, qx, qy, qz (orientation, all four or none, normalised), wx, "
+     "wy, wz and material (a name; default the generator's); an empty optional cell takes the "
+     "generator's value; scripts/frame_to_csv.py writes one from a frame (docs/output.md)"},
     {SD_SEC_PARTICLES, "velocity", SD_KT_VEC3, SD_KR_ANY, NULL, ALL, 0, "m/s", "[0, 0, 0]",
      "initial velocity (list entries and CSV columns override it)"},
     {SD_SEC_PARTICLES, "velocity_jitter", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "m/s", "0",
@@ -566,9 +569,9 @@ static const char *const sd_scene_rules[] = {
     "lattice: count[0] x count[1] x count[2] spheres at origin + (i, j, k) * spacing. "
     "random: random sequential addition inside box, deterministic from simulation.seed; it "
     "fails with an error when the box is too full. list: spheres given one by one. csv: one "
-    "sphere per row of a CSV file with a header line naming the columns x, y, z, radius and "
-    "optionally vx, vy, vz (comma-separated; blank lines and lines starting with # are "
-    "skipped).",
+    "particle per row of a CSV file with a header line naming the columns x, y, z, radius or "
+    "shape, and optionally vx, vy, vz, qw, qx, qy, qz, wx, wy, wz, material (comma-separated; "
+    "blank lines and lines starting with # are skipped).",
     "Particles may not overlap at the start by more than 1 % of the smaller size (a sphere's "
     "radius, half a shape's smallest outer dimension), measured with the true shapes, so a "
     "packing written from a settled run (positions and orientations) loads again; and they "

@@ -902,10 +902,54 @@ static char *sd_trim(char *t)
     return t;
 }
 
-enum { SD_CSV_X, SD_CSV_Y, SD_CSV_Z, SD_CSV_R, SD_CSV_VX, SD_CSV_VY, SD_CSV_VZ, SD_CSV_NCOL };
-static const char *const sd_csv_names[SD_CSV_NCOL] = {"x", "y", "z", "radius", "vx", "vy", "vz"};
+enum {
+    SD_CSV_X, SD_CSV_Y, SD_CSV_Z, SD_CSV_R, SD_CSV_VX, SD_CSV_VY, SD_CSV_VZ, SD_CSV_SHAPE,
+    SD_CSV_QW, SD_CSV_QX, SD_CSV_QY, SD_CSV_QZ, SD_CSV_WX, SD_CSV_WY, SD_CSV_WZ, SD_CSV_MATERIAL,
+    SD_CSV_NCOL
+};
+static const char *const sd_csv_names[SD_CSV_NCOL] = {
+    "x", "y", "z", "radius", "vx", "vy", "vz", "shape", "qw", "qx", "qy", "qz", "wx", "wy", "wz", "material"};
 
-/* Reads g->file: a header naming the columns, then one sphere per row.
+/* "a, b, c": the names of the scene's shapes (materials: 1) for messages. */
+static const char *sd_csv_known(const sd_scene *s, int materials, char *buf, size_t size)
+{
+    size_t used = 0, n = materials ? s->material_count : s->shape_count;
+    buf[0] = '\0';
+    for (size_t i = 0; i < n && used + 1 < size; ++i) {
+        int w = snprintf(buf + used, size - used, "%s%s", i ? ", " : "",
+                         materials ? s->materials[i].name : s->shapes[i].name);
+        used += w > 0 ? (size_t)w : 0;
+    }
+    return n ? buf : "none";
+}
+
+/* Grows the generator's entry arrays to cap entries (all or none grow, so a
+ * failure leaves the list consistent). */
+static int sd_csv_grow(sd_scene_generator *g, size_t cap)
+{
+    void *q;
+    if (!(q = sd_realloc(g->list, cap * sizeof *g->list)))
+        return 0;
+    g->list = q;
+    if (!(q = sd_realloc(g->list_lines, cap * sizeof *g->list_lines)))
+        return 0;
+    g->list_lines = q;
+    if (!(q = sd_realloc(g->list_shape, cap * sizeof *g->list_shape)))
+        return 0;
+    g->list_shape = q;
+    if (!(q = sd_realloc(g->list_orient, cap * sizeof *g->list_orient)))
+        return 0;
+    g->list_orient = q;
+    if (!(q = sd_realloc(g->list_quat, cap * sizeof *g->list_quat)))
+        return 0;
+    g->list_quat = q;
+    return 1;
+}
+
+/* Reads g->file: a header naming the columns, then one particle per row: a
+ * sphere (radius) or a body of a shape (shape, with an orientation from
+ * qw..qz or the generator's). Empty cells of optional columns take the
+ * generator's value, so a packing of spheres and shapes fits one file.
  * Errors name the CSV file and its line; the key names the generator. */
 static sd_status sd_read_csv(sd_parse *p, sd_scene_generator *g, const char *key, int file_line)
 {
@@ -913,8 +957,8 @@ static sd_status sd_read_csv(sd_parse *p, sd_scene_generator *g, const char *key
     if (!f)
         return sd_fail(p, file_line, key, "cannot open the CSV file '%s': %s", g->file,
                        strerror(errno));
-    char buf[4096];
-    int col_of[16]; /* column -> SD_CSV_* index */
+    char buf[4096], known[300], esc[64]; /* esc: file bytes, escaped */
+    int col_of[SD_CSV_NCOL]; /* column -> SD_CSV_* index */
     int ncols = 0, line = 0, have_header = 0;
     size_t cap = 0;
     sd_status st = SD_OK;
@@ -939,12 +983,13 @@ static sd_status sd_read_csv(sd_parse *p, sd_scene_generator *g, const char *key
                 for (int j = 0; j < SD_CSV_NCOL; ++j)
                     if (!strcmp(name, sd_csv_names[j]))
                         idx = j;
-                if (idx < 0 || ncols >= 16 || seen[idx]) {
-                    char esc[64]; /* file bytes, escaped */
+                /* SD_CSV_NCOL distinct names: a longer header repeats one */
+                if (idx < 0 || ncols >= SD_CSV_NCOL || seen[idx]) {
                     sd_escape(esc, sizeof esc, name, (size_t)-1);
                     st = sd_error_set(p->err, SD_ERR_INPUT, g->file, line, key,
                                       "%s column '%s' in the header (expected the columns x, y, z, "
-                                      "radius and optionally vx, vy, vz)",
+                                      "radius and/or shape, and optionally vx, vy, vz, qw, qx, qy, "
+                                      "qz, wx, wy, wz, material)",
                                       idx < 0 ? "unknown" : "repeated", esc);
                     goto done;
                 }
@@ -953,17 +998,25 @@ static sd_status sd_read_csv(sd_parse *p, sd_scene_generator *g, const char *key
                 c = next;
             }
             for (int j = 0; j <= SD_CSV_R; ++j)
-                if (!seen[j]) {
+                if (!seen[j] && !(j == SD_CSV_R && (seen[SD_CSV_SHAPE] || g->shape >= 0))) {
                     st = sd_error_set(p->err, SD_ERR_INPUT, g->file, line, key,
                                       "the header line has no '%s' column (expected a header such "
-                                      "as x,y,z,radius)",
+                                      "as x,y,z,radius or x,y,z,shape)",
                                       sd_csv_names[j]);
                     goto done;
                 }
+            int nq = seen[SD_CSV_QW] + seen[SD_CSV_QX] + seen[SD_CSV_QY] + seen[SD_CSV_QZ];
+            if (nq != 0 && nq != 4) {
+                st = sd_error_set(p->err, SD_ERR_INPUT, g->file, line, key,
+                                  "the header names %d of the orientation columns qw, qx, qy, qz "
+                                  "(expected all four or none)",
+                                  nq);
+                goto done;
+            }
             have_header = 1;
             continue;
         }
-        double val[SD_CSV_NCOL] = {0};
+        char *cell[SD_CSV_NCOL] = {0};
         int col = 0;
         for (char *c = t; c; ++col) {
             char *next = strchr(c, ',');
@@ -974,22 +1027,7 @@ static sd_status sd_read_csv(sd_parse *p, sd_scene_generator *g, const char *key
                                   "expected %d values as in the header, got more", ncols);
                 goto done;
             }
-            char *field = sd_trim(c), *end;
-            double x = strtod(field, &end);
-            const char *name = sd_csv_names[col_of[col]];
-            if (!field[0] || *end || !isfinite(x)) {
-                char esc[64]; /* file bytes, escaped */
-                sd_escape(esc, sizeof esc, field, 40);
-                st = sd_error_set(p->err, SD_ERR_INPUT, g->file, line, key,
-                                  "column %s: expected a number, got '%s'", name, esc);
-                goto done;
-            }
-            if (col_of[col] == SD_CSV_R && !(x > 0.0)) {
-                st = sd_error_set(p->err, SD_ERR_INPUT, g->file, line, key,
-                                  "column radius: expected a number > 0, got %s", field);
-                goto done;
-            }
-            val[col_of[col]] = x;
+            cell[col_of[col]] = sd_trim(c);
             c = next;
         }
         if (col != ncols) {
@@ -997,36 +1035,130 @@ static sd_status sd_read_csv(sd_parse *p, sd_scene_generator *g, const char *key
                               "expected %d values as in the header, got %d", ncols, col);
             goto done;
         }
+        double val[SD_CSV_NCOL] = {0};
+        int has[SD_CSV_NCOL] = {0};
+        for (int j = 0; j < SD_CSV_NCOL; ++j) {
+            if (!cell[j] || j == SD_CSV_SHAPE || j == SD_CSV_MATERIAL)
+                continue;
+            if (!cell[j][0] && j > SD_CSV_Z)
+                continue; /* an empty optional cell: the generator's value */
+            char *end;
+            double x = strtod(cell[j], &end);
+            if (!cell[j][0] || *end || !isfinite(x)) {
+                sd_escape(esc, sizeof esc, cell[j], 40);
+                st = sd_error_set(p->err, SD_ERR_INPUT, g->file, line, key,
+                                  "column %s: expected a number, got '%s'", sd_csv_names[j], esc);
+                goto done;
+            }
+            val[j] = x;
+            has[j] = 1;
+        }
+        if (has[SD_CSV_R] && !(val[SD_CSV_R] > 0.0)) {
+            st = sd_error_set(p->err, SD_ERR_INPUT, g->file, line, key,
+                              "column radius: expected a number > 0, got %s", cell[SD_CSV_R]);
+            goto done;
+        }
+        /* A sphere (radius) or a body of a shape (the row's, or the generator's). */
+        int shape = -1;
+        const char *sname = cell[SD_CSV_SHAPE] ? cell[SD_CSV_SHAPE] : "";
+        if (sname[0]) {
+            if (has[SD_CSV_R]) {
+                st = sd_error_set(p->err, SD_ERR_INPUT, g->file, line, key,
+                                  "give either radius (a sphere) or shape on a row, not both");
+                goto done;
+            }
+            for (size_t i = 0; i < p->s->shape_count && shape < 0; ++i)
+                if (!strcmp(p->s->shapes[i].name, sname))
+                    shape = (int)i;
+            if (shape < 0) {
+                sd_escape(esc, sizeof esc, sname, 40);
+                st = sd_error_set(p->err, SD_ERR_INPUT, g->file, line, key,
+                                  "column shape: unknown shape '%s' (shapes: %s)", esc,
+                                  sd_csv_known(p->s, 0, known, sizeof known));
+                goto done;
+            }
+        } else if (!has[SD_CSV_R]) {
+            if (g->shape < 0) {
+                st = sd_error_set(p->err, SD_ERR_INPUT, g->file, line, key,
+                                  "expected a radius (a sphere) or a shape name, got neither");
+                goto done;
+            }
+            shape = g->shape;
+        }
+        sd_scene_orient orient = g->orient;
+        double q[4] = {g->quat[0], g->quat[1], g->quat[2], g->quat[3]};
+        int nq = has[SD_CSV_QW] + has[SD_CSV_QX] + has[SD_CSV_QY] + has[SD_CSV_QZ];
+        if (nq != 0 && nq != 4) {
+            st = sd_error_set(p->err, SD_ERR_INPUT, g->file, line, key,
+                              "columns qw, qx, qy, qz: expected all four values or none, got %d", nq);
+            goto done;
+        }
+        if (nq == 4) {
+            if (shape < 0) {
+                st = sd_error_set(p->err, SD_ERR_INPUT, g->file, line, key,
+                                  "columns qw, qx, qy, qz: an orientation applies to bodies of a "
+                                  "shape only (this row is a sphere: leave them empty)");
+                goto done;
+            }
+            /* scaled by the largest component first, so that no square overflows */
+            double m = 0.0, norm = 0.0;
+            for (int k = 0; k < 4; ++k)
+                m = fmax(m, fabs(val[SD_CSV_QW + k]));
+            if (!(m > 0.0)) {
+                st = sd_error_set(p->err, SD_ERR_INPUT, g->file, line, key,
+                                  "columns qw, qx, qy, qz: expected a non-zero quaternion, got 0, 0, "
+                                  "0, 0");
+                goto done;
+            }
+            for (int k = 0; k < 4; ++k) {
+                q[k] = val[SD_CSV_QW + k] / m;
+                norm += q[k] * q[k];
+            }
+            norm = sqrt(norm);
+            for (int k = 0; k < 4; ++k)
+                q[k] /= norm;
+            orient = SD_ORIENT_FIXED;
+        }
+        int material = g->material;
+        if (cell[SD_CSV_MATERIAL] && cell[SD_CSV_MATERIAL][0]) {
+            material = -1;
+            for (size_t i = 0; i < p->s->material_count && material < 0; ++i)
+                if (!strcmp(p->s->materials[i].name, cell[SD_CSV_MATERIAL]))
+                    material = (int)i;
+            if (material < 0) {
+                sd_escape(esc, sizeof esc, cell[SD_CSV_MATERIAL], 40);
+                st = sd_error_set(p->err, SD_ERR_INPUT, g->file, line, key,
+                                  "column material: unknown material '%s' (materials: %s)", esc,
+                                  sd_csv_known(p->s, 1, known, sizeof known));
+                goto done;
+            }
+        }
         if (g->list_count == cap) {
             size_t ncap = cap ? 2 * cap : 256;
-            sd_sphere_def *nl = sd_realloc(g->list, ncap * sizeof *nl);
-            if (nl)
-                g->list = nl;
-            int *nli = nl ? sd_realloc(g->list_lines, ncap * sizeof *nli) : NULL;
-            if (!nli) {
+            if (!sd_csv_grow(g, ncap)) {
                 st = sd_error_set(p->err, SD_ERR_MEMORY, g->file, line, key, "out of memory");
                 goto done;
             }
-            g->list_lines = nli;
             cap = ncap;
         }
-        sd_sphere_def *d = &g->list[g->list_count];
+        size_t k = g->list_count;
+        sd_sphere_def *d = &g->list[k];
         memset(d, 0, sizeof *d);
         d->position = (sd_v3d){val[SD_CSV_X], val[SD_CSV_Y], val[SD_CSV_Z]};
-        d->radius = val[SD_CSV_R];
-        d->velocity = g->velocity;
-        d->angular_velocity = g->angular_velocity;
-        for (int j = 0; j < ncols; ++j) {
-            /* Velocity columns override the generator's velocity. */
-            if (col_of[j] == SD_CSV_VX)
-                d->velocity.x = val[SD_CSV_VX];
-            if (col_of[j] == SD_CSV_VY)
-                d->velocity.y = val[SD_CSV_VY];
-            if (col_of[j] == SD_CSV_VZ)
-                d->velocity.z = val[SD_CSV_VZ];
-        }
-        d->material = g->material;
-        g->list_lines[g->list_count++] = line;
+        d->radius = shape < 0 ? val[SD_CSV_R] : 0.0; /* a shape's bound is set at generation */
+        /* Velocity columns override the generator's velocity, per component. */
+        const sd_v3d v0 = g->velocity, w0 = g->angular_velocity;
+        d->velocity = (sd_v3d){has[SD_CSV_VX] ? val[SD_CSV_VX] : v0.x, has[SD_CSV_VY] ? val[SD_CSV_VY] : v0.y,
+                               has[SD_CSV_VZ] ? val[SD_CSV_VZ] : v0.z};
+        d->angular_velocity = (sd_v3d){has[SD_CSV_WX] ? val[SD_CSV_WX] : w0.x,
+                                       has[SD_CSV_WY] ? val[SD_CSV_WY] : w0.y,
+                                       has[SD_CSV_WZ] ? val[SD_CSV_WZ] : w0.z};
+        d->material = material;
+        g->list_shape[k] = shape;
+        g->list_orient[k] = orient;
+        memcpy(g->list_quat[k], q, sizeof q);
+        g->list_lines[k] = line;
+        g->list_count = k + 1;
     }
     if (st == SD_OK && ferror(f))
         st = sd_error_set(p->err, SD_ERR_IO, g->file, line, key, "read error: %s", strerror(errno));
@@ -1035,7 +1167,7 @@ static sd_status sd_read_csv(sd_parse *p, sd_scene_generator *g, const char *key
                           "the CSV file has no header line (expected a header such as "
                           "x,y,z,radius)");
     else if (st == SD_OK && g->list_count == 0)
-        st = sd_error_set(p->err, SD_ERR_INPUT, g->file, line, key, "the CSV file has no spheres");
+        st = sd_error_set(p->err, SD_ERR_INPUT, g->file, line, key, "the CSV file has no particles");
 done:
     fclose(f);
     return st;
@@ -1955,7 +2087,7 @@ static sd_status sd_parse_particles(sd_parse *p, yaml_node_t *list, int line)
         int has_orient = sd_get(p, m, SD_SEC_PARTICLES, "orientation", path, &ov);
         g->orient = has_orient ? (sd_scene_orient)ov.choice : SD_ORIENT_RANDOM;
         memcpy(g->quat, ov.q, sizeof g->quat);
-        if (has_orient && g->shape < 0 && g->kind != SD_GEN_LIST)
+        if (has_orient && g->shape < 0 && g->kind != SD_GEN_LIST && g->kind != SD_GEN_CSV)
             return sd_fail(p, ov.line, sd_kp(key, sizeof key, path, "orientation"),
                            "orientation applies to bodies of a shape only (give shape: NAME)");
 
@@ -2023,6 +2155,15 @@ static sd_status sd_parse_particles(sd_parse *p, yaml_node_t *list, int line)
                 return sd_fail(p, v.line, key, "path too long");
             if ((st = sd_read_csv(p, g, key, v.line)))
                 return st;
+            if (has_orient) {
+                int shaped = 0;
+                for (size_t k = 0; k < g->list_count; ++k)
+                    shaped |= g->list_shape[k] >= 0;
+                if (!shaped)
+                    return sd_fail(p, ov.line, sd_kp(key, sizeof key, path, "orientation"),
+                                   "orientation applies to bodies of a shape only (no row has a "
+                                   "shape)");
+            }
             break;
         }
         static const char *const count_key[] = {"count", "number", "spheres", "file"};
@@ -2338,7 +2479,7 @@ static sd_status sd_check_laws(sd_parse *p)
         return sd_error_set(p->err, SD_ERR_MEMORY, p->path, 0, "", "out of memory");
     for (size_t g = 0; g < s->generator_count; ++g) {
         const sd_scene_generator *gen = &s->generators[g];
-        if (gen->kind == SD_GEN_LIST)
+        if (gen->kind == SD_GEN_LIST || gen->kind == SD_GEN_CSV) /* a material per entry */
             for (size_t i = 0; i < gen->list_count; ++i)
                 use[gen->list[i].material] |= 1;
         else
@@ -2394,10 +2535,11 @@ static sd_status sd_check_laws(sd_parse *p)
      * for them); world/material.c checks again at prepare time. */
     for (size_t g = 0; g < s->generator_count && st == SD_OK; ++g) {
         const sd_scene_generator *gen = &s->generators[g];
-        size_t cnt = gen->kind == SD_GEN_LIST ? gen->list_count : 1;
+        int listed = gen->kind == SD_GEN_LIST || gen->kind == SD_GEN_CSV; /* per entry */
+        size_t cnt = listed ? gen->list_count : 1;
         for (size_t i = 0; i < cnt && st == SD_OK; ++i) {
-            int a = gen->kind == SD_GEN_LIST ? gen->list[i].material : gen->material;
-            int sh = (gen->kind == SD_GEN_LIST && gen->list_shape) ? gen->list_shape[i] : gen->shape;
+            int a = listed ? gen->list[i].material : gen->material;
+            int sh = (listed && gen->list_shape) ? gen->list_shape[i] : gen->shape;
             const sd_scene_shape *ss = sh >= 0 ? &s->shapes[sh] : NULL;
             if (ss && ss->kind == SD_SHAPE_POLYHEDRON && !(ss->rounding > 0) && !(ss->margin > 0))
                 continue;

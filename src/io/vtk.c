@@ -103,7 +103,8 @@ static void sd_vtk_appended_close(FILE *fp) { fprintf(fp, "\n  </AppendedData>\n
     X(SD_VF_FORCE, "force", "Float64", 3, 8)                                                        \
     X(SD_VF_MATERIAL, "material", "Int32", 1, 4)                                                    \
     X(SD_VF_ORIENTATION, "orientation", "Float64", 4, 8)                                             \
-    X(SD_VF_AXIS, "axis", "Float64", 3, 8)
+    X(SD_VF_AXIS, "axis", "Float64", 3, 8)                                                          \
+    X(SD_VF_SHAPE, "shape", "Int32", 1, 4)
 
 typedef enum sd_vtk_field {
 #define SD_X_ENUM(e, name, type, comps, size) e,
@@ -121,6 +122,7 @@ static void sd_vtk_put_field(sd_bin *b, sd_vtk_field f, const sd_particle_state 
     case SD_VF_ANGULAR_VELOCITY: sd_bin_v3(b, p->angular_velocity); break;
     case SD_VF_FORCE: sd_bin_v3(b, p->force); break;
     case SD_VF_MATERIAL: sd_bin_i32(b, (int32_t)p->material); break;
+    case SD_VF_SHAPE: sd_bin_i32(b, (int32_t)p->shape); break; /* -1: a plain sphere */
     case SD_VF_ORIENTATION:
         for (int k = 0; k < 4; ++k)
             sd_bin_f64(b, p->quat[k]);
@@ -166,13 +168,50 @@ static sd_status sd_vtk_bin_status(sd_bin *b, sd_error *err)
     return SD_OK;
 }
 
+/* One field-data string array of count names, in VTK's ascii String
+ * encoding (each name's bytes in decimal, each ended by a 0), so that any
+ * name survives the XML. */
+static void sd_vtk_names(FILE *fp, const char *array, size_t count, const sd_world *w,
+                         const char *(*name_of)(const sd_world *, size_t))
+{
+    fprintf(fp, "      <Array type=\"String\" Name=\"%s\" NumberOfTuples=\"%zu\" format=\"ascii\">\n       ",
+            array, count);
+    for (size_t k = 0; k < count; ++k) {
+        const char *s = name_of(w, k);
+        for (const unsigned char *c = (const unsigned char *)(s ? s : ""); *c; ++c)
+            fprintf(fp, " %u", (unsigned)*c);
+        fprintf(fp, " 0");
+    }
+    fprintf(fp, "\n      </Array>\n");
+}
+
+static const char *sd_vtk_shape_name(const sd_world *w, size_t k)
+{
+    sd_shape_info info;
+    return sd_world_get_shape(w, k, &info) == SD_OK ? info.name : "";
+}
+
+static size_t sd_vtk_material_count(const sd_world *w)
+{
+    size_t n = 0;
+    while (sd_world_material_name(w, n))
+        ++n;
+    return n;
+}
+
 /* The XML head of a particle frame of n particles, up to the '_' that
- * starts the appended data; returns the appended data's size in bytes. */
-static uint64_t sd_vtk_particles_head(FILE *fp, size_t n)
+ * starts the appended data; returns the appended data's size in bytes.
+ * Field data names the shape and material indices of the point data
+ * (scripts/frame_to_csv.py reads them to write a packing that loads again). */
+static uint64_t sd_vtk_particles_head(FILE *fp, const sd_world *w, size_t n)
 {
     uint64_t off = 0;
     sd_vtk_file_open(fp, "UnstructuredGrid");
     fprintf(fp, "  <UnstructuredGrid>\n");
+    fprintf(fp, "    <FieldData>\n");
+    sd_vtk_names(fp, "shape_names", sd_world_shape_count(w), w, sd_vtk_shape_name);
+    sd_vtk_names(fp, "material_names", sd_vtk_material_count(w), w, sd_world_material_name);
+    fprintf(fp, "    </FieldData>\n");
     fprintf(fp, "    <Piece NumberOfPoints=\"%zu\" NumberOfCells=\"%zu\">\n", n, n);
     fprintf(fp, "      <PointData Scalars=\"radius\" Vectors=\"velocity\">\n");
 #define SD_X_DECL(e, name, type, comps, size)                                                       \
@@ -190,14 +229,14 @@ static uint64_t sd_vtk_particles_head(FILE *fp, size_t n)
     return off;
 }
 
-uint64_t sd_vtk_particles_bytes(size_t n)
+uint64_t sd_vtk_particles_bytes(const sd_world *w, size_t n)
 {
     char *text = NULL;
     size_t len = 0;
     FILE *fp = open_memstream(&text, &len);
     if (!fp)
         return 0;
-    uint64_t data = sd_vtk_particles_head(fp, n);
+    uint64_t data = sd_vtk_particles_head(fp, w, n);
     sd_vtk_appended_close(fp);
     int bad = ferror(fp);
     fclose(fp);
@@ -210,7 +249,7 @@ sd_status sd_vtk_write_particles(FILE *fp, const sd_world *w, sd_error *err)
 {
     errno = 0; /* so that a failure below reports its own reason */
     size_t n = sd_world_particle_count(w);
-    sd_vtk_particles_head(fp, n);
+    sd_vtk_particles_head(fp, w, n);
 
     static const int comps[SD_VF_COUNT] = {
 #define SD_X_COMPS(e, name, type, c, size) c,

@@ -19,8 +19,9 @@
 sd_status sd_vtk_write_particles(FILE *fp, const sd_world *w, sd_error *err);
 
 /* Bytes of the particle frame sd_vtk_write_particles writes for n
- * particles (the layout depends on n only); 0 when out of memory. */
-uint64_t sd_vtk_particles_bytes(size_t n);
+ * particles of w (the layout depends on n and the names of w's shapes and
+ * materials only); 0 when out of memory. */
+uint64_t sd_vtk_particles_bytes(const sd_world *w, size_t n);
 
 /* Side (m) of the square drawn for plane walls: 1.2 x the diagonal of the
  * particles' bounding box (radii included), at least 1e-3 m. */

@@ -266,6 +266,11 @@ int sd_world_find_material(const sd_world *w, const char *name)
     return -1;
 }
 
+const char *sd_world_material_name(const sd_world *w, size_t index)
+{
+    return index < w->material_count ? w->materials[index].name : NULL;
+}
+
 sd_status sd_world_set_interaction(sd_world *w, int a, int b, const sd_interaction_def *d, sd_error *err)
 {
     if (!d || d->cookie != SD_COOKIE)

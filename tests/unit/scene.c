@@ -968,9 +968,9 @@ static const bad_case bad_cases[] = {
      "particles:\n  - generator: list\n    material: glass\n    shape: cube\n    spheres:\n"
      "      - {position: [0, 0, 0.01], orientation: [0, 0, 0, 0]}\n",
      NULL, 15, "particles[0].spheres[0].orientation", "non-zero quaternion", 0},
-    {"shape in a csv generator", SIM MAT CUBE
+    {"csv row with a radius and a shape", SIM MAT CUBE
      "particles:\n  - generator: csv\n    material: glass\n    shape: cube\n    file: spheres.csv\n",
-     "x,y,z,radius\n0,0,0,0.001\n", 13, "particles[0].shape", "does not apply to a csv generator", 0},
+     "x,y,z,radius,shape\n0,0,0,0.001,cube\n", 2, "particles[0].file", "not both", 1},
     {"lattice too tight for a shape", SIM MAT CUBE
      "particles:\n  - generator: lattice\n    material: glass\n    shape: cube\n"
      "    origin: [0, 0, 0.01]\n    spacing: 0.0015\n    count: [2, 2, 2]\n",
