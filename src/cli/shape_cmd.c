@@ -140,7 +140,7 @@ static int sd_mesh_info(const char *path, int argc, char **argv)
     int take_hull = 0;
     for (int k = 4; k < argc; k += 2) {
         const char *a = argv[k], *v = k + 1 < argc ? argv[k + 1] : NULL;
-        sd_v3d x;
+        sd_v3d x = {0, 0, 0}; /* set when num; gcc -O3 cannot see that */
         int num = v && !sd_parse_v3(v, &x);
         if (!v) {
             fprintf(stderr, "shapedem: %s needs a value\n", a);
