@@ -469,6 +469,8 @@ int main(int argc, char **argv)
             sd_scene_print_keys(stdout, c.markdown);
             return 0;
         }
+        if (c.scene) /* a topic that does not exist is a typo, not a request for the usage */
+            return sd_usage_error("unknown help topic '%s' (the topics: scene)", c.scene);
         sd_usage(stdout);
         return 0;
     }

@@ -38,6 +38,12 @@ for t in "${topics[@]}"; do
         "$tmp/out" | head -5
 done
 
+# A help topic that does not exist is a usage error (one line, exit 2), not the usage.
+err=$("$bin" help scnee 2>&1 >/dev/null)
+rc=$?
+check "'help scnee': exit $rc (2), one line naming the topic" \
+    "$([[ $rc == 2 && $(wc -l <<<"$err") == 1 && $err == *"'scnee'"* ]] && echo 1 || echo 0)"
+
 # help scene lists every key: the plain form keeps the key table's rows
 # (one row per key in the markdown form).
 "$bin" help scene >"$tmp/plain"
