@@ -17,8 +17,8 @@ Writes into DIR: discharge.csv, discharge.png (matplotlib, Agg backend) and
 dead-zones.txt, and prints a summary, including the discharge rate over
 20-50 % and 50-80 % discharged and how far each is from their mean (a steady
 flow keeps them within a few per cent; Beverloo). Exit status 2 on bad input
-(missing files, no discharge), 0 otherwise. Only the standard library,
-numpy and matplotlib are used.
+(missing files, no discharge), 0 otherwise. Only the standard library and
+matplotlib (Debian: python3-matplotlib, which scripts/deps.sh installs) are used.
 """
 import csv
 import math

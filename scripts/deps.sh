@@ -13,12 +13,12 @@ set -euo pipefail
 
 # build: compiler, CMake, YAML parser. tests: independent libraries used as
 # oracles (libccd for GJK/EPA, qhull for overlap volumes). Python 3 with
-# matplotlib and numpy: the analysis and plotting scripts (examples/,
+# matplotlib (numpy comes with it): the analysis and plotting scripts (examples/,
 # docs/validation/, scripts/), which tests run; Debian's interpreter is the
 # one these modules install into (/usr/bin/python3). git: the suite lists the
 # tracked files it checks.
 need_pkgs=(build-essential cmake pkg-config libyaml-dev libccd-dev libqhull-dev
-  python3 python3-matplotlib python3-numpy git)
+  python3 python3-matplotlib git)
 if [[ "${SHAPEDEM_WITH_BENCH:-0}" == 1 ]]; then
   need_pkgs+=(liggghts)
 fi

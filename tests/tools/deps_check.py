@@ -7,9 +7,9 @@ Finds what the project uses and asks dpkg which Debian package provides it:
 - every command-line tool that a test script (tests/cli/*.sh, .ci/run), a
   project script (scripts/*.sh) or a command in README.md calls.
 
-Each one must come from a package that `scripts/deps.sh --list` names, from
-a package those depend on (installed dependencies, followed recursively), or
-from a package every Debian system has (Essential: yes, Priority: required).
+Each one must be provided by a package that `scripts/deps.sh --list` names,
+by one those depend on (installed dependencies, followed recursively), or by
+one every Debian system has (Essential: yes, Priority: required).
 A module that does not import, a tool that is not on the Debian PATH, or one
 whose package deps.sh does not pull in is reported with the file and line
 that use it, and the exit status is 1. --without PKG drops PKG from the list
