@@ -14,6 +14,7 @@
  * past the buffer.
  */
 #include "test.h"
+#include "test_quad.h"
 
 #include <string.h>
 
@@ -29,28 +30,7 @@ typedef void (*vfun)(double t, const void *ctx, double out[NV]);
 /* the 8-point Gauss–Legendre rule on [-1, 1], by Newton on P_8 */
 static double g8x[8], g8w[8];
 
-static void gl_init(void)
-{
-    const int n = 8;
-    for (int i = 0; i < n; ++i) {
-        double z = cos(M_PI * (i + 0.75) / (n + 0.5)), pp = 1;
-        for (int it = 0; it < 100; ++it) {
-            double p1 = 1, p2 = 0;
-            for (int j = 1; j <= n; ++j) {
-                double p3 = p2;
-                p2 = p1;
-                p1 = ((2.0 * j - 1) * z * p2 - (j - 1.0) * p3) / j;
-            }
-            pp = n * (z * p1 - p2) / (z * z - 1);
-            double z1 = z;
-            z = z1 - p1 / pp;
-            if (fabs(z - z1) < 1e-16)
-                break;
-        }
-        g8x[i] = z;
-        g8w[i] = 2 / ((1 - z * z) * pp * pp);
-    }
-}
+static void gl_init(void) { gl_nodes(8, g8x, g8w); }
 
 static void gl8(vfun f, const void *ctx, double a, double b, double out[NV])
 {

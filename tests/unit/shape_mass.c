@@ -12,6 +12,7 @@
  * kept), translation and rotation invariance of polyhedra, and bad input.
  */
 #include "test.h"
+#include "test_quad.h"
 
 #include <string.h>
 
@@ -57,28 +58,6 @@ static void check_mass(const char *label, sd_shape s, double vol, double ix, dou
 
 /* ---- Gauss–Legendre on [lo, hi] ------------------------------------------- */
 
-static void gl_nodes(int n, double *x, double *w)
-{
-    for (int i = 0; i < (n + 1) / 2; ++i) {
-        double z = cos(M_PI * (i + 0.75) / (n + 0.5)), pp = 1;
-        for (int it = 0; it < 100; ++it) {
-            double p1 = 1, p2 = 0;
-            for (int j = 1; j <= n; ++j) {
-                double p3 = p2;
-                p2 = p1;
-                p1 = ((2.0 * j - 1) * z * p2 - (j - 1.0) * p3) / j;
-            }
-            pp = n * (z * p1 - p2) / (z * z - 1);
-            double z1 = z;
-            z = z1 - p1 / pp;
-            if (fabs(z - z1) < 1e-16)
-                break;
-        }
-        x[i] = -z;
-        x[n - 1 - i] = z;
-        w[i] = w[n - 1 - i] = 2 / ((1 - z * z) * pp * pp);
-    }
-}
 
 #define NGL 64
 static double glx[NGL], glw[NGL];
