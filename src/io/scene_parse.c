@@ -28,6 +28,7 @@
 
 #include "core/alloc.h"
 #include "core/error.h"
+#include "io/mesh.h"
 #include "io/scene.h"
 #include "io/scene_keys.h"
 /* Only the shape kinds and SD_SHAPE_MAX_VERTICES are wanted from shape.h;
@@ -1187,25 +1188,6 @@ static int sd_resolve(const char *scene, const char *file, char *out, size_t siz
 
 /* ---- shapes ------------------------------------------------------------- */
 
-typedef struct sd_vbuf {
-    sd_v3d *v;
-    size_t n, cap;
-} sd_vbuf;
-
-static int sd_vbuf_push(sd_vbuf *b, double x, double y, double z)
-{
-    if (b->n == b->cap) {
-        size_t nc = b->cap ? 2 * b->cap : 64;
-        sd_v3d *nv = sd_realloc(b->v, nc * sizeof *nv);
-        if (!nv)
-            return 0;
-        b->v = nv;
-        b->cap = nc;
-    }
-    b->v[b->n++] = (sd_v3d){x, y, z};
-    return 1;
-}
-
 static int sd_v3d_cmp(const void *pa, const void *pb)
 {
     const sd_v3d *a = pa, *b = pb;
@@ -1218,187 +1200,41 @@ static int sd_v3d_cmp(const void *pa, const void *pb)
     return 0;
 }
 
-/* Little-endian binary STL fields, read byte by byte (any host order). */
-static uint32_t sd_le32(const unsigned char *b)
-{
-    return (uint32_t)b[0] | (uint32_t)b[1] << 8 | (uint32_t)b[2] << 16 | (uint32_t)b[3] << 24;
-}
-
-static double sd_lef32(const unsigned char *b)
-{
-    uint32_t u = sd_le32(b);
-    float f;
-    memcpy(&f, &u, sizeof f);
-    return (double)f;
-}
-
-/* The shape is the convex hull of a mesh file's vertices; its faces only
- * prove that the mesh is convex (seed 000 §2.1 templates are convex).
- * OBJ: every "v x y z" line, and "f i j k ..." lines (i, i/t, i/t/n or
- * i//n, negative = relative) for the faces. STL: the vertices of every
- * triangle, binary (80-byte header, triangle count, 50 bytes per triangle)
- * when the size matches, ASCII ("vertex x y z", three per facet)
- * otherwise. Repeated vertices (STL repeats each in every triangle) are
- * dropped. A vertex or a face centre deeper than 1e-6 of the mesh's size
- * inside the hull makes the mesh non-convex: an error that says how far,
- * unless take_hull (then a warning in sh->warning). Errors name the scene
- * line of shapes[i].file and the mesh file. */
+/* The shape is the convex hull of a mesh file's vertices (io/mesh.c reads
+ * the file); its faces only prove that the mesh is convex (seed 000 §2.1
+ * templates are convex). Repeated vertices (STL repeats each in every
+ * triangle) are dropped. A vertex or a face centre deeper than 1e-6 of the
+ * mesh's size inside the hull makes the mesh non-convex: an error that
+ * says how far, unless take_hull (then a warning in sh->warning). Errors
+ * name the scene line of shapes[i].file, and the mesh file in the text. */
 #define SD_MESH_CONVEX_REL 1e-6
 #define SD_MESH_COORD_MAX 1e60 /* largest |coordinate| in a mesh file */
 #define SD_MESH_COORD_MIN 1e-60 /* smallest extent of a mesh file's vertices */
 static sd_status sd_read_mesh(sd_parse *p, sd_scene_shape *sh, const char *key, int line, int take_hull)
 {
-    const char *dot = strrchr(sh->file, '.');
-    int obj = dot && (!strcmp(dot, ".obj") || !strcmp(dot, ".OBJ"));
-    int stl = dot && (!strcmp(dot, ".stl") || !strcmp(dot, ".STL"));
-    if (!obj && !stl)
-        return sd_fail(p, line, key, "expected an .obj or .stl file, got '%s'", sh->file);
-    FILE *f = fopen(sh->file, "rb");
-    if (!f)
-        return sd_fail(p, line, key, "cannot open the mesh file '%s': %s", sh->file,
-                       strerror(errno));
-    long size = -1;
-    if (fseek(f, 0, SEEK_END) == 0)
-        size = ftell(f);
-    if (size < 0 || size > (1L << 28) || fseek(f, 0, SEEK_SET) != 0) {
-        fclose(f);
-        return sd_fail(p, line, key, "cannot read the mesh file '%s' (at most 256 MiB)", sh->file);
+    sd_mesh mesh;
+    sd_error merr;
+    if (sd_mesh_read(sh->file, &mesh, &merr) != SD_OK) {
+        if (merr.code == SD_ERR_MEMORY)
+            return sd_error_set(p->err, SD_ERR_MEMORY, p->path, line, key, "out of memory");
+        return sd_fail(p, line, key, "%s", merr.msg); /* the message names the mesh file and its line */
     }
-    unsigned char *buf = sd_malloc((size_t)size + 1);
-    if (!buf) {
-        fclose(f);
+    /* the face centres, then the vertices (sorted and made distinct below) */
+    struct {
+        sd_v3d *v;
+        size_t n;
+    } vb = {NULL, 0}, fc = {NULL, 0};
+    fc.v = sd_malloc((mesh.face_count ? mesh.face_count : 1) * sizeof *fc.v);
+    if (!fc.v) {
+        sd_mesh_free(&mesh);
         return sd_error_set(p->err, SD_ERR_MEMORY, p->path, line, key, "out of memory");
     }
-    size_t got = fread(buf, 1, (size_t)size, f);
-    fclose(f);
-    if (got != (size_t)size) {
-        sd_free(buf);
-        return sd_fail(p, line, key, "cannot read the mesh file '%s'", sh->file);
-    }
-    buf[size] = '\0';
-    sd_vbuf vb = {NULL, 0, 0}, fc = {NULL, 0, 0}; /* vertices, face centres */
-    sd_status st = SD_OK;
-    int oom = 0;
-    if (stl && size >= 84 && 84 + 50 * (long)sd_le32(buf + 80) == size) {
-        size_t nt = sd_le32(buf + 80);
-        for (size_t t = 0; t < nt && !oom && st == SD_OK; ++t) {
-            for (int c = 0; c < 3 && !oom; ++c) {
-                const unsigned char *q = buf + 84 + 50 * t + 12 + 12 * (size_t)c;
-                double x = sd_lef32(q), y = sd_lef32(q + 4), z = sd_lef32(q + 8);
-                if (!isfinite(x) || !isfinite(y) || !isfinite(z)) {
-                    /* named by the file's facet, before the sorting below */
-                    st = sd_fail(p, line, key, "facet %zu of %zu in '%s': vertex %d is (%g, %g, %g), not finite",
-                                 t + 1, nt, sh->file, c + 1, x, y, z);
-                    break;
-                }
-                oom = !sd_vbuf_push(&vb, x, y, z);
-            }
-            if (st != SD_OK)
-                break;
-            if (!oom) {
-                const sd_v3d *a = &vb.v[vb.n - 3];
-                oom = !sd_vbuf_push(&fc, (a[0].x + a[1].x + a[2].x) / 3, (a[0].y + a[1].y + a[2].y) / 3,
-                                    (a[0].z + a[1].z + a[2].z) / 3);
-            }
-        }
-    } else {
-        char *text = (char *)buf;
-        if (memchr(buf, '\0', (size_t)size))
-            st = sd_fail(p, line, key, "'%s' is neither a binary STL file (its size does not match "
-                                       "its triangle count) nor a text file", sh->file);
-        int ln = 1;
-        for (char *c = text; st == SD_OK && !oom && *c;) {
-            char *eol = strchr(c, '\n');
-            if (eol)
-                *eol = '\0';
-            char *t = c + strspn(c, " \t\r");
-            const char *tag = obj ? "v" : "vertex";
-            size_t tl = strlen(tag);
-            /* OBJ keywords are lower case; STL writers also emit VERTEX */
-            if ((obj ? !strncmp(t, tag, tl) : !strncasecmp(t, tag, tl)) && (t[tl] == ' ' || t[tl] == '\t')) {
-                double x[3];
-                char *at = t + tl, *end;
-                int ok = 1, range = 0;
-                for (int a = 0; a < 3 && ok; ++a) {
-                    at += strspn(at, " \t");
-                    errno = 0;
-                    x[a] = strtod(at, &end);
-                    ok = end != at && isfinite(x[a]) && errno != ERANGE;
-                    if (end != at && errno == ERANGE) {
-                        /* overflow to inf, or underflow to 0 or a subnormal */
-                        char num[64];
-                        sd_escape(num, sizeof num, at, (size_t)(end - at));
-                        st = sd_fail(p, line, key, "%s line %d: coordinate %s is too %s for a double (%g); "
-                                     "write the mesh in other units and set scale:", sh->file, ln, num,
-                                     fabs(x[a]) > 1.0 ? "large" : "small", x[a]);
-                        range = 1;
-                    } else if (end != at && !isfinite(x[a])) {
-                        char num[64];
-                        sd_escape(num, sizeof num, at, (size_t)(end - at));
-                        st = sd_fail(p, line, key, "%s line %d: coordinate %s is not finite", sh->file, ln, num);
-                        range = 1;
-                    } else if (end != at && strpbrk(at, "xX") && strpbrk(at, "xX") < end) {
-                        /* strtod reads C's hexadecimal floats; YAML scenes and outline CSVs
-                         * take decimal numbers only, and so do mesh files */
-                        st = sd_fail(p, line, key, "%s line %d: hexadecimal numbers (0x...) are not "
-                                     "accepted; write decimal numbers", sh->file, ln);
-                        ok = 0;
-                        range = 1;
-                    }
-                    at = end;
-                }
-                if (!ok && !range)
-                    st = sd_fail(p, line, key, "%s line %d: expected '%s x y z' with 3 numbers",
-                                 sh->file, ln, tag);
-                else if (ok)
-                    oom = !sd_vbuf_push(&vb, x[0], x[1], x[2]);
-                if (!oom && st == SD_OK && stl && vb.n % 3 == 0) { /* a facet's third vertex */
-                    const sd_v3d *a = &vb.v[vb.n - 3];
-                    oom = !sd_vbuf_push(&fc, (a[0].x + a[1].x + a[2].x) / 3, (a[0].y + a[1].y + a[2].y) / 3,
-                                        (a[0].z + a[1].z + a[2].z) / 3);
-                }
-            } else if (obj && t[0] == 'f' && (t[1] == ' ' || t[1] == '\t')) {
-                /* a face: the centre of the vertices it names */
-                double cx = 0, cy = 0, cz = 0;
-                int nfv = 0;
-                char *at = t + 1, *end;
-                for (;;) {
-                    at += strspn(at, " \t\r");
-                    if (!*at)
-                        break;
-                    long idx = strtol(at, &end, 10);
-                    long k = idx < 0 ? (long)vb.n + idx : idx - 1;
-                    if (end == at || idx == 0 || k < 0 || k >= (long)vb.n) {
-                        char tok[48]; /* file bytes: escaped, they could be terminal controls */
-                        sd_escape(tok, sizeof tok, at, strcspn(at, " \t"));
-                        st = sd_fail(p, line, key, "%s line %d: a face names vertex '%s', but %zu vertices "
-                                                   "are defined before it", sh->file, ln, tok, vb.n);
-                        break;
-                    }
-                    cx += vb.v[k].x;
-                    cy += vb.v[k].y;
-                    cz += vb.v[k].z;
-                    ++nfv;
-                    at = end + strcspn(end, " \t\r"); /* skip /t/n */
-                }
-                if (st == SD_OK && nfv < 3)
-                    st = sd_fail(p, line, key, "%s line %d: a face needs at least 3 vertices, got %d", sh->file,
-                                 ln, nfv);
-                if (st == SD_OK)
-                    oom = !sd_vbuf_push(&fc, cx / nfv, cy / nfv, cz / nfv);
-            }
-            ++ln;
-            c = eol ? eol + 1 : c + strlen(c);
-        }
-    }
-    sd_free(buf);
-    if (oom)
-        st = sd_error_set(p->err, SD_ERR_MEMORY, p->path, line, key, "out of memory");
-    if (st != SD_OK) {
-        sd_free(vb.v);
-        sd_free(fc.v);
-        return st;
-    }
+    for (size_t f = 0; f < mesh.face_count; ++f)
+        fc.v[fc.n++] = sd_mesh_face_centre(&mesh, f);
+    vb.v = mesh.vertices;
+    vb.n = mesh.vertex_count;
+    mesh.vertices = NULL; /* now the shape's */
+    sd_mesh_free(&mesh);
     if (vb.n > 1)
         qsort(vb.v, vb.n, sizeof *vb.v, sd_v3d_cmp);
     size_t u = 0;
