@@ -29,6 +29,13 @@ if(SHAPEDEM_OPENMP)
   string(APPEND SD_PC_LIBS_PRIVATE " ${OpenMP_C_FLAGS}")
 endif()
 
+# A sanitizer build's library needs the sanitizer runtimes in the program,
+# loaded first.
+set(SD_PC_SANITIZE "")
+if(SHAPEDEM_SANITIZE)
+  set(SD_PC_SANITIZE " -fsanitize=address,undefined")
+endif()
+
 set(SD_PC_PREFIX "@SD_PC_PREFIX@") # left for the install step
 configure_file(${PROJECT_SOURCE_DIR}/cmake/shapedem.pc.in
   ${PROJECT_BINARY_DIR}/shapedem.pc.in @ONLY)
