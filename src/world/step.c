@@ -10,7 +10,8 @@
  *
  * Velocity Verlet (seed 004 eq. 9): forces at the start of a step are the
  * ones computed at the end of the previous step, so sd_world_prepare
- * computes them once before the first step. Every stage is one loop of the
+ * computes them once before the first step (sd_cells_prepare: the cells
+ * solver's half of the solver interface, world/solver.h). Every stage is one loop of the
  * backend; the CUDA backend will provide the same stages.
  */
 #include <math.h>
@@ -19,7 +20,7 @@
 #include "backend/cpu/poly.h"
 #include "broad/cells.h"
 #include "core/error.h"
-#include "grid/grid.h"
+#include "world/solver.h"
 #include "world/world.h"
 
 static sd_real sd_min_radius(const sd_world *w)
@@ -58,10 +59,8 @@ static sd_status sd_world_pair_forces(sd_world *w, sd_error *err)
     return SD_OK;
 }
 
-sd_status sd_world_prepare(sd_world *w, sd_error *err)
+sd_status sd_cells_prepare(sd_world *w, sd_error *err)
 {
-    if (w->def.solver == SD_SOLVER_GRID) /* the dense grid-stencil solver, src/grid (seed 001) */
-        return sd_grid_prepare(w, err);
     sd_status st = sd_world_mix_materials(w, err);
     if (st != SD_OK)
         return st;
@@ -104,12 +103,10 @@ SD_PARALLEL_FOR_REDUCE_OR(bad)
     return SD_OK;
 }
 
-sd_status sd_world_step(sd_world *w, long nsteps, sd_error *err)
+sd_status sd_cells_step(sd_world *w, long nsteps, sd_error *err)
 {
-    if (w->def.solver == SD_SOLVER_GRID)
-        return sd_grid_step(w, nsteps, err);
     if (!w->prepared) {
-        sd_status st = sd_world_prepare(w, err);
+        sd_status st = sd_cells_prepare(w, err);
         if (st != SD_OK)
             return st;
     }

@@ -16,7 +16,7 @@
 #include "broad/cells.h"
 #include "core/alloc.h"
 #include "core/error.h"
-#include "grid/grid.h"
+#include "world/solver.h"
 #include "world/world.h"
 
 #define SD_COOKIE 0x5D5D
@@ -184,6 +184,8 @@ sd_status sd_world_create(const sd_world_def *def, sd_world **out, sd_error *err
     w->gravity = sd_v3((sd_real)def->gravity.x, (sd_real)def->gravity.y, (sd_real)def->gravity.z);
     w->dim2 = def->dimension == 2;
     w->local_damping = (sd_real)def->local_damping;
+    /* the one place that asks which engine runs (world/solver.h) */
+    w->solver = def->solver == SD_SOLVER_GRID ? &sd_solver_grid : &sd_solver_cells;
     *out = w;
     return SD_OK;
 }
@@ -198,7 +200,7 @@ void sd_world_destroy(sd_world *w)
     sd_free(w->interactions);
     sd_free(w->mix);
     sd_free(w->walls);
-    sd_grid_state_free(w->grid_state);
+    w->solver->destroy(w);
     sd_free(w->shapes);
     sd_free(w->shape_names);
     sd_free(w->shape_req);
@@ -419,7 +421,30 @@ int sd_world_add_box(sd_world *w, const char *name, sd_v3d lo, sd_v3d hi, unsign
 
 /* ---- queries ---------------------------------------------------------------------- */
 
-size_t sd_world_particle_count(const sd_world *w) { return sd_grid_particle_count(w) + w->p.n; }
+/* ---- the solver interface (world/solver.h) ------------------------------------- */
+
+sd_status sd_world_prepare(sd_world *w, sd_error *err) { return w->solver->prepare(w, err); }
+sd_status sd_world_step(sd_world *w, long nsteps, sd_error *err) { return w->solver->step(w, nsteps, err); }
+size_t sd_world_particle_count(const sd_world *w) { return w->solver->count(w); }
+sd_status sd_world_get_particle(const sd_world *w, size_t k, sd_particle_state *out)
+{
+    return w->solver->read(w, k, out);
+}
+size_t sd_world_find_particle(const sd_world *w, uint64_t id) { return w->solver->find(w, id); }
+
+static void sd_cells_destroy(sd_world *w) { (void)w; /* the world's arrays are all it has */ }
+
+const sd_solver_ops sd_solver_cells = {
+    .name = "cells",
+    .prepare = sd_cells_prepare,
+    .step = sd_cells_step,
+    .count = sd_cells_count,
+    .read = sd_cells_read,
+    .find = sd_cells_find,
+    .destroy = sd_cells_destroy,
+};
+
+size_t sd_cells_count(const sd_world *w) { return w->p.n; }
 size_t sd_world_wall_count(const sd_world *w) { return w->wall_count; }
 long sd_world_step_count(const sd_world *w) { return w->step; }
 double sd_world_time(const sd_world *w) { return w->time; }
@@ -432,13 +457,9 @@ static sd_v3d sd_v3d_of(sd_vec3 v)
     return r;
 }
 
-sd_status sd_world_get_particle(const sd_world *w, size_t k, sd_particle_state *out)
+sd_status sd_cells_read(const sd_world *w, size_t k, sd_particle_state *out)
 {
     const sd_particles *p = &w->p;
-    size_t gn = sd_grid_particle_count(w); /* solver grid: its own state first (src/grid) */
-    if (k < gn)
-        return sd_grid_get_particle(w, k, out);
-    k -= gn;
     if (k >= p->n)
         return SD_ERR_INPUT;
     out->id = p->id[k];
@@ -458,14 +479,11 @@ sd_status sd_world_get_particle(const sd_world *w, size_t k, sd_particle_state *
     return SD_OK;
 }
 
-size_t sd_world_find_particle(const sd_world *w, uint64_t id)
+size_t sd_cells_find(const sd_world *w, uint64_t id)
 {
-    size_t gk = sd_grid_find_particle(w, id), gn = sd_grid_particle_count(w);
-    if (gk != (size_t)-1)
-        return gk;
     for (size_t k = 0; k < w->p.n; ++k)
         if (w->p.id[k] == id)
-            return gn + k;
+            return k;
     return (size_t)-1;
 }
 

@@ -132,6 +132,7 @@ struct sd_world {
     sd_wall_pair_list wpairs; /* particle-wall candidates */
     sd_grid grid;
     struct sd_grid_state *grid_state; /* solver grid (src/grid), NULL otherwise */
+    const struct sd_solver_ops *solver; /* the engine, chosen at creation (world/solver.h) */
     long rebuilds;
     int prepared;
     int dirty;                /* particles added since the last rebuild */
