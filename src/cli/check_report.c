@@ -20,6 +20,8 @@
 #include <time.h>
 
 #include "grid/grid.h"
+#include "io/output.h"
+#include "io/scene.h"
 
 static double sd_check_now(void)
 {
@@ -269,4 +271,40 @@ void sd_check_format_bytes(double b, char *buf, size_t size)
         snprintf(buf, size, "%.1f MB", b / 1e6);
     else
         snprintf(buf, size, "%.2f GB", b / 1e9);
+}
+
+void sd_check_print_grid(FILE *f, const sd_scene *s)
+{
+    if (s->pour.given)
+        fprintf(f,
+                "pour         %ld spheres of radius %.4g m (material %s), sheets at z = %.4g m, %.4g per s from "
+                "t = %.4g s, speeds vz in +-%.3g m/s, vx, vy in +-%.3g m/s\n",
+                s->pour.count, s->pour.radius, s->materials[s->pour.material].name, s->pour.height, s->pour.rate,
+                s->pour.start, s->pour.vertical_speed, s->pour.horizontal_speed);
+    if (s->outlet.given)
+        fprintf(f, "outlet       hole x in [%.4g, %.4g] m, y in [%.4g, %.4g] m in the box floor, opens at t = %.4g s\n",
+                s->outlet.lo[0], s->outlet.hi[0], s->outlet.lo[1], s->outlet.hi[1], s->outlet.open_at);
+}
+
+void sd_check_print_output(FILE *f, const sd_scene *s, const sd_world *w, size_t total, long frames, long rows,
+                           double end_time, size_t poured)
+{
+    sd_output_def od = {.directory = ".",
+                        .vtk = (s->output.formats & SD_OUT_VTK) != 0,
+                        .csv = (s->output.formats & SD_OUT_CSV) != 0,
+                        .scene = s->path};
+    sd_output_size osz;
+    sd_error oerr;
+    memset(&oerr, 0, sizeof oerr);
+    if (sd_output_estimate(&od, w, total, frames, rows, end_time, &osz, &oerr) != SD_OK)
+        return;
+    char tb[32], fb[32];
+    sd_check_format_bytes(osz.total, tb, sizeof tb);
+    sd_check_format_bytes(osz.frame_particles + osz.frame_walls, fb, sizeof fb);
+    fprintf(f, "output       about %s (%.0f bytes): ", tb, osz.total);
+    if (od.vtk)
+        fprintf(f, "%ld frames x %s%s", frames, fb, poured ? " (at most: all poured spheres in)" : "");
+    if (od.csv)
+        fprintf(f, "%s%ld stats rows x %.0f bytes", od.vtk ? ", " : "", rows, osz.stats_row);
+    fprintf(f, "\n");
 }

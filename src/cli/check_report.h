@@ -8,9 +8,8 @@
 
 #include <stdio.h>
 
+#include <shapedem/scene.h>
 #include <shapedem/shapedem.h>
-
-#include "io/scene.h"
 
 typedef struct sd_check_counts {
     size_t now;            /* particles in the world at the start */
@@ -50,6 +49,15 @@ void sd_check_time(const sd_scene *s, sd_world *w, size_t total, long steps, sd_
  * (the scene's values are SI) and returns how many. tc is the shortest
  * contact duration (s), dt the time step. */
 int sd_check_units(FILE *f, const sd_scene *s, const sd_check_counts *c, double tc, double dt);
+
+/* The pour: and outlet: lines of the report (solver grid), when given. */
+void sd_check_print_grid(FILE *f, const sd_scene *s);
+
+/* The output line: what a run of w would write (io/output.c's estimate)
+ * for `total` particles, `frames` frames and `rows` stats rows; poured:
+ * the frames are sized with every poured sphere in. */
+void sd_check_print_output(FILE *f, const sd_scene *s, const sd_world *w, size_t total, long frames, long rows,
+                           double end_time, size_t poured);
 
 /* "1.23 MB", "4.5 GB" */
 void sd_check_format_bytes(double b, char *buf, size_t size);

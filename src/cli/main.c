@@ -13,15 +13,14 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
-#include <time.h>
 #include <unistd.h>
 
 #include <shapedem/shapedem.h>
 
+#include <shapedem/scene.h>
+
 #include "cli/check_report.h"
 #include "cli/commands.h"
-#include "io/output.h"
-#include "io/scene.h"
 
 #define SD_STR(x) #x
 #define SD_XSTR(x) SD_STR(x) /* a macro's value as a string literal */
@@ -32,13 +31,6 @@ static void sd_on_signal(int sig)
 {
     (void)sig;
     sd_interrupted = 1;
-}
-
-static double sd_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 static size_t sd_peak_rss(void)
@@ -166,26 +158,15 @@ static int sd_load_world(const sd_cli *c, sd_scene **scene, sd_world **world)
     if (sd_scene_load(c->scene, scene, &err) != SD_OK)
         return sd_cli_fail_input(&err);
     if (c->threads > 0)
-        (*scene)->world.threads = (int)c->threads;
+        sd_scene_set_threads(*scene, (int)c->threads);
     if (c->steps >= 0)
-        (*scene)->steps = c->steps;
+        sd_scene_set_steps(*scene, c->steps);
     if (sd_scene_build(*scene, world, &err) != SD_OK) {
         sd_scene_free(*scene);
         *scene = NULL;
         return sd_cli_fail_input(&err);
     }
     return 0;
-}
-
-static void sd_default_outdir(const char *scene, char *buf, size_t size)
-{
-    const char *base = strrchr(scene, '/');
-    base = base ? base + 1 : scene;
-    size_t n = strlen(base);
-    const char *dot = strrchr(base, '.');
-    if (dot && dot != base)
-        n = (size_t)(dot - base);
-    snprintf(buf, size, "out/%.*s", (int)n, base);
 }
 
 static void sd_format_duration(double s, char *buf, size_t size)
@@ -200,6 +181,9 @@ static void sd_format_duration(double s, char *buf, size_t size)
         snprintf(buf, size, "%dh%02dm", (int)(s / 3600), ((int)s % 3600) / 60);
 }
 
+/* The scene's run through the public run API (shapedem/scene.h), with a
+ * progress line on a terminal and a stop at an interrupt: it advances one
+ * output interval (at most 200 steps on a terminal) at a time. */
 static int sd_cmd_run(const sd_cli *c)
 {
     sd_scene *scene = NULL;
@@ -207,121 +191,86 @@ static int sd_cmd_run(const sd_cli *c)
     int rc = sd_load_world(c, &scene, &w);
     if (rc)
         return rc;
-    for (size_t k = 0; k < scene->shape_count; ++k)
-        if (scene->shapes[k].warning[0]) /* a mesh taken as its hull (nonconvex: hull) */
-            fprintf(stderr, "shapedem: warning: shape %s: %s\n", scene->shapes[k].name, scene->shapes[k].warning);
+    sd_scene_info info;
+    sd_scene_get_info(scene, &info);
+    for (size_t k = 0; k < info.shape_count; ++k)
+        if (sd_scene_shape_warning(scene, k)[0]) /* a mesh taken as its hull (nonconvex: hull) */
+            fprintf(stderr, "shapedem: warning: shape %s: %s\n", sd_scene_shape_name(scene, k),
+                    sd_scene_shape_warning(scene, k));
     sd_error err;
     memset(&err, 0, sizeof err);
-    long steps = scene->steps;
-    long every = scene->output.every > 0 ? scene->output.every : 1;
-    long stats_every = scene->output.stats_every > 0 ? scene->output.stats_every : every;
-    sd_output *out = NULL;
-    char dir[SD_SCENE_PATH_MAX + 16];
-    if (!c->bench) {
-        if (c->outdir)
-            snprintf(dir, sizeof dir, "%s", c->outdir);
-        else if (scene->output.directory[0])
-            snprintf(dir, sizeof dir, "%s", scene->output.directory);
-        else
-            sd_default_outdir(c->scene, dir, sizeof dir);
-        sd_output_def od = {dir, (scene->output.formats & SD_OUT_VTK) != 0, (scene->output.formats & SD_OUT_CSV) != 0,
-                            c->scene};
-        if (sd_output_open(&od, w, &out, &err) != SD_OK) {
-            sd_world_destroy(w);
-            sd_scene_free(scene);
-            return sd_cli_fail_input(&err);
-        }
+    char dir[1040];
+    if (c->outdir)
+        snprintf(dir, sizeof dir, "%s", c->outdir);
+    else
+        sd_scene_output_directory(scene, dir, sizeof dir);
+    sd_run *run = NULL;
+    if (sd_run_open(scene, w, c->bench ? NULL : dir, &run, &err) != SD_OK) {
+        sd_world_destroy(w);
+        sd_scene_free(scene);
+        return sd_cli_fail_input(&err);
     }
     signal(SIGINT, sd_on_signal);
     signal(SIGTERM, sd_on_signal);
 
     int tty = !c->quiet && !c->bench && isatty(STDERR_FILENO);
     size_t n = sd_world_particle_count(w);
-    double stepping = 0, last_print = 0, psteps = 0;
-    int failed = 0;
-    if (out && (sd_output_frame(out, w, &err) != SD_OK || sd_output_stats(out, w, &err) != SD_OK))
-        failed = 1;
-    long done = 0;
-    while (!failed && done < steps && !sd_interrupted) {
-        /* step up to the next output event */
-        long next = steps;
-        long to_frame = every - done % every, to_stats = stats_every - done % stats_every;
-        if (done + to_frame < next)
-            next = done + to_frame;
-        if (done + to_stats < next)
-            next = done + to_stats;
-        if (tty && next - done > 200)
-            next = done + 200; /* keep the progress line alive */
-        double t0 = sd_now();
-        size_t n_before = sd_world_particle_count(w);
-        if (sd_world_step(w, next - done, &err) != SD_OK) {
-            failed = 1;
-            break;
-        }
-        stepping += sd_now() - t0;
-        /* the count changes when spheres are poured or leave (solver grid) */
-        psteps += 0.5 * (double)(n_before + sd_world_particle_count(w)) * (double)(next - done);
-        done = next;
-        if (out && done % stats_every == 0 && sd_output_stats(out, w, &err) != SD_OK)
-            failed = 1;
-        if (out && !failed && (done % every == 0 || done == steps) && sd_output_frame(out, w, &err) != SD_OK)
-            failed = 1;
-        if (tty && (stepping - last_print > 0.5 || done == steps)) {
-            last_print = stepping;
-            double rate = stepping > 0 ? psteps / stepping : 0;
+    double last_print = 0;
+    sd_run_progress pr;
+    int failed = sd_run_advance(run, 0, &err) != SD_OK; /* the frame and the stats row of step 0 */
+    sd_run_get_progress(run, &pr);
+    while (!failed && pr.done < pr.steps && !sd_interrupted) {
+        long chunk = sd_run_steps_to_output(run);
+        if (tty && chunk > 200)
+            chunk = 200; /* keep the progress line alive */
+        failed = sd_run_advance(run, chunk, &err) != SD_OK;
+        sd_run_get_progress(run, &pr);
+        if (tty && (pr.wall_seconds - last_print > 0.5 || pr.done == pr.steps)) {
+            last_print = pr.wall_seconds;
+            double rate = pr.particle_steps_per_second;
             char left[32];
-            double left_ps = (double)sd_world_particle_count(w) * (double)(steps - done);
+            double left_ps = (double)sd_world_particle_count(w) * (double)(pr.steps - pr.done);
             sd_format_duration(rate > 0 ? left_ps / rate : -1, left, sizeof left);
-            fprintf(stderr, "\rstep %ld/%ld  t = %.6g s  %5.1f%%  %.3g particle-steps/s  %s left   ", done, steps,
-                    sd_world_time(w), steps ? 100.0 * (double)done / (double)steps : 100.0, rate, left);
+            fprintf(stderr, "\rstep %ld/%ld  t = %.6g s  %5.1f%%  %.3g particle-steps/s  %s left   ", pr.done,
+                    pr.steps, pr.time, pr.steps ? 100.0 * (double)pr.done / (double)pr.steps : 100.0, rate, left);
             fflush(stderr);
         }
     }
     if (tty)
         fputc('\n', stderr);
-
-    sd_run_summary sum;
-    memset(&sum, 0, sizeof sum);
-    sum.steps = done;
-    sum.wall_seconds = stepping;
-    sum.particle_steps_per_second = stepping > 0 ? psteps / stepping : 0;
-    sum.threads = sd_world_threads(w);
-    sum.peak_memory = sd_memory_peak();
-    sum.peak_rss = sd_peak_rss();
+    size_t peak_memory = sd_memory_peak(), peak_rss = sd_peak_rss();
     if (failed) {
         char buf[1024];
         sd_error_format(&err, buf, sizeof buf);
         fprintf(stderr, "shapedem: run stopped at step %ld: %s\n", sd_world_step_count(w), buf);
     }
-    if (out) {
-        sd_error cerr;
-        memset(&cerr, 0, sizeof cerr);
-        if (sd_output_close(out, w, &sum, &cerr) != SD_OK && !failed) {
-            char buf[1024];
-            sd_error_format(&cerr, buf, sizeof buf);
-            fprintf(stderr, "shapedem: %s\n", buf);
-            failed = 1;
-        }
+    sd_error cerr;
+    memset(&cerr, 0, sizeof cerr);
+    if (sd_run_close(run, &cerr) != SD_OK && !failed) {
+        char buf[1024];
+        sd_error_format(&cerr, buf, sizeof buf);
+        fprintf(stderr, "shapedem: %s\n", buf);
+        failed = 1;
     }
     if (c->bench) {
         printf("{\"case\":\"%s\",\"particles\":%zu,\"steps\":%ld,\"threads\":%d,\"wall_s\":%.6f,\"psps\":%.6g,"
                "\"peak_rss_mib\":%.2f,\"peak_alloc_mib\":%.2f}\n",
-               c->bench, n, done, sum.threads, stepping, sum.particle_steps_per_second,
-               (double)sum.peak_rss / 1048576.0, (double)sum.peak_memory / 1048576.0);
+               c->bench, n, pr.done, pr.threads, pr.wall_seconds, pr.particle_steps_per_second,
+               (double)peak_rss / 1048576.0, (double)peak_memory / 1048576.0);
     } else if (!c->quiet) {
         sd_stats st;
         sd_world_stats(w, &st);
         /* the count at the end, as summary.txt (a pour starts from none) */
         printf("shapedem: %zu particles, %ld steps (t = %.6g s) in %.2f s: %.3g particle-steps/s on %d thread%s\n",
-               sd_world_particle_count(w), done, sd_world_time(w), stepping, sum.particle_steps_per_second, sum.threads,
-               sum.threads == 1 ? "" : "s");
+               sd_world_particle_count(w), pr.done, sd_world_time(w), pr.wall_seconds, pr.particle_steps_per_second,
+               pr.threads, pr.threads == 1 ? "" : "s");
         printf("          kinetic energy %.6g J, %ld contacts, max overlap %.3g %% of radius; output in %s\n",
                st.kinetic_translational + st.kinetic_rotational, st.contacts, 100 * st.max_overlap_ratio, dir);
     }
     sd_world_destroy(w);
     sd_scene_free(scene);
     if (sd_interrupted) {
-        fprintf(stderr, "shapedem: interrupted at step %ld; the files written so far are complete\n", done);
+        fprintf(stderr, "shapedem: interrupted at step %ld; the files written so far are complete\n", pr.done);
         return 130;
     }
     return failed ? 1 : 0;
@@ -336,6 +285,8 @@ static int sd_cmd_check(const sd_cli *c)
     if (rc)
         return rc;
     size_t mem = sd_memory_in_use() - mem0;
+    sd_scene_info info;
+    sd_scene_get_info(scene, &info);
     size_t n = sd_world_particle_count(w);
     double tc = 0, rec = sd_world_recommended_dt(w, &tc);
     double dt = sd_world_dt(w);
@@ -350,28 +301,19 @@ static int sd_cmd_check(const sd_cli *c)
         printf(", and %zu spheres the pour inserts: %zu in all", cnt.poured, total);
     if (total)
         printf("; radius (bounding radius for shapes) %.4g .. %.4g m", cnt.rmin, cnt.rmax);
-    printf("\nsolver       %s", scene->world.solver == SD_SOLVER_GRID ? "grid (dense grid stencil, [Naderi 2024])"
-                                                                     : "cells (cell binning + pair lists)");
-    printf("\nmaterials    %zu:", scene->material_count);
-    for (size_t k = 0; k < scene->material_count; ++k)
-        printf(" %s", scene->materials[k].name);
-    printf("\ncontact law  %s (default)\n", sd_contact_law_name(scene->world.law));
+    printf("\nsolver       %s", info.solver == SD_SOLVER_GRID ? "grid (dense grid stencil, [Naderi 2024])"
+                                                              : "cells (cell binning + pair lists)");
+    printf("\nmaterials    %zu:", info.material_count);
+    for (size_t k = 0; k < info.material_count; ++k)
+        printf(" %s", sd_scene_material_name(scene, k));
+    printf("\ncontact law  %s (default)\n", sd_contact_law_name(info.law));
     printf("walls        %zu\n", sd_world_wall_count(w));
-    if (scene->pour.given) /* solver grid: pouring and outlet (docs/grid-solver.md) */
-        printf("pour         %ld spheres of radius %.4g m (material %s), sheets at z = %.4g m, %.4g per s from "
-               "t = %.4g s, speeds vz in +-%.3g m/s, vx, vy in +-%.3g m/s\n",
-               scene->pour.count, scene->pour.radius, scene->materials[scene->pour.material].name,
-               scene->pour.height, scene->pour.rate, scene->pour.start, scene->pour.vertical_speed,
-               scene->pour.horizontal_speed);
-    if (scene->outlet.given)
-        printf("outlet       hole x in [%.4g, %.4g] m, y in [%.4g, %.4g] m in the box floor, opens at t = %.4g s\n",
-               scene->outlet.lo[0], scene->outlet.hi[0], scene->outlet.lo[1], scene->outlet.hi[1],
-               scene->outlet.open_at);
-    printf("steps        %ld x dt %.4g s = %.6g s simulated\n", scene->steps, dt, (double)scene->steps * dt);
+    sd_check_print_grid(stdout, scene); /* solver grid: pouring and outlet (docs/grid-solver.md) */
+    printf("steps        %ld x dt %.4g s = %.6g s simulated\n", info.steps, dt, (double)info.steps * dt);
     printf("contact      shortest estimated contact duration %.4g s (%.1f steps)\n", tc, tc / dt);
     printf("time step    %.4g s recommended; stability limit %.4g s\n", rec, tc / 5);
     printf("threads      %d\n", sd_world_threads(w));
-    const char *unit2d = scene->world.dimension == 2 ? " per 1 m of thickness" : "";
+    const char *unit2d = info.dimension == 2 ? " per 1 m of thickness" : "";
     printf("mass         %.6g kg%s", cnt.mass_now + cnt.mass_poured, unit2d);
     if (cnt.poured)
         printf(": %.6g kg at the start and %.6g kg poured", cnt.mass_now, cnt.mass_poured);
@@ -381,26 +323,10 @@ static int sd_cmd_check(const sd_cli *c)
            memory / 1048576.0, total ? memory / (double)total : 0.0,
            cnt.poured ? ", all poured spheres in" : "");
     /* output: frames at step 0, every `every` steps and at the end; stats
-     * rows at step 0 and every stats_every steps (sd_cmd_run) */
-    long steps = scene->steps, every = scene->output.every > 0 ? scene->output.every : 1;
-    long stats_every = scene->output.stats_every > 0 ? scene->output.stats_every : every;
+     * rows at step 0 and every stats_every steps (io/run.c) */
+    long steps = info.steps, every = info.frame_every, stats_every = info.stats_every;
     long frames = 1 + steps / every + (steps % every != 0), rows = 1 + steps / stats_every;
-    sd_output_def od = {".", (scene->output.formats & SD_OUT_VTK) != 0, (scene->output.formats & SD_OUT_CSV) != 0,
-                        c->scene};
-    sd_output_size osz;
-    sd_error oerr;
-    memset(&oerr, 0, sizeof oerr);
-    if (sd_output_estimate(&od, w, total, frames, rows, (double)steps * dt, &osz, &oerr) == SD_OK) {
-        char tb[32], fb[32];
-        sd_check_format_bytes(osz.total, tb, sizeof tb);
-        sd_check_format_bytes(osz.frame_particles + osz.frame_walls, fb, sizeof fb);
-        printf("output       about %s (%.0f bytes): ", tb, osz.total);
-        if (od.vtk)
-            printf("%ld frames x %s%s", frames, fb, cnt.poured ? " (at most: all poured spheres in)" : "");
-        if (od.csv)
-            printf("%s%ld stats rows x %.0f bytes", od.vtk ? ", " : "", rows, osz.stats_row);
-        printf("\n");
-    }
+    sd_check_print_output(stdout, scene, w, total, frames, rows, (double)steps * dt, cnt.poured);
     int warnings = 0;
     if (dt > rec) {
         printf("warning      dt = %.4g s is above the recommended %.4g s: contacts are resolved in %.1f steps\n", dt,
@@ -408,9 +334,9 @@ static int sd_cmd_check(const sd_cli *c)
         warnings++;
     }
     warnings += sd_check_units(stdout, scene, &cnt, tc, dt);
-    for (size_t k = 0; k < scene->shape_count; ++k)
-        if (scene->shapes[k].warning[0]) { /* a mesh taken as its hull (nonconvex: hull) */
-            printf("warning      shape %s: %s\n", scene->shapes[k].name, scene->shapes[k].warning);
+    for (size_t k = 0; k < info.shape_count; ++k)
+        if (sd_scene_shape_warning(scene, k)[0]) { /* a mesh taken as its hull (nonconvex: hull) */
+            printf("warning      shape %s: %s\n", sd_scene_shape_name(scene, k), sd_scene_shape_warning(scene, k));
             warnings++;
         }
     /* last: the trial steps the world */

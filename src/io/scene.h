@@ -8,15 +8,12 @@
 #ifndef SD_IO_SCENE_H
 #define SD_IO_SCENE_H
 
+#include <shapedem/scene.h>
 #include <shapedem/shapedem.h>
 #include <stdio.h>
 
 #define SD_SCENE_NAME_MAX 64
 #define SD_SCENE_PATH_MAX 1024
-/* The most OpenMP threads simulation.threads and --threads take: far more
- * than any node's cores, few enough that the thread stacks (libgomp's
- * default, 2-8 MiB each) stay within a machine's memory. */
-#define SD_SCENE_MAX_THREADS 1024
 
 typedef enum sd_gen_kind {
     SD_GEN_LATTICE, /* a block of spheres on a simple cubic lattice */
@@ -141,7 +138,8 @@ typedef struct sd_scene_outlet {
     double open_at;               /* s */
 } sd_scene_outlet;
 
-typedef struct sd_scene {
+/* The public, opaque sd_scene (shapedem/scene.h). */
+struct sd_scene {
     char path[SD_SCENE_PATH_MAX];
     sd_world_def world;
     int simulation_line;          /* line of the simulation: key, for errors */
@@ -156,12 +154,10 @@ typedef struct sd_scene {
     sd_scene_output output;
     sd_scene_pour pour;
     sd_scene_outlet outlet;
-} sd_scene;
+};
 
-/* Parses and checks a scene file. On error *out is NULL and err names the
- * file, line and key. */
-sd_status sd_scene_load(const char *path, sd_scene **out, sd_error *err);
-void sd_scene_free(sd_scene *s);
+/* sd_scene_load, sd_scene_free and sd_scene_build are declared in
+ * shapedem/scene.h. */
 
 /* The vertices of a mesh file (.obj or .stl), read and checked as a scene's
  * polyhedron `file:` is (distinct vertices, convexity unless take_hull,
@@ -171,17 +167,7 @@ void sd_scene_free(sd_scene *s);
 sd_status sd_scene_read_mesh(const char *path, int take_hull, sd_v3d **vertices, size_t *count, char *warning,
                              size_t warning_size, sd_error *err);
 
-/* Builds the world: materials, interactions, walls, shapes (scene shape i
- * is world shape i), generated particles (spheres and bodies).
- * Rejects overlaps at start beyond tolerance, particles outside walls and a
- * time step above the stability limit, with file, line and key. */
-sd_status sd_scene_build(const sd_scene *s, sd_world **out, sd_error *err);
-
-/* Prints the table of every scene key (section, key, type, unit, default,
- * meaning) and the rules the table cannot say. markdown = 1 prints
- * docs/scene-format.md, with an example scene at the top. The table is
- * src/io/scene_keys.c, the same one the parser checks against. */
-void sd_scene_print_keys(FILE *f, int markdown);
+/* sd_scene_print_keys (shapedem help scene) is declared there too. */
 
 /* ---- shared by the scene modules and their tests ------------------------ */
 

@@ -1,0 +1,148 @@
+/* scene.h — the public scene API: load a scene file, build its world, run
+ * it and write its output, exactly as `shapedem run` does (the program
+ * uses nothing else).
+ *
+ *     sd_scene *scene;
+ *     sd_world *world;
+ *     sd_run *run;
+ *     sd_error err;
+ *     if (sd_scene_load("settle.yaml", &scene, &err) != SD_OK) { ... err ... }
+ *     if (sd_scene_build(scene, &world, &err) != SD_OK) { ... }
+ *     if (sd_run_open(scene, world, "out/settle", &run, &err) != SD_OK) { ... }
+ *     sd_status st = sd_run_advance(run, sd_scene_steps(scene), &err);
+ *     sd_run_close(run, st == SD_OK ? &err : NULL);
+ *     sd_world_destroy(world);
+ *     sd_scene_free(scene);
+ *
+ * A scene is read-only data once loaded (but for the two overrides below);
+ * the world it builds is an ordinary sd_world, stepped and queried through
+ * shapedem.h. A run owns the output directory and the schedule of the
+ * scene's output: section (frames every output.every steps and at the end,
+ * stats.csv rows every output.stats_every steps, summary.txt at close).
+ *
+ * Invariant: every function returns an sd_status and fills err (file, line
+ * and key of the scene for bad input); nothing prints. A run never writes
+ * into a directory holding files it did not make, and every file it
+ * writes is complete at every moment (temporary name, then rename).
+ */
+#ifndef SHAPEDEM_SCENE_H
+#define SHAPEDEM_SCENE_H
+
+#include <stdio.h>
+
+#include <shapedem/shapedem.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- scenes --------------------------------------------------------------- */
+
+typedef struct sd_scene sd_scene;
+
+/* The most OpenMP threads simulation.threads and sd_scene_set_threads
+ * take: far more than any node's cores, few enough that the thread stacks
+ * (libgomp's default, 2-8 MiB each) stay within a machine's memory. */
+#define SD_SCENE_MAX_THREADS 1024
+
+/* Parses and checks a scene file (docs/scene-format.md). On error *out is
+ * NULL and err names the file, line and key. */
+sd_status sd_scene_load(const char *path, sd_scene **out, sd_error *err);
+void sd_scene_free(sd_scene *s);
+
+/* Builds the scene's world: materials, interactions, walls, shapes (scene
+ * shape i is world shape i), the generated particles, and the pour and
+ * outlet of the grid solver. Refuses overlaps at start, particles outside
+ * the walls and an unstable time step, with file, line and key. The
+ * caller destroys *out with sd_world_destroy. */
+sd_status sd_scene_build(const sd_scene *s, sd_world **out, sd_error *err);
+
+/* Overrides, applied before sd_scene_build (the CLI's --threads and
+ * --steps): threads >= 1 replaces simulation.threads; steps >= 0 replaces
+ * the run length. */
+void sd_scene_set_threads(sd_scene *s, int threads);
+void sd_scene_set_steps(sd_scene *s, long steps);
+
+/* Steps of the run: simulation.steps, or duration / dt rounded up. */
+long sd_scene_steps(const sd_scene *s);
+
+/* What a program that runs or reports on a scene needs to know of it. */
+typedef struct sd_scene_info {
+    const char *path;             /* the scene file, as given to sd_scene_load */
+    int dimension;                /* 3, or 2 (planar) */
+    double dt;                    /* s */
+    long steps;                   /* as sd_scene_steps */
+    int threads;                  /* simulation.threads (0: OpenMP's default) */
+    sd_solver solver;
+    sd_contact_law law;           /* simulation.contact_law, the default of every pair */
+    size_t material_count, shape_count, wall_count;
+    long frame_every;             /* steps between frames (>= 1) */
+    long stats_every;             /* steps between stats.csv rows (>= 1) */
+    int write_frames;             /* output.formats has vtk */
+    int write_stats;              /* output.formats has csv */
+    const char *output_directory; /* output.directory, "" when not given */
+    int has_pour, has_outlet;     /* pour: and outlet: (solver grid) */
+} sd_scene_info;
+
+void sd_scene_get_info(const sd_scene *s, sd_scene_info *out);
+
+/* Names by index (NULL past the end), and the warning a shape's mesh file
+ * left ("" when none; e.g. a nonconvex mesh taken as its hull). */
+const char *sd_scene_material_name(const sd_scene *s, size_t i);
+const char *sd_scene_shape_name(const sd_scene *s, size_t i);
+const char *sd_scene_shape_warning(const sd_scene *s, size_t i);
+
+/* The directory a run of the scene writes to when none is given:
+ * output.directory, else out/<scene file name without extension>. */
+void sd_scene_output_directory(const sd_scene *s, char *buf, size_t size);
+
+/* Prints the table of every scene key (section, key, type, unit, default,
+ * meaning) and the rules the table cannot say: `shapedem help scene`.
+ * markdown = 1 prints docs/scene-format.md, with an example scene at the
+ * top. It is the same table the parser checks against. */
+void sd_scene_print_keys(FILE *f, int markdown);
+
+/* ---- runs ----------------------------------------------------------------- */
+
+typedef struct sd_run sd_run;
+
+/* Opens a run of world w (built from s) writing to dir, which is made if
+ * needed and must be empty or a former shapedem output directory; dir
+ * NULL runs without writing anything (timing only). Nothing is written
+ * until the first sd_run_advance. w stays the caller's; the run keeps a
+ * pointer to it and to s until sd_run_close. */
+sd_status sd_run_open(const sd_scene *s, sd_world *w, const char *dir, sd_run **out, sd_error *err);
+
+/* Steps the world up to `steps` steps further, never past the scene's
+ * steps, writing each frame and stats.csv row as it falls due. The first
+ * call writes the step-0 frame and row first (so sd_run_advance(run, 0)
+ * writes only those). On a stepping or writing error the run stops where
+ * it is; sd_run_close still writes the summary. */
+sd_status sd_run_advance(sd_run *r, long steps, sd_error *err);
+
+/* Steps from now to the next frame or stats row (or the end): what a
+ * caller that checks for an interrupt between outputs advances by. */
+long sd_run_steps_to_output(const sd_run *r);
+
+typedef struct sd_run_progress {
+    long done, steps;             /* steps run, steps of the run */
+    double time;                  /* s, simulated time of the world */
+    double wall_seconds;          /* of stepping only */
+    double particle_steps_per_second;
+    int threads;
+} sd_run_progress;
+
+void sd_run_get_progress(const sd_run *r, sd_run_progress *out);
+
+/* The directory written to ("" for a run without output). */
+const char *sd_run_directory(const sd_run *r);
+
+/* Writes summary.txt (when the run writes files) and frees r. err may be
+ * NULL when the caller has an error to report already. */
+sd_status sd_run_close(sd_run *r, sd_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

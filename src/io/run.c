@@ -1,0 +1,168 @@
+/* run.c — a run of a scene's world with its output (shapedem/scene.h):
+ * the schedule of the scene's output: section around sd_world_step, over
+ * the output writer (io/output.c). `shapedem run` is this plus a progress
+ * line and a signal handler.
+ *
+ * The schedule: the frame and the stats.csv row of step 0 on the first
+ * advance; then the world is stepped in chunks that end at the next
+ * output event, a stats row at every multiple of stats_every, a frame at
+ * every multiple of every and at the last step. Chunking does not change
+ * the state: sd_world_step(w, a) then (w, b) gives the bits of (w, a + b).
+ *
+ * Invariant: done counts the steps the world has taken under this run,
+ * never more than steps; after an error (failed) the run takes no further
+ * step and writes nothing but the summary.
+ */
+#define _POSIX_C_SOURCE 200809L
+
+#include <stdio.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <time.h>
+
+#include "core/alloc.h"
+#include "core/error.h"
+#include "io/output.h"
+#include "io/scene.h"
+
+struct sd_run {
+    const sd_scene *s;
+    sd_world *w;
+    sd_output *out;              /* NULL: a run without files */
+    char dir[SD_SCENE_PATH_MAX + 16];
+    long steps, every, stats_every, done;
+    int started, failed;
+    double stepping;             /* s of wall time inside sd_world_step */
+    double psteps;               /* particle-steps (the count changes with a pour or an outlet) */
+};
+
+static double sd_run_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static size_t sd_run_peak_rss(void)
+{
+    struct rusage ru;
+    if (getrusage(RUSAGE_SELF, &ru) != 0)
+        return 0;
+    return (size_t)ru.ru_maxrss * 1024u; /* Linux reports KiB */
+}
+
+sd_status sd_run_open(const sd_scene *s, sd_world *w, const char *dir, sd_run **out, sd_error *err)
+{
+    *out = NULL;
+    sd_scene_info info;
+    sd_scene_get_info(s, &info);
+    sd_run *r = sd_calloc(1, sizeof *r);
+    if (!r)
+        return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory");
+    r->s = s;
+    r->w = w;
+    r->steps = info.steps;
+    r->every = info.frame_every;
+    r->stats_every = info.stats_every;
+    if (dir) {
+        if (strlen(dir) >= sizeof r->dir) {
+            sd_free(r);
+            return sd_error_set(err, SD_ERR_INPUT, dir, 0, "", "output directory path too long");
+        }
+        snprintf(r->dir, sizeof r->dir, "%s", dir);
+        sd_output_def od = {.directory = r->dir, .vtk = info.write_frames, .csv = info.write_stats, .scene = s->path};
+        sd_status st = sd_output_open(&od, w, &r->out, err);
+        if (st != SD_OK) {
+            sd_free(r);
+            return st;
+        }
+    }
+    *out = r;
+    return SD_OK;
+}
+
+long sd_run_steps_to_output(const sd_run *r)
+{
+    long next = r->steps;
+    long to_frame = r->every - r->done % r->every, to_stats = r->stats_every - r->done % r->stats_every;
+    if (r->done + to_frame < next)
+        next = r->done + to_frame;
+    if (r->done + to_stats < next)
+        next = r->done + to_stats;
+    return next - r->done;
+}
+
+sd_status sd_run_advance(sd_run *r, long steps, sd_error *err)
+{
+    sd_status st = SD_OK;
+    if (r->failed)
+        return sd_error_set(err, SD_ERR_INTERNAL, "", 0, "", "the run stopped at an earlier error");
+    if (!r->started) {
+        r->started = 1;
+        if (r->out && ((st = sd_output_frame(r->out, r->w, err)) != SD_OK ||
+                       (st = sd_output_stats(r->out, r->w, err)) != SD_OK)) {
+            r->failed = 1;
+            return st;
+        }
+    }
+    long left = r->steps - r->done;
+    long target = r->done + (steps < 0 ? 0 : steps < left ? steps : left);
+    while (r->done < target) {
+        long next = r->done + sd_run_steps_to_output(r);
+        if (next > target)
+            next = target;
+        double t0 = sd_run_now();
+        size_t n_before = sd_world_particle_count(r->w);
+        if ((st = sd_world_step(r->w, next - r->done, err)) != SD_OK) {
+            r->failed = 1;
+            return st;
+        }
+        r->stepping += sd_run_now() - t0;
+        /* the count changes when spheres are poured or leave (solver grid) */
+        r->psteps += 0.5 * (double)(n_before + sd_world_particle_count(r->w)) * (double)(next - r->done);
+        r->done = next;
+        if (r->out && r->done % r->stats_every == 0 && (st = sd_output_stats(r->out, r->w, err)) != SD_OK)
+            r->failed = 1;
+        if (r->out && !r->failed && (r->done % r->every == 0 || r->done == r->steps) &&
+            (st = sd_output_frame(r->out, r->w, err)) != SD_OK)
+            r->failed = 1;
+        if (r->failed)
+            return st;
+    }
+    return SD_OK;
+}
+
+void sd_run_get_progress(const sd_run *r, sd_run_progress *out)
+{
+    memset(out, 0, sizeof *out);
+    out->done = r->done;
+    out->steps = r->steps;
+    out->time = sd_world_time(r->w);
+    out->wall_seconds = r->stepping;
+    out->particle_steps_per_second = r->stepping > 0 ? r->psteps / r->stepping : 0;
+    out->threads = sd_world_threads(r->w);
+}
+
+const char *sd_run_directory(const sd_run *r) { return r->out ? r->dir : ""; }
+
+sd_status sd_run_close(sd_run *r, sd_error *err)
+{
+    if (!r)
+        return SD_OK;
+    sd_status st = SD_OK;
+    if (r->out) {
+        sd_run_summary sum;
+        memset(&sum, 0, sizeof sum);
+        sum.steps = r->done;
+        sum.wall_seconds = r->stepping;
+        sum.particle_steps_per_second = r->stepping > 0 ? r->psteps / r->stepping : 0;
+        sum.threads = sd_world_threads(r->w);
+        sum.peak_memory = sd_memory_peak();
+        sum.peak_rss = sd_run_peak_rss();
+        sd_error local;
+        memset(&local, 0, sizeof local);
+        st = sd_output_close(r->out, r->w, &sum, err ? err : &local);
+    }
+    sd_free(r);
+    return st;
+}

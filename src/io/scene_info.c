@@ -1,0 +1,75 @@
+/* scene_info.c — the public queries and overrides of a loaded scene
+ * (shapedem/scene.h): what a runner or a report needs to know of a scene
+ * without seeing its internal struct (io/scene.h).
+ *
+ * Invariant: the queries only read; the two overrides change the values
+ * the builder and the run read afterwards, nothing else.
+ */
+#include <stdio.h>
+#include <string.h>
+
+#include "io/scene.h"
+
+void sd_scene_set_threads(sd_scene *s, int threads)
+{
+    if (threads >= 1)
+        s->world.threads = threads;
+}
+
+void sd_scene_set_steps(sd_scene *s, long steps)
+{
+    if (steps >= 0)
+        s->steps = steps;
+}
+
+long sd_scene_steps(const sd_scene *s) { return s->steps; }
+
+void sd_scene_get_info(const sd_scene *s, sd_scene_info *out)
+{
+    memset(out, 0, sizeof *out);
+    out->path = s->path;
+    out->dimension = s->world.dimension;
+    out->dt = s->world.dt;
+    out->steps = s->steps;
+    out->threads = s->world.threads;
+    out->solver = s->world.solver;
+    out->law = s->world.law;
+    out->material_count = s->material_count;
+    out->shape_count = s->shape_count;
+    out->wall_count = s->wall_count;
+    /* the parser makes both >= 1; a run never divides by less */
+    out->frame_every = s->output.every > 0 ? s->output.every : 1;
+    out->stats_every = s->output.stats_every > 0 ? s->output.stats_every : out->frame_every;
+    out->write_frames = (s->output.formats & SD_OUT_VTK) != 0;
+    out->write_stats = (s->output.formats & SD_OUT_CSV) != 0;
+    out->output_directory = s->output.directory;
+    out->has_pour = s->pour.given;
+    out->has_outlet = s->outlet.given;
+}
+
+const char *sd_scene_material_name(const sd_scene *s, size_t i)
+{
+    return i < s->material_count ? s->materials[i].name : NULL;
+}
+
+const char *sd_scene_shape_name(const sd_scene *s, size_t i) { return i < s->shape_count ? s->shapes[i].name : NULL; }
+
+const char *sd_scene_shape_warning(const sd_scene *s, size_t i)
+{
+    return i < s->shape_count ? s->shapes[i].warning : NULL;
+}
+
+void sd_scene_output_directory(const sd_scene *s, char *buf, size_t size)
+{
+    if (s->output.directory[0]) {
+        snprintf(buf, size, "%s", s->output.directory);
+        return;
+    }
+    const char *base = strrchr(s->path, '/');
+    base = base ? base + 1 : s->path;
+    size_t n = strlen(base);
+    const char *dot = strrchr(base, '.');
+    if (dot && dot != base)
+        n = (size_t)(dot - base);
+    snprintf(buf, size, "out/%.*s", (int)n, base);
+}
