@@ -28,6 +28,7 @@
 #define SD_GRID_STENCIL_H
 
 #include "contact/pair.h"
+#include "dynamics/walls.h"
 
 /* History slots per particle. Each touching pair keeps its spring in one
  * slot of either particle, so a particle needs slots for about half its
@@ -410,22 +411,20 @@ SD_HD static SD_INLINE void sd_grid_walls_of(const sd_grid_view *g, sd_grid_acc 
         if (x.x - wl->lo.x >= r && wl->hi.x - x.x >= r && x.y - wl->lo.y >= r && wl->hi.y - x.y >= r &&
             x.z - wl->lo.z >= r && wl->hi.z - x.z >= r)
             continue;
-        const sd_real cx[3] = {x.x, x.y, x.z};
-        const sd_real lo[3] = {wl->lo.x, wl->lo.y, wl->lo.z};
-        const sd_real hi[3] = {wl->hi.x, wl->hi.y, wl->hi.z};
-        for (int face = 0; face < 6; ++face) {
-            if (wl->open_faces & (1u << face))
+        /* the box's faces as the walls module enumerates them (dynamics/walls.h) */
+        for (int face = 0; face < SD_WALL_BOX_FACES; ++face) {
+            if (!sd_wall_box_face_closed(wl->open_faces, face))
                 continue;
-            int axis = face / 2;
-            sd_real s = (face & 1) ? hi[axis] - cx[axis] : cx[axis] - lo[axis];
+            sd_real s = sd_wall_box_face_gap(wl->lo, wl->hi, face, x);
             if (!(s < r && s > -r))
                 continue;
             int touching;
-            if (face == 4 && wl->holed)
+            if (face == 4 && wl->holed) {
                 touching = sd_grid_holed_floor(x, r, wl, &geo);
-            else
-                touching = sd_sphere_box_face(x, r, axis, (face & 1) ? hi[axis] : lo[axis],
-                                              (face & 1) ? SD_R(-1.0) : SD_R(1.0), wl->lo, wl->hi, &geo);
+            } else {
+                sd_wall_face fd = sd_wall_box_face_of(wl->lo, wl->hi, face);
+                touching = sd_sphere_box_face(x, r, fd.axis, fd.value, fd.dir, wl->lo, wl->hi, &geo);
+            }
             if (touching)
                 sd_grid_add_wall(g, a, k, wi, face, &geo);
         }

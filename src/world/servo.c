@@ -7,7 +7,7 @@
  * velocity decided from the wall force of the last evaluation; the sums
  * over wall contacts run serially in pair order, so the result is the same
  * bits for any thread count (DESIGN.md rule 4). A wall that moved more than
- * half the skin since the last rebuild forces a rebuild (cells.c), so the
+ * half the skin since the last rebuild forces a rebuild (world/rebuild.c), so the
  * particle-wall candidate list stays complete.
  */
 #include <math.h>
@@ -116,7 +116,10 @@ sd_status sd_world_walls_drift(sd_world *w, double t, sd_error *err)
     size_t nm = w->material_count;
     for (size_t k = 0; k < w->wall_count; ++k)
         w->walls[k].stiffness = SD_R(0.0);
-    for (size_t e = 0; e < l->n; ++e) {
+    /* in gather order (particle by particle, wall by wall): the sums do
+     * not depend on the kind segments of the list */
+    for (size_t g = 0; g < l->n; ++g) {
+        size_t e = l->gidx[g];
         if (l->delta[e] <= 0)
             continue;
         sd_wall *wl = &w->walls[l->wall[e]];

@@ -13,7 +13,6 @@
 #include <omp.h>
 #endif
 
-#include "broad/cells.h"
 #include "core/alloc.h"
 #include "core/error.h"
 #include "world/solver.h"
@@ -195,7 +194,7 @@ void sd_world_destroy(sd_world *w)
     if (!w)
         return;
     sd_particles_free(&w->p);
-    sd_broad_free(&w->pairs, &w->wpairs, &w->grid);
+    sd_world_broad_free(w);
     sd_free(w->materials);
     sd_free(w->interactions);
     sd_free(w->mix);

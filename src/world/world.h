@@ -12,11 +12,14 @@
 
 #include <shapedem/shapedem.h>
 
+#include "broad/bins.h"
 #include "broad/pairs.h"
 #include "contact/params.h"
 #include "core/quat.h"
+#include "dynamics/walls.h"
 #include "shape/shape.h"
 #include "shape/shape2d.h"
+#include "world/rebuild.h"
 
 /* X(type, name, unit, meaning) — hot per-step fields first. */
 #define SD_PARTICLE_FIELDS(X)                                                           \
@@ -52,14 +55,20 @@ typedef struct sd_interaction {
     sd_interaction_def def;
 } sd_interaction;
 
-enum { SD_WALL_PLANE = 0, SD_WALL_BOX = 1 };
-
+/* A wall: its geometry (dynamics/walls.h, a POD the views carry; the
+ * anonymous struct names the same members, so code that reads wl->kind,
+ * wl->point, ... reads the geometry) plus its name, material and motion. */
 typedef struct sd_wall {
     char name[64];
-    int kind;
-    sd_vec3 point, normal;  /* plane */
-    sd_vec3 lo, hi;         /* box */
-    unsigned open_faces;
+    union {
+        sd_wall_geom geom;
+        struct {
+            int kind;               /* enum sd_wall_kind */
+            sd_vec3 point, normal;  /* plane */
+            sd_vec3 lo, hi;         /* box */
+            unsigned open_faces;
+        };
+    };
     int material;
     sd_vec3 force, torque;  /* on the wall, last step */
     /* motion (dynamics/servo.h, world/servo.c): prescribed or servo-controlled */
@@ -130,7 +139,13 @@ struct sd_world {
 
     sd_pair_list pairs;       /* particle-particle candidates */
     sd_wall_pair_list wpairs; /* particle-wall candidates */
-    sd_grid grid;
+    sd_bins bins;             /* the broad phase's cells (broad/bins.h) */
+    /* ghosts (world/rebuild.c): particles p.n .. p.n + n_ghost - 1 of the
+     * particle arrays are copies of owned particle ghost_owner[g], shifted
+     * by ghost_shift[g] (periodic images); remade at each rebuild */
+    size_t n_ghost, ghost_cap;
+    uint32_t *ghost_owner;
+    sd_vec3 *ghost_shift;
     struct sd_grid_state *grid_state; /* solver grid (src/grid), NULL otherwise */
     const struct sd_solver_ops *solver; /* the engine, chosen at creation (world/solver.h) */
     long rebuilds;

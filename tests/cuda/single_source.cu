@@ -2,6 +2,7 @@
  * single-source numeric header compiles as CUDA C++ and its functions can
  * be called from a kernel. CI compiles this with nvcc (no GPU needed) and
  * with the host C++ compiler. Add every new SD_HD header here. */
+#include "broad/bins.h"
 #include "contact/law.h"
 #include "contact/pair.h"
 #include "contact/pair_convex.h"
@@ -12,6 +13,7 @@
 #include "core/rng.h"
 #include "core/vec.h"
 #include "dynamics/integrate.h"
+#include "dynamics/walls.h"
 #include "geom/convex_contact.h"
 #include "geom/epa.h"
 #include "geom/gjk.h"

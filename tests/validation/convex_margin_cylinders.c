@@ -113,7 +113,7 @@ static void run(const char *path, double mu, double tol_tc, double tol_e)
         sd_world_stats(w, &st);
         emax = fmax(emax, total(&st));
         if (st.contacts > 0 && (last < 0 || last == s - 1)) { /* the first contact only */
-            max_overlap = fmax(max_overlap, (double)w->pairs.delta[w->pairs.n_sphere]);
+            max_overlap = fmax(max_overlap, (double)w->pairs.delta[w->pairs.kind_start[SD_PAIR_CONVEX]]);
             sd_convex_contact c = contact_now(w);
             if (first < 0) {
                 first = s;

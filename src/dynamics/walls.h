@@ -1,0 +1,176 @@
+/* walls.h — the walls as one module (single source, SD_HD): wall kinds, the
+ * features of a wall, and the geometry every user of a wall asks for.
+ *
+ * A wall is a list of features; a contact is always between a particle and
+ * one feature, and the feature's index is the wall pair's sub-index (its
+ * history key, broad/pairs.h). A plane has one feature (0); a box has its
+ * six faces, face f lying on axis f / 2, at lo (f even, inward normal +e) or
+ * hi (f odd, inward normal -e), the bit (1 << f) of open_faces set when the
+ * face is left open (the SD_BOX_* flags of shapedem.h). Mesh facet groups
+ * will be a third kind with one feature per plane group (seed 000 §2.5).
+ *
+ * Invariant: this header is the only place where box faces are enumerated
+ * and turned into planes, lines and sphere-face call data; the broad phase
+ * (broad/cells.c), the item functions (backend/) and the grid solver's
+ * kernel (grid/stencil.h) all call it, so they see the same wall. Plain
+ * structs and reals in and out, no allocation, compiles as C and C++.
+ */
+#ifndef SD_DYNAMICS_WALLS_H
+#define SD_DYNAMICS_WALLS_H
+
+#include "core/vec.h"
+#include "core/vec2.h"
+
+/* X(NAME, name, feature count, meaning) */
+#define SD_WALL_KINDS(X)                                                                   \
+    X(PLANE, plane, 1, "an infinite plane: the half-space its normal points away from")     \
+    X(BOX, box, 6, "a box container: its closed faces, seen from inside")
+
+enum sd_wall_kind {
+#define SD_X_WALL(NAME, name, nf, doc) SD_WALL_##NAME,
+    SD_WALL_KINDS(SD_X_WALL)
+#undef SD_X_WALL
+    SD_WALL_KIND_COUNT
+};
+
+/* The most features a wall of any kind has (the sub-index range). */
+#define SD_WALL_MAX_FEATURES 6
+/* Faces of a box. */
+#define SD_WALL_BOX_FACES 6
+
+/* The geometry of a wall, a POD a device view can carry. */
+typedef struct sd_wall_geom {
+    int kind;               /* enum sd_wall_kind */
+    sd_vec3 point, normal;  /* m, -: plane (a box's point is its centre, for wall torques) */
+    sd_vec3 lo, hi;         /* m: box corners */
+    unsigned open_faces;    /* box: bit f set when face f is open */
+} sd_wall_geom;
+
+/* The call data of one box face: the plane axis = value with inward
+ * normal sign dir (+1 at lo, -1 at hi), as geom/sphere.h's
+ * sd_sphere_box_face takes it. */
+typedef struct sd_wall_face {
+    int axis;
+    sd_real value;
+    sd_real dir;
+} sd_wall_face;
+
+SD_HD static SD_INLINE sd_real sd_wall_comp(sd_vec3 v, int axis)
+{
+    return axis == 0 ? v.x : (axis == 1 ? v.y : v.z);
+}
+
+/* 1 when face f of a box with these open faces is closed (a feature). */
+SD_HD static SD_INLINE int sd_wall_box_face_closed(unsigned open_faces, int f)
+{
+    return !(open_faces & (1u << f));
+}
+
+/* Signed distance of x from the plane of box face f, positive inside. */
+SD_HD static SD_INLINE sd_real sd_wall_box_face_gap(sd_vec3 lo, sd_vec3 hi, int f, sd_vec3 x)
+{
+    int axis = f / 2;
+    return (f & 1) ? sd_wall_comp(hi, axis) - sd_wall_comp(x, axis) : sd_wall_comp(x, axis) - sd_wall_comp(lo, axis);
+}
+
+SD_HD static SD_INLINE sd_wall_face sd_wall_box_face_of(sd_vec3 lo, sd_vec3 hi, int f)
+{
+    sd_wall_face d;
+    d.axis = f / 2;
+    d.value = (f & 1) ? sd_wall_comp(hi, d.axis) : sd_wall_comp(lo, d.axis);
+    d.dir = (f & 1) ? SD_R(-1.0) : SD_R(1.0);
+    return d;
+}
+
+/* Number of feature slots of a wall (closed or not: sub-indices are the
+ * slot numbers, so they do not change when a face opens). */
+SD_HD static SD_INLINE int sd_wall_feature_count(const sd_wall_geom *w)
+{
+    return w->kind == SD_WALL_BOX ? SD_WALL_BOX_FACES : 1;
+}
+
+/* 1 when feature f exists (a closed face, or the plane). */
+SD_HD static SD_INLINE int sd_wall_feature_exists(const sd_wall_geom *w, int f)
+{
+    return w->kind == SD_WALL_BOX ? sd_wall_box_face_closed(w->open_faces, f) : f == 0;
+}
+
+/* The broad phase's test: feature f is within reach (bounding radius plus
+ * skin) of a particle at x. A plane: the centre is less than reach in front
+ * of it (or behind it). A box face: within reach on either side of its
+ * plane (a particle that left through an open face is not caught by the
+ * face behind it: sd_sphere_box_face's one-radius rule). */
+SD_HD static SD_INLINE int sd_wall_feature_near(const sd_wall_geom *w, int f, sd_vec3 x, sd_real reach)
+{
+    if (w->kind == SD_WALL_PLANE)
+        return sd_v3_dot(sd_v3_sub(x, w->point), w->normal) < reach;
+    sd_real s = sd_wall_box_face_gap(w->lo, w->hi, f, x);
+    return s < reach && s > -reach;
+}
+
+/* The plane of feature f: the plane wall itself, or a closed box face
+ * (inward normal, through the projection of x). Returns 0 when x does not
+ * project inside the face's rectangle: a shape beside a box face meets it
+ * only through the neighbouring face (box rims are not resolved for
+ * shapes). */
+SD_HD static SD_INLINE int sd_wall_feature_plane(const sd_wall_geom *w, int f, sd_vec3 x, sd_vec3 *p0, sd_vec3 *n)
+{
+    if (w->kind == SD_WALL_PLANE) {
+        *p0 = w->point;
+        *n = w->normal;
+        return 1;
+    }
+    int axis = f / 2;
+    sd_real lo[3] = {w->lo.x, w->lo.y, w->lo.z}, hi[3] = {w->hi.x, w->hi.y, w->hi.z}, c[3] = {x.x, x.y, x.z};
+    for (int k = 0; k < 3; ++k)
+        if (k != axis && (c[k] < lo[k] || c[k] > hi[k]))
+            return 0;
+    sd_real nn[3] = {0, 0, 0}, pp[3] = {c[0], c[1], c[2]};
+    nn[axis] = (f & 1) ? SD_R(-1.0) : SD_R(1.0);
+    pp[axis] = (f & 1) ? hi[axis] : lo[axis];
+    *p0 = sd_v3(pp[0], pp[1], pp[2]);
+    *n = sd_v3(nn[0], nn[1], nn[2]);
+    return 1;
+}
+
+/* The line of feature f in the plane z = 0 (planar mode): a plane wall, or
+ * an x or y face of a box (inward normal). Returns 0 when x lies beyond the
+ * face's ends (the neighbouring face takes it), and for the z faces, which
+ * do not exist in the plane. */
+SD_HD static SD_INLINE int sd_wall_feature_line(const sd_wall_geom *w, int f, sd_vec3 x, sd_vec2 *p0, sd_vec2 *n)
+{
+    if (w->kind == SD_WALL_PLANE) {
+        *p0 = sd_v2(w->point.x, w->point.y);
+        *n = sd_v2(w->normal.x, w->normal.y);
+        return 1;
+    }
+    int axis = f / 2;
+    sd_real sign = (f & 1) ? SD_R(-1.0) : SD_R(1.0);
+    if (axis == 0) {
+        if (x.y < w->lo.y || x.y > w->hi.y)
+            return 0;
+        *p0 = sd_v2((f & 1) ? w->hi.x : w->lo.x, x.y);
+        *n = sd_v2(sign, SD_R(0.0));
+    } else if (axis == 1) {
+        if (x.x < w->lo.x || x.x > w->hi.x)
+            return 0;
+        *p0 = sd_v2(x.x, (f & 1) ? w->hi.y : w->lo.y);
+        *n = sd_v2(SD_R(0.0), sign);
+    } else {
+        return 0;
+    }
+    return 1;
+}
+
+/* 1 when a wall reaches across the periodic axis a (0, 1, 2) of a domain:
+ * a plane whose normal has a component along a, or a box whose closed
+ * faces on that axis would cut the periodic images apart (any box spanning
+ * the axis: its faces are planes normal to a). Used to refuse the scene. */
+SD_HD static SD_INLINE int sd_wall_crosses_axis(const sd_wall_geom *w, int a)
+{
+    if (w->kind == SD_WALL_PLANE)
+        return sd_wall_comp(w->normal, a) != SD_R(0.0);
+    return sd_wall_box_face_closed(w->open_faces, 2 * a) || sd_wall_box_face_closed(w->open_faces, 2 * a + 1);
+}
+
+#endif
