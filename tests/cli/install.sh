@@ -12,9 +12,11 @@
 #     print the free-fall height z = 0.01 - g t^2 / 2 after 10 ms;
 #   - a CMake project with find_package(shapedem CONFIG) linking
 #     shapedem::shapedem and shapedem::shapedem_static, built and run;
+#   - the installed CLI checks and runs a short copy of
+#     examples/settle-spheres.yaml;
 #   - the scene-loading example examples/c/run_scene.c built the same way and
-#     run on a short copy of examples/settle-spheres.yaml, writing output;
-#   - the installed CLI checks that scene.
+#     run on that scene: it writes the run's files, and the same stats.csv as
+#     the CLI.
 # Everything is made in a temporary directory removed at exit.
 set -u
 bin="$1"
@@ -145,26 +147,37 @@ needed=$(readelf -d "$tmp/cmake-build/example_static" 2>/dev/null | grep -c "NEE
 check "shapedem::shapedem_static links no libshapedem.so" "$([[ $needed == 0 ]] && echo 1 || echo 0)"
 
 # a short copy of the settle-spheres example
-sed -e 's/^  duration: .*/  steps: 300/' -e "s|^  directory: .*|  directory: $tmp/out-cli|" \
-    -e 's/^  every: .*/  every: 100/' -e 's/^  stats_every: .*/  stats_every: 50/' \
+sed -e 's/^  duration: .*/  steps: 200/' -e "s|^  directory: .*|  directory: $tmp/out-cli|" \
+    -e 's/^  every: .*/  every: 50/' -e 's/^  stats_every: .*/  stats_every: 25/' \
     "$root/examples/settle-spheres.yaml" >"$tmp/settle-short.yaml"
 "$prefix/bin/shapedem" check "$tmp/settle-short.yaml" >"$log" 2>&1
 rc=$?
 check "installed shapedem checks a short settle-spheres scene (got $rc)" "$(ok $rc)"
 ((rc == 0)) || head -3 "$log"
+"$prefix/bin/shapedem" run "$tmp/settle-short.yaml" --threads 2 --quiet >"$log" 2>&1
+rc=$?
+check "installed shapedem runs it (got $rc), writing stats.csv" "$([[ $rc == 0 && -s $tmp/out-cli/stats.csv ]] && echo 1 || echo 0)"
+((rc == 0)) || head -3 "$log"
 
-# the scene-loading example, built against the prefix like the README example
+# the scene-loading example, built against the prefix like the README
+# example, and the same scene run by the installed CLI: the same stats.csv
 if [[ -f $root/examples/c/run_scene.c ]]; then
     # shellcheck disable=SC2046
-    cc "$root/examples/c/run_scene.c" $(pkg-config --cflags --libs shapedem) -o run_scene >"$log" 2>&1
+    cc -std=c17 -Wall -Wextra -Werror "$root/examples/c/run_scene.c" $(pkg-config --cflags --libs shapedem) \
+        -o run_scene >"$log" 2>&1
     rc=$?
-    check "examples/c/run_scene.c builds against the prefix (got $rc)" "$(ok $rc)"
+    check "examples/c/run_scene.c builds against the prefix with pkg-config (got $rc)" "$(ok $rc)"
     ((rc == 0)) || head -5 "$log"
-    LD_LIBRARY_PATH="$libdir" ./run_scene "$tmp/settle-short.yaml" "$tmp/out-lib" >"$log" 2>&1
+    out=$(OMP_NUM_THREADS=2 LD_LIBRARY_PATH="$libdir" ./run_scene "$tmp/settle-short.yaml" "$tmp/out-lib" 2>&1)
     rc=$?
-    check "run_scene runs the short scene (got $rc)" "$(ok $rc)"
-    ((rc == 0)) || head -5 "$log"
-    check "run_scene wrote output in $tmp/out-lib" "$([[ -n $(find "$tmp/out-lib" -type f -size +0 2>/dev/null) ]] && echo 1 || echo 0)"
+    check "run_scene runs the short scene (got $rc) and reports its 2028 particles" \
+        "$([[ $rc == 0 ]] && grep -c '^particles 2028$' <<<"$out" || echo 0)"
+    ((rc == 0)) || head -5 <<<"$out"
+    for f in summary.txt stats.csv frames.pvd; do
+        check "run_scene wrote $f" "$([[ -s $tmp/out-lib/$f ]] && echo 1 || echo 0)"
+    done
+    check "run_scene's stats.csv is the CLI's, byte for byte" \
+        "$(cmp -s "$tmp/out-lib/stats.csv" "$tmp/out-cli/stats.csv" && echo 1 || echo 0)"
 else
     echo "SKIP scene example: examples/c/run_scene.c not present"
 fi
