@@ -315,6 +315,40 @@ sd_status sd_world_biaxial(const sd_world *w, sd_biaxial *out);
 /* Takes the current size as the reference for the strains. */
 sd_status sd_world_biaxial_reference(sd_world *w);
 
+/* ---- pouring and outlets -------------------------------------------------
+ * Layer-by-layer pouring of equal spheres (seed 001 §4.1) and a hole in the
+ * floor (zmin face) of the domain box (§4.2), the hopper of [Naderi 2024].
+ * The grid solver implements them; the cells solver refuses them for now
+ * (SD_ERR_INPUT, saying so). Set before sd_world_prepare; an outlet may
+ * also be opened between steps. */
+typedef struct sd_pour_def {
+    double radius;            /* m, of every poured sphere, > 0 */
+    int material;             /* index from sd_world_add_material */
+    double height;            /* m, z of the centres of each new sheet */
+    double layers_per_second; /* 1/s, sheets per second, > 0 (4: seed 001 Table 2, Case I) */
+    size_t count;             /* spheres to pour in all */
+    double vz_range;          /* m/s, vertical velocity uniform in [-vz, vz] (0.5, seed 001 §4.1) */
+    double vh_range;          /* m/s, horizontal velocities uniform in [-vh, vh] (0.1) */
+    double start_time;        /* s, time of the first sheet (0) */
+    int cookie;
+} sd_pour_def;
+
+sd_pour_def sd_pour_def_default(void);
+
+typedef struct sd_outlet_def {
+    double x0, x1, y0, y1;    /* m, the hole [x0, x1] x [y0, y1]; x1 > x0, y1 > y0 */
+    double open_at;           /* s, simulated time it opens: the first step starting at or
+                                 after it runs with the hole (0: at once) */
+    int cookie;
+} sd_outlet_def;
+
+sd_outlet_def sd_outlet_def_default(void);
+
+sd_status sd_world_set_pour(sd_world *w, const sd_pour_def *def, sd_error *err);
+sd_status sd_world_set_outlet(sd_world *w, const sd_outlet_def *def, sd_error *err);
+/* 1 and *out filled when the world pours (sd_world_set_pour), else 0. */
+int sd_world_get_pour(const sd_world *w, sd_pour_def *out);
+
 /* Computes the initial forces; called by the first sd_world_step when not
  * called before. Fails on bad parameters (e.g. a linear law with no stiffness). */
 sd_status sd_world_prepare(sd_world *w, sd_error *err);

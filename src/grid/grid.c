@@ -29,8 +29,6 @@
 #include "core/error.h"
 #include "world/world.h"
 
-#define SD_GRID_COOKIE 0x6D1D
-
 sd_grid_state *sd_grid_state_get(sd_world *w)
 {
     if (!w->grid_state)
@@ -59,25 +57,15 @@ void sd_grid_state_free(sd_grid_state *g)
     sd_free(g);
 }
 
-sd_grid_pour_def sd_grid_pour_def_default(void)
-{
-    sd_grid_pour_def d;
-    memset(&d, 0, sizeof d);
-    d.layers_per_second = 4;   /* seed 001 Table 2, Case I */
-    d.vz_range = 0.5;          /* seed 001 §4.1 */
-    d.vh_range = 0.1;
-    d.cookie = SD_GRID_COOKIE;
-    return d;
-}
+sd_grid_pour_def sd_grid_pour_def_default(void) { return sd_pour_def_default(); }
 
 sd_status sd_grid_set_pour(sd_world *w, const sd_grid_pour_def *d, sd_error *err)
 {
-    if (!d || d->cookie != SD_GRID_COOKIE)
-        return sd_error_set(err, SD_ERR_INPUT, "", 0, "pour", "pour def not made by sd_grid_pour_def_default");
-    if (!(d->radius > 0) || d->material < 0 || (size_t)d->material >= w->material_count)
-        return sd_error_set(err, SD_ERR_INPUT, "", 0, "pour", "pour needs a radius > 0 and a known material");
-    if (!(d->layers_per_second > 0) || d->vz_range < 0 || d->vh_range < 0)
-        return sd_error_set(err, SD_ERR_INPUT, "", 0, "pour", "pour needs a feed rate > 0 and velocity ranges >= 0");
+    return sd_world_set_pour(w, d, err);
+}
+
+sd_status sd_grid_pour_set(sd_world *w, const sd_pour_def *d, sd_error *err)
+{
     sd_grid_state *g = sd_grid_state_get(w);
     if (!g)
         return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory");

@@ -44,18 +44,9 @@
 #define SD_GRID_OVER 0xffffffffu    /* home[k]: in the overflow list */
 #define SD_GRID_OUTSIDE 0xfffffffeu /* where[k]: left the inner grid */
 
-/* Layer-by-layer pouring (seed 001 §4.1). */
-typedef struct sd_grid_pour_def {
-    double radius;            /* m */
-    int material;             /* world material index */
-    double height;            /* m, z of the centres of each new sheet */
-    double layers_per_second; /* 1/s, feed rate (seed 001 Table 2: 4 or 8) */
-    size_t count;             /* particles to pour in all */
-    double vz_range;          /* m/s, vertical velocity uniform in [-vz, vz] (0.5) */
-    double vh_range;          /* m/s, horizontal velocities uniform in [-vh, vh] (0.1) */
-    double start_time;        /* s, time of the first sheet */
-    int cookie;
-} sd_grid_pour_def;
+/* Layer-by-layer pouring (seed 001 §4.1): the public sd_pour_def
+ * (shapedem.h), under the name the module's tests know. */
+typedef sd_pour_def sd_grid_pour_def;
 
 sd_grid_pour_def sd_grid_pour_def_default(void);
 
@@ -157,8 +148,11 @@ typedef struct sd_grid_state sd_grid_state;
 sd_grid_state *sd_grid_state_get(sd_world *w);
 void sd_grid_state_free(sd_grid_state *g);
 
-/* Pours particles layer by layer from the first step on (or start_time). */
+/* Pours particles layer by layer from the first step on (or start_time):
+ * sd_world_set_pour on a grid world (its checks, then sd_grid_pour_set). */
 sd_status sd_grid_set_pour(sd_world *w, const sd_grid_pour_def *def, sd_error *err);
+/* The solver's half of sd_world_set_pour (the def already checked). */
+sd_status sd_grid_pour_set(sd_world *w, const sd_pour_def *def, sd_error *err);
 /* Opens a rectangular hole [x0, x1] x [y0, y1] in the floor (zmin face) of
  * the domain box: particles fall through and are removed and counted once
  * their centre is one radius below the floor. May be called between steps

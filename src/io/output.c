@@ -18,7 +18,7 @@
 
 #include "core/alloc.h"
 #include "core/error.h"
-#include "grid/grid.h"
+#include "world/solver.h"
 #include "io/fsutil.h"
 #include "io/vtk.h"
 
@@ -42,7 +42,7 @@ struct sd_output {
     size_t frame_cap;
     FILE *stats;          /* stats.csv, opened at the first row */
     size_t stats_walls;   /* walls in the header */
-    int stats_grid;       /* the header has the grid solver's columns */
+    size_t stats_solver;  /* the header has this many solver columns (world/solver.h) */
     long stats_rows;
     FILE *biaxial;        /* biaxial.csv (2D worlds with four walls), opened at the first row */
 };
@@ -350,6 +350,16 @@ static sd_status sd_output_wall_prefixes(const sd_world *w, size_t nw, char *pre
     return SD_OK;
 }
 
+/* One value of a solver item (world/solver.h): counts as integers, the
+ * rest with ten significant digits, as every other number we write. */
+static void sd_solver_value_print(FILE *fp, const char *before, const sd_solver_item *it, int v)
+{
+    if (it->integer)
+        fprintf(fp, "%s%lld", before, (long long)it->v[v]);
+    else
+        fprintf(fp, "%s%.10g", before, it->v[v]);
+}
+
 static sd_status sd_output_stats_header(sd_output *o, const sd_world *w, size_t nw, sd_error *err)
 {
     char *pre = sd_malloc((nw ? nw : 1) * SD_OUTPUT_PREFIX_MAX);
@@ -364,11 +374,16 @@ static sd_status sd_output_stats_header(sd_output *o, const sd_world *w, size_t 
             const char *p = pre + i * SD_OUTPUT_PREFIX_MAX;
             fprintf(o->stats, ",%s_fx,%s_fy,%s_fz,%s_tx,%s_ty,%s_tz", p, p, p, p, p, p);
         }
-        sd_grid_info gi; /* solver grid: pouring, outlet, cell conflicts (src/grid) */
-        sd_grid_get_info(w, &gi);
-        o->stats_grid = gi.active;
-        if (gi.active)
-            fprintf(o->stats, ",poured,in_domain,discharged,discharged_mass,escaped,escaped_mass,removed,conflicts");
+        /* the solver's own columns (the grid's pouring, outlet, cell
+         * conflicts): fixed from here on, the world being prepared */
+        sd_solver_item it[SD_SOLVER_ITEMS_MAX];
+        size_t ni = sd_world_solver_items(w, it, SD_SOLVER_ITEMS_MAX);
+        o->stats_solver = 0;
+        for (size_t i = 0; i < ni; ++i)
+            if (it[i].column) {
+                fprintf(o->stats, ",%s", it[i].column);
+                o->stats_solver++;
+            }
         fputc('\n', o->stats);
         o->stats_walls = nw;
     }
@@ -452,11 +467,16 @@ sd_status sd_output_stats(sd_output *o, const sd_world *w, sd_error *err)
         fprintf(o->stats, ",%.10g,%.10g,%.10g,%.10g,%.10g,%.10g", wi.force.x, wi.force.y, wi.force.z, wi.torque.x,
                 wi.torque.y, wi.torque.z);
     }
-    if (o->stats_grid) {
-        sd_grid_info gi;
-        sd_grid_get_info(w, &gi);
-        fprintf(o->stats, ",%zu,%zu,%zu,%.10g,%zu,%.10g,%zu,%ld", gi.poured, sd_world_particle_count(w),
-                gi.removed_outlet, gi.removed_outlet_mass, gi.escaped, gi.escaped_mass, gi.removed, gi.conflicts);
+    if (o->stats_solver) {
+        sd_solver_item it[SD_SOLVER_ITEMS_MAX];
+        size_t ni = sd_world_solver_items(w, it, SD_SOLVER_ITEMS_MAX), nc = 0;
+        for (size_t i = 0; i < ni && nc < o->stats_solver; ++i)
+            if (it[i].column) {
+                sd_solver_value_print(o->stats, ",", &it[i], 0);
+                nc++;
+            }
+        for (; nc < o->stats_solver; ++nc) /* keep the column count: the row stays well-formed */
+            fputs(",0", o->stats);
     }
     fputc('\n', o->stats);
     if (fflush(o->stats) != 0 || ferror(o->stats)) {
@@ -513,33 +533,14 @@ static void sd_output_summary_text(FILE *fp, const sd_output *o, const sd_world 
     fprintf(fp, "max_overlap_ratio: %.10g\n", st.max_overlap_ratio);
     fprintf(fp, "max_speed_m_per_s: %.10g\n", st.max_speed);
     fprintf(fp, "pair_list_rebuilds: %ld\n", st.rebuilds);
-    sd_grid_info gi; /* solver grid (src/grid, docs/grid-solver.md) */
-    sd_grid_get_info(w, &gi);
-    if (gi.active) {
-        fprintf(fp, "grid_cell_m: %.10g\n", gi.cell);
-        fprintf(fp, "grid_cells: %ld x %ld x %ld\n", gi.nx, gi.ny, gi.nz);
-        fprintf(fp, "grid_poured: %zu\n", gi.poured);
-        fprintf(fp, "grid_in_domain: %zu\n", sd_world_particle_count(w));
-        fprintf(fp, "grid_discharged: %zu\n", gi.removed_outlet);
-        fprintf(fp, "grid_discharged_mass_kg: %.10g\n", gi.removed_outlet_mass);
-        fprintf(fp, "grid_escaped: %zu\n", gi.escaped);
-        fprintf(fp, "grid_escaped_mass_kg: %.10g\n", gi.escaped_mass);
-        fprintf(fp, "grid_removed: %zu\n", gi.removed);
-        if (gi.failed_step)
-            fprintf(fp, "grid_failed_at_step: %ld\n", gi.failed_step);
-        fprintf(fp, "grid_domain_min_m: %.10g %.10g %.10g\n", gi.domain_lo[0], gi.domain_lo[1], gi.domain_lo[2]);
-        fprintf(fp, "grid_domain_max_m: %.10g %.10g %.10g\n", gi.domain_hi[0], gi.domain_hi[1], gi.domain_hi[2]);
-        fprintf(fp, "grid_outlet_open: %d\n", gi.outlet_open);
-        if (gi.outlet_open || gi.outlet_time > 0) {
-            fprintf(fp, "grid_outlet_time_s: %.10g\n", gi.outlet_time);
-            fprintf(fp, "grid_outlet_x_m: %.10g %.10g\n", gi.outlet_x0, gi.outlet_x1);
-            fprintf(fp, "grid_outlet_y_m: %.10g %.10g\n", gi.outlet_y0, gi.outlet_y1);
-        }
-        fprintf(fp, "grid_conflicts_resolved: %ld\n", gi.conflicts);
-        fprintf(fp, "grid_max_without_cell: %zu\n", gi.max_overflow);
-        fprintf(fp, "grid_slot_overflows: %ld\n", gi.slot_overflows);
-        fprintf(fp, "grid_slots_used_max: %d\n", gi.slots_used_max);
-        fprintf(fp, "grid_solver_bytes: %zu\n", gi.bytes);
+    /* the solver's own lines (solver grid: docs/grid-solver.md) */
+    sd_solver_item it[SD_SOLVER_ITEMS_MAX];
+    size_t ni = sd_world_solver_items(w, it, SD_SOLVER_ITEMS_MAX);
+    for (size_t i = 0; i < ni; ++i) {
+        fprintf(fp, "%s:", it[i].key);
+        for (int v = 0; v < it[i].n; ++v)
+            sd_solver_value_print(fp, v == 0 ? " " : it[i].sep, &it[i], v);
+        fputc('\n', fp);
     }
     size_t nw = sd_world_wall_count(w);
     for (size_t i = 0; i < nw; ++i) {
@@ -570,6 +571,13 @@ static void sd_output_summary_text(FILE *fp, const sd_output *o, const sd_world 
                 ns[i].kind_a, ns[i].kind_b, ns[i].evaluations, (double)ns[i].iterations / ev,
                 (double)ns[i].support_calls / ev);
     }
+    /* wall time per stage of the step (sd_profile), up to this summary */
+    sd_profile pr;
+    sd_world_profile(w, &pr);
+    for (int k = 0; k < SD_PROFILE_STAGE_COUNT; ++k)
+        if (pr.calls[k] > 0 || pr.seconds[k] > 0)
+            fprintf(fp, "profile %s: seconds %.6g, calls %lld\n", sd_profile_stage_name(k), pr.seconds[k],
+                    pr.calls[k]);
 }
 
 sd_status sd_output_close(sd_output *o, const sd_world *w, const sd_run_summary *sum, sd_error *err)

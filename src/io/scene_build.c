@@ -1,7 +1,10 @@
 /* scene_build.c — turns a loaded scene into a world, through the public
- * API only (shapedem.h), and checks what can only be checked once the
+ * API (shapedem.h: materials, shapes, particles, walls, pour and outlet,
+ * whichever solver runs), and checks what can only be checked once the
  * particles exist: overlaps at the start, particles outside walls, and a
- * time step above the stability limit.
+ * time step above the stability limit. Beyond the public API it reads only
+ * the kind lists (shape/shape.h, shape/shape2d.h: the scene's type names)
+ * and the start-overlap measure (world/start_overlap.h), never a solver.
  *
  * Invariant: sd_scene_build returns either a complete world that passed
  * every check, or an error naming the scene file (or the CSV file a sphere
@@ -18,7 +21,6 @@
 
 #include "core/alloc.h"
 #include "core/error.h"
-#include "grid/grid.h"
 #include "io/scene.h"
 #include "io/scene_keys.h"
 #include "shape/shape.h"
@@ -551,9 +553,9 @@ static sd_status sd_build(const sd_scene *s, sd_world *w, sd_scene_spheres *sp, 
      * spheres over), so the two are never held at once with it */
     sd_scene_spheres_free(sp);
 
-    /* pouring and the outlet of the grid solver (src/grid, seed 001 4.1-4.2) */
+    /* pouring and the outlet (seed 001 4.1-4.2; the grid solver has them) */
     if (s->pour.given) {
-        sd_grid_pour_def pd = sd_grid_pour_def_default();
+        sd_pour_def pd = sd_pour_def_default();
         pd.radius = s->pour.radius;
         pd.material = s->pour.material;
         pd.height = s->pour.height;
@@ -562,12 +564,19 @@ static sd_status sd_build(const sd_scene *s, sd_world *w, sd_scene_spheres *sp, 
         pd.vz_range = s->pour.vertical_speed;
         pd.vh_range = s->pour.horizontal_speed;
         pd.start_time = s->pour.start;
-        if ((st = sd_grid_set_pour(w, &pd, err)) != SD_OK)
+        if ((st = sd_world_set_pour(w, &pd, err)) != SD_OK)
             return sd_where(err, st, s, s->pour.line, "pour");
     }
-    if (s->outlet.given && (st = sd_grid_set_outlet_at(w, s->outlet.lo[0], s->outlet.hi[0], s->outlet.lo[1],
-                                                       s->outlet.hi[1], s->outlet.open_at, err)) != SD_OK)
-        return sd_where(err, st, s, s->outlet.line, "outlet");
+    if (s->outlet.given) {
+        sd_outlet_def od = sd_outlet_def_default();
+        od.x0 = s->outlet.lo[0];
+        od.x1 = s->outlet.hi[0];
+        od.y0 = s->outlet.lo[1];
+        od.y1 = s->outlet.hi[1];
+        od.open_at = s->outlet.open_at;
+        if ((st = sd_world_set_outlet(w, &od, err)) != SD_OK)
+            return sd_where(err, st, s, s->outlet.line, "outlet");
+    }
     if ((st = sd_world_prepare(w, err)) != SD_OK)
         return sd_where(err, st, s, s->simulation_line, "simulation");
     double tc = 0.0;

@@ -14,7 +14,7 @@
 #include "contact/law_volume.h"
 #include "core/error.h"
 #include "shape/shape_make.h"
-#include "grid/grid.h"
+#include "world/solver.h"
 #include "world/world.h"
 
 static double sd_mean(double a, double b) { return 0.5 * (a + b); }
@@ -315,19 +315,29 @@ double sd_world_recommended_dt(const sd_world *w, double *contact_duration)
     const sd_particles *p = &w->p;
     size_t nm = w->material_count;
     double tc_min = INFINITY, rayleigh_min = INFINITY, rest_min = INFINITY;
-    if ((p->n == 0 && !sd_grid_has_particles(w)) || nm == 0) {
+    /* smallest sphere per material; characteristic impact speed from the
+     * fastest particle and a fall through the packing's height */
+    sd_dt_inputs in;
+    for (size_t a = 0; a < 256; ++a)
+        in.rmin[a] = in.mmin[a] = INFINITY;
+    in.vmax = 0;
+    in.zlo = INFINITY;
+    in.zhi = -INFINITY;
+    in.rsmall = INFINITY;
+    in.any = p->n > 0;
+    double *rmin = in.rmin, *mmin = in.mmin;
+    double g = sqrt((double)sd_v3_norm2(w->gravity));
+    sd_vec3 gdir = g > 0 ? sd_v3_scale(w->gravity, (sd_real)(-1.0 / g)) : sd_v3(0, 0, 1);
+    /* the particles the solver holds besides the world's arrays, or will
+     * insert (the grid's own state and its pour: world/solver.h) */
+    sd_v3d gd = {(double)gdir.x, (double)gdir.y, (double)gdir.z};
+    w->solver->dt_inputs(w, gd, &in);
+    if (!in.any || nm == 0) {
         if (contact_duration)
             *contact_duration = INFINITY;
         return INFINITY;
     }
-    /* smallest sphere per material; characteristic impact speed from the
-     * fastest particle and a fall through the packing's height */
-    double rmin[256], mmin[256];
-    for (size_t a = 0; a < 256; ++a)
-        rmin[a] = mmin[a] = INFINITY;
-    double vmax = 0, zlo = INFINITY, zhi = -INFINITY, rsmall = INFINITY;
-    double g = sqrt((double)sd_v3_norm2(w->gravity));
-    sd_vec3 gdir = g > 0 ? sd_v3_scale(w->gravity, (sd_real)(-1.0 / g)) : sd_v3(0, 0, 1);
+    double vmax = in.vmax, zlo = in.zlo, zhi = in.zhi, rsmall = in.rsmall;
     for (size_t k = 0; k < p->n; ++k) {
         int m = p->material[k];
         if (m < 0 || m >= 256)
@@ -344,8 +354,6 @@ double sd_world_recommended_dt(const sd_world *w, double *contact_duration)
         zlo = fmin(zlo, h);
         zhi = fmax(zhi, h);
     }
-    /* solver grid: its own particles and the ones it will pour (src/grid) */
-    sd_grid_dt_inputs(w, gdir, rmin, mmin, &vmax, &zlo, &zhi, &rsmall);
     double v = fmax(vmax, fmax(sqrt(2 * g * (zhi - zlo + 2 * rsmall)), 1e-3));
     for (size_t a = 0; a < nm && a < 256; ++a) {
         if (!isfinite(rmin[a]))

@@ -25,6 +25,37 @@
 
 #include <shapedem/shapedem.h>
 
+/* Sums of sd_world_stats (analysis/stats.c): the world's own particle
+ * arrays are summed first, then the solver adds what it holds. */
+typedef struct sd_stat_sums {
+    double ekt, ekr, epg, vmax2; /* J, J, J, (m/s)^2 */
+    double epe, ovl;             /* J; largest overlap / half size */
+    long contacts, wall_contacts;
+    size_t pairs;                /* candidate pairs held */
+} sd_stat_sums;
+
+/* One line of solver-specific output: a summary.txt key with one to three
+ * values, and (when column is set) a stats.csv column holding the first. */
+typedef struct sd_solver_item {
+    const char *key;     /* summary.txt key */
+    const char *column;  /* stats.csv column, NULL: summary only */
+    int n;               /* values, 1..3 */
+    int integer;         /* printed as integers (counts) rather than %.10g */
+    const char *sep;     /* between values: " " or " x " */
+    double v[3];
+} sd_solver_item;
+
+#define SD_SOLVER_ITEMS_MAX 32
+
+/* Inputs of sd_world_recommended_dt (material.c) for the particles the
+ * solver holds or will insert: per material (256 entries) the smallest
+ * radius and mass, the fastest speed and the extent along gdir. */
+typedef struct sd_dt_inputs {
+    double rmin[256], mmin[256];
+    double vmax, zlo, zhi, rsmall;
+    int any;             /* some particle, present or to come */
+} sd_dt_inputs;
+
 typedef struct sd_solver_ops {
     const char *name; /* the scene-file name (simulation.solver) */
     /* mixes the materials, checks the parameters, computes the forces of
@@ -38,6 +69,19 @@ typedef struct sd_solver_ops {
     sd_status (*read)(const sd_world *w, size_t k, sd_particle_state *out);
     /* storage index of a stable id, (size_t)-1 when absent */
     size_t (*find)(const sd_world *w, uint64_t id);
+    /* adds the solver's own particles and its contacts to the sums */
+    void (*stats)(const sd_world *w, sd_stat_sums *s);
+    /* adds the particles the solver holds or will insert (beyond the
+     * world's own arrays, which material.c reads) */
+    void (*dt_inputs)(const sd_world *w, sd_v3d gdir, sd_dt_inputs *in);
+    /* solver-specific output lines (none: 0); the same keys and columns
+     * for the whole run once the world is prepared */
+    size_t (*info)(const sd_world *w, sd_solver_item *items, size_t max);
+    /* pouring and an outlet (the def checked by world.c: cookie, ranges
+     * that need no solver) */
+    sd_status (*set_pour)(sd_world *w, const sd_pour_def *def, sd_error *err);
+    sd_status (*set_outlet)(sd_world *w, const sd_outlet_def *def, sd_error *err);
+    int (*get_pour)(const sd_world *w, sd_pour_def *out);
     /* frees the solver's own state (the world frees its own arrays) */
     void (*destroy)(sd_world *w);
 } sd_solver_ops;
@@ -56,5 +100,10 @@ sd_status sd_cells_step(sd_world *w, long nsteps, sd_error *err);
 size_t sd_cells_count(const sd_world *w);
 sd_status sd_cells_read(const sd_world *w, size_t k, sd_particle_state *out);
 size_t sd_cells_find(const sd_world *w, uint64_t id);
+/* The cells solver's contacts from its pair lists (analysis/stats.c). */
+void sd_cells_stats(const sd_world *w, sd_stat_sums *s);
+
+/* The world's solver's items (world.c; io/output.c writes them). */
+size_t sd_world_solver_items(const sd_world *w, sd_solver_item *items, size_t max);
 
 #endif

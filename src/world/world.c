@@ -431,7 +431,98 @@ sd_status sd_world_get_particle(const sd_world *w, size_t k, sd_particle_state *
 }
 size_t sd_world_find_particle(const sd_world *w, uint64_t id) { return w->solver->find(w, id); }
 
+
+sd_pour_def sd_pour_def_default(void)
+{
+    sd_pour_def d;
+    memset(&d, 0, sizeof d);
+    d.layers_per_second = 4; /* seed 001 Table 2, Case I */
+    d.vz_range = 0.5;        /* seed 001 §4.1 */
+    d.vh_range = 0.1;
+    d.cookie = SD_COOKIE;
+    return d;
+}
+
+sd_outlet_def sd_outlet_def_default(void)
+{
+    sd_outlet_def d;
+    memset(&d, 0, sizeof d);
+    d.cookie = SD_COOKIE;
+    return d;
+}
+
+/* What needs no solver is checked here, once; the solver checks the rest
+ * (the pour height against its domain, at prepare). */
+sd_status sd_world_set_pour(sd_world *w, const sd_pour_def *d, sd_error *err)
+{
+    if (!d || d->cookie != SD_COOKIE)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "pour", "pour def not made by sd_pour_def_default");
+    if (!(d->radius > 0) || !isfinite(d->radius) || d->material < 0 || (size_t)d->material >= w->material_count)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "pour", "pour needs a radius > 0 and a known material");
+    if (!(d->layers_per_second > 0) || !(d->vz_range >= 0) || !(d->vh_range >= 0))
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "pour", "pour needs a feed rate > 0 and velocity ranges >= 0");
+    return w->solver->set_pour(w, d, err);
+}
+
+sd_status sd_world_set_outlet(sd_world *w, const sd_outlet_def *d, sd_error *err)
+{
+    if (!d || d->cookie != SD_COOKIE)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "outlet", "outlet def not made by sd_outlet_def_default");
+    if (!(d->x1 > d->x0 && d->y1 > d->y0))
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "outlet", "outlet needs x1 > x0 and y1 > y0");
+    if (!(d->open_at >= 0) || !isfinite(d->open_at))
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "outlet.open_at", "outlet opening time must be >= 0 s");
+    return w->solver->set_outlet(w, d, err);
+}
+
+int sd_world_get_pour(const sd_world *w, sd_pour_def *out) { return w->solver->get_pour(w, out); }
+
+size_t sd_world_solver_items(const sd_world *w, sd_solver_item *items, size_t max)
+{
+    return w->solver->info(w, items, max);
+}
+
 static void sd_cells_destroy(sd_world *w) { (void)w; /* the world's arrays are all it has */ }
+
+/* The world's own arrays are all the cells solver holds: nothing to add. */
+static void sd_cells_dt_inputs(const sd_world *w, sd_v3d gdir, sd_dt_inputs *in)
+{
+    (void)w;
+    (void)gdir;
+    (void)in;
+}
+
+static size_t sd_cells_info(const sd_world *w, sd_solver_item *items, size_t max)
+{
+    (void)w;
+    (void)items;
+    (void)max;
+    return 0;
+}
+
+/* Insertion and outlets for the general engine come with issue 16. */
+static sd_status sd_cells_set_pour(sd_world *w, const sd_pour_def *d, sd_error *err)
+{
+    (void)w;
+    (void)d;
+    return sd_error_set(err, SD_ERR_INPUT, "", 0, "pour",
+                        "pouring needs solver grid (simulation.solver: grid); the cells solver cannot pour yet");
+}
+
+static sd_status sd_cells_set_outlet(sd_world *w, const sd_outlet_def *d, sd_error *err)
+{
+    (void)w;
+    (void)d;
+    return sd_error_set(err, SD_ERR_INPUT, "", 0, "outlet",
+                        "an outlet needs solver grid (simulation.solver: grid); the cells solver has none yet");
+}
+
+static int sd_cells_get_pour(const sd_world *w, sd_pour_def *out)
+{
+    (void)w;
+    (void)out;
+    return 0;
+}
 
 const sd_solver_ops sd_solver_cells = {
     .name = "cells",
@@ -440,6 +531,12 @@ const sd_solver_ops sd_solver_cells = {
     .count = sd_cells_count,
     .read = sd_cells_read,
     .find = sd_cells_find,
+    .stats = sd_cells_stats,
+    .dt_inputs = sd_cells_dt_inputs,
+    .info = sd_cells_info,
+    .set_pour = sd_cells_set_pour,
+    .set_outlet = sd_cells_set_outlet,
+    .get_pour = sd_cells_get_pour,
     .destroy = sd_cells_destroy,
 };
 
