@@ -415,6 +415,47 @@ typedef struct sd_narrow_stats {
  * returns how many there are. */
 size_t sd_world_narrow_stats(const sd_world *w, sd_narrow_stats *out, size_t max);
 
+/* ---- profile (STYLE.md convention 9) --------------------------------------
+ * Wall time per stage of the step, accumulated since the world was created
+ * (a monotonic clock read twice per stage per step; never per pair). The
+ * stages of the cells solver are timed by the step itself; "output" is
+ * timed by whoever writes the output (the CLI's run loop) through
+ * sd_world_profile_add. The grid solver times only output.
+ * X(NAME, name, what it covers) */
+#define SD_PROFILE_STAGES(X)                                                                        \
+    X(REBUILD, rebuild, "skin test and pair-list rebuilds (broad phase)")                           \
+    X(SPHERES, spheres, "sphere-sphere (disc-disc) pairs")                                          \
+    X(CONVEX, convex, "pairs with a 3D shape: GJK/EPA")                                             \
+    X(POLY_VOLUME, poly_volume, "sharp polyhedron pairs under a volume law: exact overlap volume") \
+    X(CONVEX2D, convex2d, "pairs with a 2D shape: 2D GJK/EPA")                                     \
+    X(WALLS, walls, "particle-wall pairs of every kind, and the wall totals")                       \
+    X(INTEGRATION, integration, "gather, kicks and drifts, wall motion, finite check")              \
+    X(OUTPUT, output, "frames, statistics and summary (timed by the caller)")
+
+typedef enum sd_profile_stage {
+#define SD_X_PROFILE(NAME, name, doc) SD_PROFILE_##NAME,
+    SD_PROFILE_STAGES(SD_X_PROFILE)
+#undef SD_X_PROFILE
+    SD_PROFILE_STAGE_COUNT
+} sd_profile_stage;
+
+/* calls: how many times the stage ran. Each step runs the rebuild stage
+ * once, each pair kind present in the pair list once, the walls once when
+ * there are walls and the integration once; sd_world_prepare runs the
+ * first three (its forces), so after a prepare and n steps they count
+ * n + 1 and the integration n. The first half kick of each sd_world_step
+ * call is timed into the integration without a call of its own. */
+typedef struct sd_profile {
+    double seconds[SD_PROFILE_STAGE_COUNT]; /* s, wall time */
+    long long calls[SD_PROFILE_STAGE_COUNT];
+} sd_profile;
+
+void sd_world_profile(const sd_world *w, sd_profile *out);
+/* Adds seconds of a stage the caller timed (output) and counts one call. */
+void sd_world_profile_add(sd_world *w, sd_profile_stage stage, double seconds);
+/* The stage's name ("rebuild", "spheres", ...), NULL out of range. */
+const char *sd_profile_stage_name(int stage);
+
 typedef struct sd_wall_info {
     const char *name;
     int kind;                 /* 0 plane, 1 box */

@@ -14,48 +14,92 @@
  * solver's half of the solver interface, world/solver.h). Every stage is one loop of the
  * backend; the CUDA backend will provide the same stages.
  */
-#include <math.h>
-
-#include "backend/cpu/loops.h"
-#include "backend/cpu/poly.h"
-#include "broad/cells.h"
+#include "backend/backend.h"
 #include "core/error.h"
+#include "world/profile.h"
 #include "world/solver.h"
+#include "world/view.h"
 #include "world/world.h"
 
-static sd_real sd_min_radius(const sd_world *w)
+/* The profile has one stage per pair kind, in the kinds' order. */
+_Static_assert(SD_PROFILE_SPHERES + SD_PAIR_SPHERES == SD_PROFILE_SPHERES &&
+                   SD_PROFILE_SPHERES + SD_PAIR_CONVEX == SD_PROFILE_CONVEX &&
+                   SD_PROFILE_SPHERES + SD_PAIR_POLY_VOLUME == SD_PROFILE_POLY_VOLUME &&
+                   SD_PROFILE_SPHERES + SD_PAIR_CONVEX2D == SD_PROFILE_CONVEX2D &&
+                   SD_PROFILE_SPHERES + SD_PAIR_KIND_COUNT == SD_PROFILE_WALLS,
+               "SD_PROFILE_STAGES lists the pair kinds of contact/kinds.h in their order");
+
+/* The stages' backend: the CPU's OpenMP loops (the CUDA backend will be
+ * chosen here). */
+static const sd_backend *sd_backend_of(const sd_world *w)
 {
-    sd_real r = INFINITY;
-    for (size_t k = 0; k < w->p.n; ++k)
-        r = sd_min(r, w->p.radius[k]);
-    return r;
+    (void)w;
+    return &sd_backend_cpu;
+}
+
+/* Broad phase: new pair lists when the skin is used up, a wall moved
+ * beyond it or particles were added; the views follow the new arrays; then
+ * the ghosts' state (none yet). */
+static sd_status sd_stage_rebuild(sd_world *w, const sd_backend *be, sd_error *err)
+{
+    double t = sd_profile_now();
+    if (w->dirty || sd_world_walls_moved(w) || be->needs_rebuild(&w->stage)) {
+        sd_status st = be->rebuild(w, err);
+        if (st != SD_OK)
+            return st;
+        if (sd_world_views(w) != SD_OK)
+            return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory for the views of %zu walls",
+                                w->wall_count);
+        be->upload(&w->stage);
+    }
+    be->exchange_ghosts(&w->stage);
+    sd_profile_lap(w, SD_PROFILE_REBUILD, &t, 1);
+    return SD_OK;
 }
 
 /* Contact forces of every pair for the current positions and velocities,
- * stored per pair (the gather into particles follows). */
-static sd_status sd_world_pair_forces(sd_world *w, sd_error *err)
+ * kind by kind, stored per pair (the gather into particles follows), then
+ * the walls' totals. */
+static sd_status sd_stage_forces(sd_world *w, const sd_backend *be, sd_error *err)
 {
-    if (sd_broad_needs_rebuild(w)) {
-        sd_status st = sd_broad_rebuild(w, err);
-        if (st != SD_OK)
-            return st;
+    sd_status st = sd_stage_rebuild(w, be, err);
+    if (st != SD_OK)
+        return st;
+    sd_stage *s = &w->stage;
+    double t = sd_profile_now();
+    for (int k = 0; k < SD_PAIR_KIND_COUNT; ++k)
+        if (s->pairs.kind_start[k + 1] > s->pairs.kind_start[k]) {
+            be->forces(s, (sd_pair_kind)k);
+            sd_profile_lap(w, (sd_profile_stage)(SD_PROFILE_SPHERES + k), &t, 1);
+        }
+    if (w->wall_count > 0) {
+        be->wall_forces(s);
+        be->wall_totals(s);
+        sd_world_views_wall_totals(w);
+        sd_profile_lap(w, SD_PROFILE_WALLS, &t, 1);
     }
-    sd_cpu_pair_forces(w);
-    if (w->dim2) { /* the planar mode: 2D shapes (2D GJK/EPA) and wall lines */
-        sd_cpu_convex2d_forces(w);
-        if (w->pairs.n > w->pairs.n_sphere)
-            sd_cpu_narrow2d_totals(w);
-        sd_cpu_wall_forces2d(w);
-        sd_cpu_wall_totals(w);
+    return SD_OK;
+}
+
+/* Moving walls to time t + dt (servo.c), and their views. */
+static sd_status sd_stage_walls_drift(sd_world *w, const sd_backend *be, double t, sd_error *err)
+{
+    if (w->wall_count == 0)
         return SD_OK;
-    }
-    sd_cpu_convex_forces(w);
-    if (w->pairs.n > w->pairs.n_sphere)
-        sd_cpu_narrow_totals(w);
-    sd_cpu_wall_forces(w);
-    if (w->has_volume_law)
-        sd_cpu_poly_wall_forces(w); /* polyhedron walls under a volume law */
-    sd_cpu_wall_totals(w);
+    sd_status st = sd_world_walls_drift(w, t, err);
+    if (st != SD_OK)
+        return st;
+    sd_world_views_walls(w);
+    be->upload_walls(&w->stage);
+    return SD_OK;
+}
+
+/* A NaN anywhere ends the run with a clear message rather than garbage. */
+static sd_status sd_stage_check_finite(sd_world *w, const sd_backend *be, sd_error *err)
+{
+    if (be->check_finite(&w->stage))
+        return sd_error_set(err, SD_ERR_PHYSICS, "", 0, "", "a particle state became NaN or infinite at step %ld "
+                            "(time step too large for the stiffness?)", w->step);
     return SD_OK;
 }
 
@@ -67,39 +111,25 @@ sd_status sd_cells_prepare(sd_world *w, sd_error *err)
     st = sd_world_check_params(w, err);
     if (st != SD_OK)
         return st;
+    const sd_backend *be = sd_backend_of(w);
+    if (sd_world_views(w) != SD_OK)
+        return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory for the views of %zu walls",
+                            w->wall_count);
+    be->upload(&w->stage);
     if (w->def.skin > 0)
         w->skin = (sd_real)w->def.skin;
     else if (w->p.n > 0)
-        w->skin = SD_R(0.2) * sd_min_radius(w);
+        w->skin = SD_R(0.2) * be->min_radius(&w->stage);
     else
         w->skin = SD_R(0.0);
-    w->dirty = 1;
-    st = sd_world_pair_forces(w, err);
+    w->dirty = 1; /* the rebuild refills the views, with the skin */
+    st = sd_stage_forces(w, be, err);
     if (st != SD_OK)
         return st;
-    sd_cpu_gather(w);
+    double t = sd_profile_now();
+    be->gather(&w->stage);
+    sd_profile_lap(w, SD_PROFILE_INTEGRATION, &t, 0);
     w->prepared = 1;
-    return SD_OK;
-}
-
-/* A NaN anywhere ends the run with a clear message rather than garbage:
- * position, velocity, spin and orientation (a NaN spin reaches x only
- * through contacts, so a free body would carry it silently). The squares
- * also catch values past ~1e154, whose energies (stats.csv) already
- * overflow to inf. One sum per particle: a NaN or inf in any term makes
- * the sum non-finite. */
-static sd_status sd_world_check_finite(const sd_world *w, sd_error *err)
-{
-    const sd_particles *p = &w->p;
-    int bad = 0;
-    size_t n = p->n;
-SD_PARALLEL_FOR_REDUCE_OR(bad)
-    for (size_t k = 0; k < n; ++k)
-        bad |= !isfinite(sd_v3_norm2(p->x[k]) + sd_v3_norm2(p->v[k]) + sd_v3_norm2(p->w[k]) + p->q[k].w +
-                         p->q[k].x + p->q[k].y + p->q[k].z);
-    if (bad)
-        return sd_error_set(err, SD_ERR_PHYSICS, "", 0, "", "a particle state became NaN or infinite at step %ld "
-                            "(time step too large for the stiffness?)", w->step);
     return SD_OK;
 }
 
@@ -110,27 +140,34 @@ sd_status sd_cells_step(sd_world *w, long nsteps, sd_error *err)
         if (st != SD_OK)
             return st;
     }
+    const sd_backend *be = sd_backend_of(w);
+    sd_stage *s = &w->stage;
+    double t = sd_profile_now();
     if (nsteps > 0) {
-        sd_cpu_kick_drift(w);                        /* v(t + dt/2), x(t + dt) */
-        sd_status st = sd_world_walls_drift(w, w->time, err); /* moving walls to t + dt (servo.c) */
+        be->kick_drift(s);                                  /* v(t + dt/2), x(t + dt) */
+        sd_status st = sd_stage_walls_drift(w, be, w->time, err); /* moving walls to t + dt */
         if (st != SD_OK)
             return st;
+        sd_profile_lap(w, SD_PROFILE_INTEGRATION, &t, 0);
     }
-    for (long s = 0; s < nsteps; ++s) {
-        sd_status st = sd_world_pair_forces(w, err); /* per pair, at t + dt */
+    for (long k = 0; k < nsteps; ++k) {
+        sd_status st = sd_stage_forces(w, be, err);         /* per pair, at t + dt */
         if (st != SD_OK)
             return st;
-        if (s + 1 < nsteps) {
-            sd_cpu_gather_kick_drift(w);             /* F, v(t + dt); next v(t + 3dt/2), x(t + 2dt) */
-            st = sd_world_walls_drift(w, w->time + (double)w->dt, err);
+        t = sd_profile_now();
+        if (k + 1 < nsteps) {
+            be->gather_kick_drift(s);                       /* F, v(t + dt); next v(t + 3dt/2), x(t + 2dt) */
+            st = sd_stage_walls_drift(w, be, w->time + (double)w->dt, err);
             if (st != SD_OK)
                 return st;
         } else
-            sd_cpu_gather_kick(w);                   /* F(t + dt), v(t + dt) */
+            be->gather_kick(s);                             /* F(t + dt), v(t + dt) */
         w->step++;
         w->time = (double)w->step * (double)w->dt;
-        if ((w->step & 255) == 0 && (st = sd_world_check_finite(w, err)) != SD_OK)
+        if ((w->step & 255) == 0 && (st = sd_stage_check_finite(w, be, err)) != SD_OK)
             return st;
+        sd_profile_lap(w, SD_PROFILE_INTEGRATION, &t, 1);
     }
-    return sd_world_check_finite(w, err);
+    be->read_back(s);
+    return sd_stage_check_finite(w, be, err);
 }

@@ -16,6 +16,7 @@
 #include "core/alloc.h"
 #include "core/error.h"
 #include "world/solver.h"
+#include "world/view.h"
 #include "world/world.h"
 
 #define SD_COOKIE 0x5D5D
@@ -195,6 +196,7 @@ void sd_world_destroy(sd_world *w)
         return;
     sd_particles_free(&w->p);
     sd_world_broad_free(w);
+    sd_world_views_free(w);
     sd_free(w->materials);
     sd_free(w->interactions);
     sd_free(w->mix);

@@ -12,6 +12,7 @@
 
 #include <shapedem/shapedem.h>
 
+#include "backend/view.h"
 #include "broad/bins.h"
 #include "broad/pairs.h"
 #include "contact/params.h"
@@ -148,6 +149,8 @@ struct sd_world {
     sd_vec3 *ghost_shift;
     struct sd_grid_state *grid_state; /* solver grid (src/grid), NULL otherwise */
     const struct sd_solver_ops *solver; /* the engine, chosen at creation (world/solver.h) */
+    sd_stage stage;           /* the backend's views of all the above (world/view.c) */
+    sd_profile profile;       /* s per stage of the step (world/profile.c) */
     long rebuilds;
     int prepared;
     int dirty;                /* particles added since the last rebuild */

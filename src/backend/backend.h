@@ -1,0 +1,64 @@
+/* backend.h — the backend stage interface: the stages of one time step as
+ * a host-side table of functions, so that world/step.c names stages and a
+ * backend (the CPU's OpenMP loops now, CUDA kernels next) says how each
+ * runs (architecture review §9.2, seam 4).
+ *
+ * Invariants: every stage works on the views of backend/view.h (struct
+ * sd_stage), never on sd_world, except rebuild, which hands the world to
+ * the broad phase (broad/ builds the pair lists on the host; the world
+ * refills the views after it). Every entry is set. The table is called a
+ * few times per step, never per particle or per pair: the indirect calls
+ * cost nothing, and DESIGN.md rule 6 forbids function pointers in device
+ * code only. Stages run in the order step.c gives; each one writes only
+ * its own outputs, so the results do not depend on the thread count.
+ */
+#ifndef SD_BACKEND_BACKEND_H
+#define SD_BACKEND_BACKEND_H
+
+#include <shapedem/shapedem.h>
+
+#include "backend/view.h"
+
+typedef struct sd_backend {
+    const char *name;
+    /* the views were refilled (prepare, rebuild): copy what the backend
+     * keeps on its side (a device copies the arrays; the CPU has nothing
+     * to do) */
+    void (*upload)(sd_stage *s);
+    /* the walls moved or changed speed (every step): their views */
+    void (*upload_walls)(sd_stage *s);
+    /* first half kick and drift of every particle (velocity Verlet) */
+    void (*kick_drift)(sd_stage *s);
+    /* 1 when some particle used up half the skin since the last rebuild */
+    int (*needs_rebuild)(sd_stage *s);
+    /* new pair lists (broad phase), history carried by key */
+    sd_status (*rebuild)(sd_world *w, sd_error *err);
+    /* refreshes the ghosts' state from their owners (none yet: a no-op) */
+    void (*exchange_ghosts)(sd_stage *s);
+    /* forces of one kind segment of the particle pairs (contact/kinds.h) */
+    void (*forces)(sd_stage *s, sd_pair_kind kind);
+    /* forces of every particle-wall pair, kind by kind */
+    void (*wall_forces)(sd_stage *s);
+    /* total force and torque on each wall (s->wall_force, s->wall_torque) */
+    void (*wall_totals)(sd_stage *s);
+    /* each particle sums its pairs in list order */
+    void (*gather)(sd_stage *s);
+    /* the same, then the second half kick */
+    void (*gather_kick)(sd_stage *s);
+    /* the same, then the first half kick and the drift of the next step,
+     * in one pass (the same operations in the same order: the same bits) */
+    void (*gather_kick_drift)(sd_stage *s);
+    /* 1 when some particle's position, velocity, spin or orientation is
+     * not finite */
+    int (*check_finite)(sd_stage *s);
+    /* smallest particle radius (m; +inf without particles): the default skin */
+    sd_real (*min_radius)(sd_stage *s);
+    /* the state is wanted on the host (output, queries): copies it back
+     * (the CPU's state is the host's: nothing to do) */
+    void (*read_back)(sd_stage *s);
+} sd_backend;
+
+/* The CPU backend (backend/cpu/). */
+extern const sd_backend sd_backend_cpu;
+
+#endif

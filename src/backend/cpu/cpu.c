@@ -1,0 +1,33 @@
+/* cpu.c — the CPU backend as a table of stages (backend/backend.h).
+ *
+ * Invariant: the CPU works on the host's own arrays, so the copy stages
+ * (upload, read back) do nothing; every other stage is one OpenMP loop of
+ * particles.c, pairs.c or walls.c, and the rebuild is the host broad phase
+ * (world/rebuild.c, broad/bins.c).
+ */
+#include "backend/cpu/cpu.h"
+#include "world/rebuild.h"
+
+static void sd_cpu_nothing(sd_stage *s)
+{
+    (void)s;
+}
+
+const sd_backend sd_backend_cpu = {
+    .name = "cpu",
+    .upload = sd_cpu_nothing,
+    .upload_walls = sd_cpu_nothing,
+    .kick_drift = sd_cpu_kick_drift,
+    .needs_rebuild = sd_cpu_needs_rebuild,
+    .rebuild = sd_world_rebuild,
+    .exchange_ghosts = sd_cpu_exchange_ghosts,
+    .forces = sd_cpu_forces,
+    .wall_forces = sd_cpu_wall_forces,
+    .wall_totals = sd_cpu_wall_totals,
+    .gather = sd_cpu_gather,
+    .gather_kick = sd_cpu_gather_kick,
+    .gather_kick_drift = sd_cpu_gather_kick_drift,
+    .check_finite = sd_cpu_check_finite,
+    .min_radius = sd_cpu_min_radius,
+    .read_back = sd_cpu_nothing,
+};
