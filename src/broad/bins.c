@@ -446,6 +446,44 @@ static uint32_t sd_bins_candidates(const sd_bins *b, const sd_bins_input *in, si
     return m;
 }
 
+/* The same for the plain case, a world of spheres without ghosts in the
+ * order of the sort: every candidate is a sphere pair and j > a (the hot
+ * path of large sphere beds, kept as lean as the search before kinds and
+ * ghosts). Writes the first cap to out_j. */
+static uint32_t sd_bins_candidates_spheres(const sd_bins *b, const sd_bins_input *in, size_t a, uint32_t *out_j,
+                                           uint32_t cap)
+{
+    const sd_vec3 *x = in->x;
+    const sd_real *radius = in->radius;
+    uint32_t c = b->cell[a];
+    int cx = (int)(c % (uint32_t)b->nx);
+    int cy = (int)((c / (uint32_t)b->nx) % (uint32_t)b->ny);
+    int cz = (int)(c / ((uint32_t)b->nx * (uint32_t)b->ny));
+    sd_vec3 xa = x[a];
+    sd_real ra = radius[a] + in->skin;
+    uint32_t m = 0;
+    for (int dz = 0; dz <= 1; ++dz)
+        for (int dy = (dz ? -1 : 0); dy <= 1; ++dy)
+            for (int dx = ((dz || dy) ? -1 : 0); dx <= 1; ++dx) {
+                int gx = cx + dx, gy = cy + dy, gz = cz + dz;
+                if (gx < 0 || gy < 0 || gz >= b->nz || gx >= b->nx || gy >= b->ny)
+                    continue;
+                size_t nc = ((size_t)gz * (size_t)b->ny + (size_t)gy) * (size_t)b->nx + (size_t)gx;
+                size_t j0 = b->cell_start[nc], j1 = b->cell_start[nc + 1];
+                if (nc == c)
+                    j0 = a + 1;
+                for (size_t j = j0; j < j1; ++j) {
+                    sd_real rs = ra + radius[j];
+                    if (sd_v3_norm2(sd_v3_sub(xa, x[j])) < rs * rs) {
+                        if (m < cap)
+                            out_j[m] = (uint32_t)j;
+                        ++m;
+                    }
+                }
+            }
+    return m;
+}
+
 /* The bins of the build: with no ghosts, the cells of the sort (the world
  * has applied its order, so only each particle's cell is looked up again);
  * with ghosts, cells over all particles and an index in cell order. */
@@ -497,6 +535,13 @@ static sd_status sd_bins_pairs(sd_bins *b, const sd_bins_input *in, sd_pair_list
     uint32_t *slots = (uint32_t *)b->scratch;
     uint8_t *kinds = b->slot_kind;
     unsigned present = 0;
+    const int plain = !b->use_items && n == no && !in->shape;
+    if (plain) {
+        SD_BINS_FOR(in)
+        for (size_t a = 0; a < n; ++a)
+            cnt[a] = sd_bins_candidates_spheres(b, in, a, slots + a * SD_PAIR_SLOTS, SD_PAIR_SLOTS);
+        present = 1u << SD_PAIR_SPHERES;
+    } else
     SD_PRAGMA(omp parallel for schedule(static) num_threads(in->threads) if (in->parallel) reduction(| : present))
     for (size_t a = 0; a < n; ++a) {
         uint32_t ck[K] = {0};
@@ -504,7 +549,7 @@ static sd_status sd_bins_pairs(sd_bins *b, const sd_bins_input *in, sd_pair_list
         (void)sd_bins_candidates(b, in, a, &s);
         for (int k = 0; k < K; ++k) {
             cnt[(size_t)k * n + a] = ck[k];
-            present |= (ck[k] != 0) << k;
+            present |= (unsigned)(ck[k] != 0) << k;
         }
     }
     /* offsets, kind by kind (the kind segments), particle by particle */
@@ -527,6 +572,23 @@ static sd_status sd_bins_pairs(sd_bins *b, const sd_bins_input *in, sd_pair_list
         return SD_ERR_MEMORY;
     }
     l->n = total;
+    if (plain) {
+        SD_BINS_FOR(in)
+        for (size_t a = 0; a < n; ++a) {
+            uint32_t off = cnt[a];
+            uint32_t m = (a + 1 < n ? cnt[a + 1] : (uint32_t)total) - off;
+            /* no pairs for a: skip, as l->j is NULL in a world without
+             * pairs and memcpy from or to NULL is undefined even for 0 bytes */
+            if (m == 0)
+                continue;
+            if (m <= SD_PAIR_SLOTS)
+                memcpy(l->j + off, slots + a * SD_PAIR_SLOTS, m * sizeof *l->j);
+            else
+                sd_bins_candidates_spheres(b, in, a, l->j + off, UINT32_MAX);
+            for (uint32_t t = 0; t < m; ++t)
+                l->i[off + t] = (uint32_t)a;
+        }
+    } else
     SD_BINS_FOR(in)
     for (size_t a = 0; a < n; ++a) {
         size_t cur[K];
@@ -668,7 +730,7 @@ static sd_status sd_bins_wall_pairs(sd_bins *b, const sd_bins_input *in, sd_wall
         l->gstart[a + 1] = sd_bins_wall_candidates(in, a, NULL, NULL, NULL, ck);
         for (int k = 0; k < K; ++k) {
             cnt[(size_t)k * n + a] = ck[k];
-            present |= (ck[k] != 0) << k;
+            present |= (unsigned)(ck[k] != 0) << k;
         }
     }
     l->gstart[0] = 0;
