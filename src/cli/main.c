@@ -45,6 +45,7 @@ static void sd_usage(FILE *f)
 {
     fprintf(f,
             "usage: shapedem run SCENE.yaml [-o DIR] [--threads N] [--steps N] [--quiet] [--bench NAME]\n"
+            "                  [--profile]\n"
             "       shapedem check SCENE.yaml [--threads N]\n"
             "       shapedem shape info KIND --size X[,Y,Z] [--rounding R] [--margin M] [--density RHO]\n"
             "       shapedem shape info SCENE.yaml\n"
@@ -63,7 +64,8 @@ static void sd_usage(FILE *f)
             "  --threads N  OpenMP threads (default: simulation.threads, else OMP_NUM_THREADS)\n"
             "  --steps N    run N steps instead of the scene's (short runs)\n"
             "  --quiet      no progress line and no summary on the terminal\n"
-            "  --bench NAME write no files; print one JSON line of timings for case NAME\n");
+            "  --bench NAME write no files; print one JSON line of timings for case NAME\n"
+            "  --profile    print the wall time of each stage of the step at the end\n");
 }
 
 int sd_cli_fail_input(const sd_error *err)
@@ -91,6 +93,7 @@ typedef struct sd_cli {
     long steps;
     int quiet;
     int markdown;
+    int profile;
 } sd_cli;
 
 static int sd_parse_long(const char *s, long lo, long *out)
@@ -135,6 +138,8 @@ static int sd_parse_args(int argc, char **argv, sd_cli *c)
             c->bench = argv[++k];
         } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
             c->quiet = 1;
+        } else if (!strcmp(a, "--profile")) {
+            c->profile = 1;
         } else if (!strcmp(a, "--markdown")) {
             c->markdown = 1;
         } else if (a[0] == '-' && a[1]) {
@@ -179,6 +184,27 @@ static void sd_format_duration(double s, char *buf, size_t size)
         snprintf(buf, size, "%dm%02ds", (int)(s / 60), (int)s % 60);
     else
         snprintf(buf, size, "%dh%02dm", (int)(s / 3600), ((int)s % 3600) / 60);
+}
+
+/* The per-stage table of `run --profile` (sd_profile): seconds, share of
+ * the stages' sum, calls, and the mean per call. */
+static void sd_print_profile(const sd_world *w)
+{
+    sd_profile p;
+    sd_world_profile(w, &p);
+    double sum = 0;
+    for (int k = 0; k < SD_PROFILE_STAGE_COUNT; ++k)
+        sum += p.seconds[k];
+    printf("profile: wall time per stage of the step\n");
+    printf("  %-12s %12s %7s %10s %12s\n", "stage", "seconds", "share", "calls", "us/call");
+    for (int k = 0; k < SD_PROFILE_STAGE_COUNT; ++k) {
+        if (p.calls[k] == 0 && p.seconds[k] == 0)
+            continue;
+        printf("  %-12s %12.6f %6.1f%% %10lld %12.3f\n", sd_profile_stage_name(k), p.seconds[k],
+               sum > 0 ? 100.0 * p.seconds[k] / sum : 0.0, p.calls[k],
+               p.calls[k] > 0 ? 1e6 * p.seconds[k] / (double)p.calls[k] : 0.0);
+    }
+    printf("  %-12s %12.6f\n", "total", sum);
 }
 
 /* The scene's run through the public run API (shapedem/scene.h), with a
@@ -267,6 +293,8 @@ static int sd_cmd_run(const sd_cli *c)
         printf("          kinetic energy %.6g J, %ld contacts, max overlap %.3g %% of radius; output in %s\n",
                st.kinetic_translational + st.kinetic_rotational, st.contacts, 100 * st.max_overlap_ratio, dir);
     }
+    if (c->profile)
+        sd_print_profile(w);
     sd_world_destroy(w);
     sd_scene_free(scene);
     if (sd_interrupted) {

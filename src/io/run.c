@@ -99,11 +99,14 @@ sd_status sd_run_advance(sd_run *r, long steps, sd_error *err)
         return sd_error_set(err, SD_ERR_INTERNAL, "", 0, "", "the run stopped at an earlier error");
     if (!r->started) {
         r->started = 1;
+        double t0 = sd_run_now();
         if (r->out && ((st = sd_output_frame(r->out, r->w, err)) != SD_OK ||
                        (st = sd_output_stats(r->out, r->w, err)) != SD_OK)) {
             r->failed = 1;
             return st;
         }
+        if (r->out) /* the output stage of the world's profile (sd_profile) */
+            sd_world_profile_add(r->w, SD_PROFILE_OUTPUT, sd_run_now() - t0);
     }
     long left = r->steps - r->done;
     long target = r->done + (steps < 0 ? 0 : steps < left ? steps : left);
@@ -117,7 +120,8 @@ sd_status sd_run_advance(sd_run *r, long steps, sd_error *err)
             r->failed = 1;
             return st;
         }
-        r->stepping += sd_run_now() - t0;
+        double t1 = sd_run_now();
+        r->stepping += t1 - t0;
         /* the count changes when spheres are poured or leave (solver grid) */
         r->psteps += 0.5 * (double)(n_before + sd_world_particle_count(r->w)) * (double)(next - r->done);
         r->done = next;
@@ -126,6 +130,8 @@ sd_status sd_run_advance(sd_run *r, long steps, sd_error *err)
         if (r->out && !r->failed && (r->done % r->every == 0 || r->done == r->steps) &&
             (st = sd_output_frame(r->out, r->w, err)) != SD_OK)
             r->failed = 1;
+        if (r->out)
+            sd_world_profile_add(r->w, SD_PROFILE_OUTPUT, sd_run_now() - t1);
         if (r->failed)
             return st;
     }
