@@ -12,6 +12,13 @@
  * or in CMake: add_executable(gjk_micro bench/gjk_micro.c) with
  *   target_include_directories(gjk_micro PRIVATE src include) and target_link_libraries(gjk_micro m).
  * Run: gjk_micro [--json] [pairs per type, default 4096] [repeats, default 5]
+ *      gjk_micro --packing [pairs, default 4000] [repeats, default 5]
+ * --packing: the shallow contacts of issue 11 §5's packing (sharp cylinders
+ * L = D = 2.62 mm and cubes of the same volume, placed at a penetration of
+ * 0–2 % of the size along a random direction): µs per pair of GJK alone,
+ * GJK + EPA (cubes; cylinders) and GJK + the closed form of
+ * geom/cylinder_contact.h (cylinders), one core, best of the repeats, in
+ * CPU time of the thread (CLOCK_THREAD_CPUTIME_ID), not wall time.
  *
  * Two sets of pairs per shape pair:
  *   random: centres 0.5–1.0 of the summed bounding radii apart, random
@@ -37,6 +44,7 @@
 
 #include "core/rng.h"
 #include "geom/convex_contact.h"
+#include "geom/cylinder_contact.h"
 
 #define POOL_MAX (1 << 20)
 static sd_vec3 pool[POOL_MAX];
@@ -136,8 +144,99 @@ static double place_at(sd_convex *A, sd_convex *B, sd_vec3 u, double target)
     return hi;
 }
 
+/* --packing: see the top. Depth by bisection along u with EPA's depth. */
+static void place_pen(sd_convex *A, sd_convex *B, sd_vec3 u, double target)
+{
+    double lo = 0, hi = A->shape->bound + B->shape->bound;
+    for (int k = 0; k < 50; ++k) {
+        double mid = 0.5 * (lo + hi);
+        B->x = sd_v3_scale(u, mid);
+        sd_gjk_result g = sd_gjk_distance(A, B, sd_v3_zero());
+        double d = -1;
+        if (g.status == SD_GJK_TOUCHING || g.status == SD_GJK_OVERLAP)
+            d = sd_epa_penetration(A, B, &g).depth;
+        if (d > target)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    B->x = sd_v3_scale(u, lo);
+}
+
+/* CPU time of this thread: the machine may be shared */
+static double cpu_now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static int packing(int n, int reps)
+{
+    sd_shape cyl, cube;
+    memset(&cyl, 0, sizeof cyl);
+    memset(&cube, 0, sizeof cube);
+    cyl.kind = SD_SHAPE_CYLINDER;
+    cyl.a = sd_v3(1.310370697e-3, 1.310370697e-3, 1.310370697e-3);
+    cyl.bound = sqrt(2.0) * 1.310370697e-3;
+    cube.kind = SD_SHAPE_BOX;
+    cube.a = sd_v3(1.209e-3, 1.209e-3, 1.209e-3);
+    cube.bound = sd_v3_norm(cube.a);
+    sd_convex *A = malloc(sizeof(sd_convex) * (size_t)n), *B = malloc(sizeof(sd_convex) * (size_t)n);
+    if (!A || !B)
+        return 1;
+    printf("gjk_micro --packing: %d pairs at 0-2 %% penetration per shape, best of %d, one core\n", n, reps);
+    printf("%-10s %-22s %10s %10s %12s\n", "shape", "narrow phase", "us/pair", "x cubes", "overlapping");
+    double cube_us = 0;
+    volatile double sink = 0;
+    for (int sh = 0; sh < 2; ++sh) {
+        const sd_shape *s = sh == 0 ? &cube : &cyl;
+        sd_rng r = sd_rng_seed(77u + (uint64_t)sh);
+        for (int i = 0; i < n; ++i) {
+            memset(&A[i], 0, sizeof A[i]);
+            memset(&B[i], 0, sizeof B[i]);
+            A[i].shape = B[i].shape = s;
+            A[i].q = rand_quat(&r);
+            B[i].q = rand_quat(&r);
+            place_pen(&A[i], &B[i], rand_unit(&r), sd_rng_range(&r, 0, 0.02) * 2.62e-3);
+        }
+        int nvar = sh == 0 ? 2 : 3;
+        for (int var = 0; var < nvar; ++var) {
+            double best = 1e300;
+            int ovl = 0;
+            for (int k = 0; k < reps; ++k) {
+                ovl = 0;
+                double t0 = cpu_now();
+                for (int i = 0; i < n; ++i) {
+                    sd_gjk_result g = sd_gjk_distance(&A[i], &B[i], sd_v3_zero());
+                    sink += g.distance;
+                    if (var == 0 || !(g.status == SD_GJK_TOUCHING || g.status == SD_GJK_OVERLAP))
+                        continue;
+                    ovl++;
+                    if (var == 1)
+                        sink += sd_epa_penetration(&A[i], &B[i], &g).depth;
+                    else
+                        sink += sd_cylc_penetration(&A[i], &B[i]).depth;
+                }
+                best = sd_min(best, cpu_now() - t0);
+            }
+            double us = 1e6 * best / n;
+            if (sh == 0 && var == 1)
+                cube_us = us;
+            const char *what = var == 0 ? "GJK alone" : (var == 1 ? "GJK + EPA" : "GJK + closed form");
+            printf("%-10s %-22s %10.3f %10.2f %11.0f%%\n", sh == 0 ? "cube" : "cylinder", what, us,
+                   cube_us > 0 && var > 0 ? us / cube_us : 0.0, 100.0 * ovl / n);
+        }
+    }
+    free(A);
+    free(B);
+    return sink == 12345.678 ? 2 : 0;
+}
+
 int main(int argc, char **argv)
 {
+    if (argc > 1 && !strcmp(argv[1], "--packing"))
+        return packing(argc > 2 ? atoi(argv[2]) : 4000, argc > 3 ? atoi(argv[3]) : 5);
     int json = argc > 1 && !strcmp(argv[1], "--json");
     if (json) {
         argc--;
@@ -178,8 +277,8 @@ int main(int argc, char **argv)
         return 1;
     if (!json) {
         printf("gjk_micro: %d fixed random pairs per type, best of %d, one core\n", n, reps);
-        printf("%-5s %-38s %8s %10s %12s %12s %12s %8s %8s\n", "set", "pair type", "overlap", "cores ovl", "GJK pairs/s",
-               "collide/s", "warm/s", "sup/pair", "sup warm");
+        printf("%-5s %-38s %8s %10s %12s %12s %12s %8s %8s\n", "set", "pair type", "overlap", "cores ovl",
+               "GJK pairs/s", "collide/s", "warm/s", "sup/pair", "sup warm");
     }
     volatile double sink = 0;
     for (int t = 0; t < nsets; ++t) {
@@ -258,8 +357,8 @@ int main(int argc, char **argv)
     }
     if (!json)
         printf("(GJK pairs/s: sd_gjk_distance alone; collide/s: sd_convex_collide, GJK + EPA where the cores overlap,\n"
-           " cold start; warm/s: the same with each pair's cached direction; sup/pair, sup warm: support calls of\n"
-           " K = A - B per collide, cold and warm)\n");
+               " cold start; warm/s: the same with each pair's cached direction; sup/pair, sup warm: support calls of\n"
+               " K = A - B per collide, cold and warm)\n");
     free(sa);
     free(sb);
     free(A);

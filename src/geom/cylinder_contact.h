@@ -199,35 +199,50 @@ SD_HD static SD_INLINE void sd_cylc_phi_d(const sd_cylc_arc *f, sd_real c, sd_re
     *d2 = -f->P * c - f->Q * s + f->R * k * ((c * c - s * s) * S2 - k * s * s * c * c) / (S2 * S);
 }
 
-/* A 1D function of an angle offset x from the point (c0, s0) of a circle:
- * value, first and second derivative. Two kinds: an arc phi, or the rim
- * function g(θ) = G(θ)² (below). */
+/* The rim function: rim A's point p_A(θ) = c_A' + R_A (cos θ e1 + sin θ e2)
+ * against rim B (centre c_B', axis z_B, radius R_B), through the scalars
+ * it needs: w = c_A' − c_B', W1 = w·e1, W2 = w·e2, W0 = |w|², Z0 = w·z_B,
+ * Z1 = e1·z_B, Z2 = e2·z_B (e1 ⊥ e2 unit). */
 typedef struct sd_cylc_rim {
-    sd_vec3 w;      /* centre of rim A minus centre of rim B */
-    sd_vec3 e1, e2; /* rim A's plane */
-    sd_vec3 zb;     /* rim B's axis */
+    sd_vec3 w, e1, e2, zb;
     sd_real Ra, Rb;
+    sd_real W0, W1, W2, Z0, Z1, Z2;
 } sd_cylc_rim;
 
+SD_HD static SD_INLINE void sd_cylc_rim_init(sd_cylc_rim *f)
+{
+    f->W0 = sd_v3_norm2(f->w);
+    f->W1 = sd_v3_dot(f->w, f->e1);
+    f->W2 = sd_v3_dot(f->w, f->e2);
+    f->Z0 = sd_v3_dot(f->w, f->zb);
+    f->Z1 = sd_v3_dot(f->e1, f->zb);
+    f->Z2 = sd_v3_dot(f->e2, f->zb);
+}
+
 /* g(θ) = |q|² − 2 R_B ρ + R_B² (the squared distance from p_A(θ) to rim
- * B), q = p_A(θ) − c_B', ρ = the distance of q from B's axis; with
- * q′ = R_A t, q″ = −r (r = R_A (c e1 + s e2)), z = q·z_B, m = ρ² = |q|² − z²:
- *   g′ = 2 q·q′ − 2 R_B ρ′, ρ′ = m′/(2ρ), m′ = 2 q·q′ − 2 z z′
+ * B), q = p_A(θ) − c_B' = w + r, r = R_A (c e1 + s e2), ρ = the distance
+ * of q from B's axis; with q′ = t = R_A (−s e1 + c e2), q″ = −r,
+ * z = q·z_B, m = ρ² = |q|² − z² (r·t = 0, |r| = |t| = R_A):
+ *   |q|² = W0 + 2 R_A (c W1 + s W2) + R_A², q·t = R_A (c W2 − s W1),
+ *   q·r = R_A (c W1 + s W2) + R_A², z = Z0 + R_A (c Z1 + s Z2),
+ *   z′ = R_A (c Z2 − s Z1), r·z_B = R_A (c Z1 + s Z2);
+ *   g′ = 2 q·t − 2 R_B ρ′, ρ′ = m′/(2ρ), m′ = 2 q·t − 2 z z′,
  *   g″ = 2(R_A² − q·r) − 2 R_B ρ″, ρ″ = (m″ − 2ρ′²)/(2ρ),
- *   m″ = 2(R_A² − q·r) − 2(z′² − z r·z_B) */
+ *   m″ = 2(R_A² − q·r) − 2(z′² − z r·z_B). */
 SD_HD static SD_INLINE sd_real sd_cylc_rim_g(const sd_cylc_rim *f, sd_real c, sd_real s, sd_real *d1, sd_real *d2)
 {
-    sd_vec3 r = sd_v3_add(sd_v3_scale(f->e1, f->Ra * c), sd_v3_scale(f->e2, f->Ra * s));
-    sd_vec3 t = sd_v3_add(sd_v3_scale(f->e1, -f->Ra * s), sd_v3_scale(f->e2, f->Ra * c));
-    sd_vec3 q = sd_v3_add(f->w, r);
-    sd_real Qn = sd_v3_norm2(q), z = sd_v3_dot(q, f->zb);
+    const sd_real Ra = f->Ra;
+    sd_real wr = Ra * (c * f->W1 + s * f->W2);
+    sd_real Qn = f->W0 + SD_R(2.0) * wr + Ra * Ra;
+    sd_real zr = Ra * (c * f->Z1 + s * f->Z2);
+    sd_real z = f->Z0 + zr;
     sd_real m = sd_max(Qn - z * z, SD_R(0.0));
     sd_real rho = sd_sqrt(m);
     sd_real g = Qn - SD_R(2.0) * f->Rb * rho + f->Rb * f->Rb;
     if (d1) {
-        sd_real qt = sd_v3_dot(q, t), zt = sd_v3_dot(t, f->zb), qr = sd_v3_dot(q, r), zr = sd_v3_dot(r, f->zb);
-        sd_real Q2 = SD_R(2.0) * (f->Ra * f->Ra - qr);
-        if (rho > SD_R(1e-12) * (f->Ra + f->Rb + SD_R(1e-300))) {
+        sd_real qt = Ra * (c * f->W2 - s * f->W1), zt = Ra * (c * f->Z2 - s * f->Z1), qr = wr + Ra * Ra;
+        sd_real Q2 = SD_R(2.0) * (Ra * Ra - qr);
+        if (rho > SD_R(1e-12) * (Ra + f->Rb + SD_R(1e-300))) {
             sd_real m1 = SD_R(2.0) * (qt - z * zt);
             sd_real m2 = Q2 - SD_R(2.0) * (zt * zt - z * zr);
             sd_real rho1 = m1 / (SD_R(2.0) * rho);
@@ -304,22 +319,33 @@ SD_HD static SD_INLINE void sd_cylc_refine(const sd_cylc_arc *arc, const sd_cylc
 
 /* Scans the samples at offsets k·h from (c0, s0), k = 0..n (by rotation;
  * wrap: a closed circle of n samples, the last one's neighbour is the
- * first). A smooth interior minimum lies where the derivative turns from
- * negative to positive between two samples: each such bracket is refined
- * (at most SD_CYLC_MAX_MIN). An open arc's ends are kinks of f (and point
- * candidates of their own), where the derivative is one-sided: an end no
- * higher than its neighbour sample is refined over that interval. The
- * refined points (c, s) go to out[]; returns their count. */
-#define SD_CYLC_MAX_MIN 6
+ * first), for the local minima of the function (an arc's phi, or the rim
+ * function g = G²).
+ * Pruning: the function (rim: G = sqrt g) changes by at most `lip` per
+ * radian, so over an interval of length h it stays above
+ * (f_k + f_k+1 − lip h)/2; an interval whose bound exceeds `thr` (the best
+ * depth so far, in the function's units) cannot hold the minimiser.
+ * Every other interval is cut in SD_CYLC_SUB parts (two minima can sit in
+ * one coarse interval where the function is small, as when two rims
+ * nearly touch), each pruned the same way; a smooth interior minimum lies
+ * where the derivative turns from negative to positive over a part, and
+ * each such part is refined (at most SD_CYLC_MAX_MIN). An open arc's ends
+ * are kinks of f (and point candidates of their own), where the
+ * derivative is one-sided: an end no higher than its neighbour sample is
+ * refined over that part. The refined points (c, s) go to out[]; returns
+ * their count. */
+#define SD_CYLC_MAX_MIN 8
+#define SD_CYLC_SUB     4
 SD_HD static SD_INLINE int sd_cylc_scan(const sd_cylc_arc *arc, const sd_cylc_rim *rim, sd_real c0, sd_real s0,
-                                        sd_real h, int n, int wrap, sd_real out[SD_CYLC_MAX_MIN][2])
+                                        sd_real h, int n, int wrap, sd_real thr, sd_real lip,
+                                        sd_real out[SD_CYLC_MAX_MIN][2])
 {
-    sd_real ch = sd_cos(h), sh = sd_sin(h), dd;
+    const sd_real hs = h / SD_CYLC_SUB;
+    sd_real ch = sd_cos(h), sh = sd_sin(h), chs = sd_cos(hs), shs = sd_sin(hs), dd;
     int nm = 0;
     sd_real c = c0, s = s0, d, f = sd_cylc_eval1(arc, rim, c, s, &d, &dd);
     const sd_real f0 = f, d0 = d;
-    int last = wrap ? n : n; /* intervals k → k+1, k = 0..n−1 */
-    for (int k = 0; k < last; ++k) {
+    for (int k = 0; k < n; ++k) {
         sd_real cn, sn, fn, dn;
         if (wrap && k == n - 1) { /* the closing interval ends at sample 0 */
             cn = c0;
@@ -331,23 +357,45 @@ SD_HD static SD_INLINE int sd_cylc_scan(const sd_cylc_arc *arc, const sd_cylc_ri
             sn = s * ch + c * sh;
             fn = sd_cylc_eval1(arc, rim, cn, sn, &dn, &dd);
         }
-        int take = 0;
-        sd_real hl = SD_R(0.0), hr = h;
-        if (d < SD_R(0.0) && dn > SD_R(0.0))
-            take = 1;
-        else if (!wrap && k == 0 && f <= fn)
-            take = 1; /* just inside the start */
-        else if (!wrap && k == n - 1 && fn <= f) {
-            take = 2; /* just inside the end */
-            hl = h;
-            hr = SD_R(0.0);
-        }
-        if (take && nm < SD_CYLC_MAX_MIN) {
-            if (take == 1)
-                sd_cylc_refine(arc, rim, c, s, hl, hr, &out[nm][0], &out[nm][1]);
-            else
-                sd_cylc_refine(arc, rim, cn, sn, hl, hr, &out[nm][0], &out[nm][1]);
-            nm++;
+        sd_real va = rim ? sd_sqrt(sd_max(f, SD_R(0.0))) : f, vb = rim ? sd_sqrt(sd_max(fn, SD_R(0.0))) : fn;
+        if (!(SD_R(0.5) * (va + vb - lip * h) > thr)) {
+            sd_real pc = c, ps = s, pf = f, pd = d, pv = va;
+            for (int j = 1; j <= SD_CYLC_SUB; ++j) {
+                sd_real qc, qs, qf, qd, qv;
+                if (j < SD_CYLC_SUB) {
+                    qc = pc * chs - ps * shs;
+                    qs = ps * chs + pc * shs;
+                    qf = sd_cylc_eval1(arc, rim, qc, qs, &qd, &dd);
+                    qv = rim ? sd_sqrt(sd_max(qf, SD_R(0.0))) : qf;
+                } else {
+                    qc = cn;
+                    qs = sn;
+                    qf = fn;
+                    qd = dn;
+                    qv = vb;
+                }
+                int take = 0;
+                if (pd < SD_R(0.0) && qd > SD_R(0.0))
+                    take = 1;
+                else if (!wrap && k == 0 && j == 1 && pf <= qf)
+                    take = 1; /* just inside the start */
+                else if (!wrap && k == n - 1 && j == SD_CYLC_SUB && qf <= pf)
+                    take = 2; /* just inside the end */
+                if (take && SD_R(0.5) * (pv + qv - lip * hs) > thr)
+                    take = 0;
+                if (take && nm < SD_CYLC_MAX_MIN) {
+                    if (take == 1)
+                        sd_cylc_refine(arc, rim, pc, ps, SD_R(0.0), hs, &out[nm][0], &out[nm][1]);
+                    else
+                        sd_cylc_refine(arc, rim, qc, qs, hs, SD_R(0.0), &out[nm][0], &out[nm][1]);
+                    nm++;
+                }
+                pc = qc;
+                ps = qs;
+                pf = qf;
+                pd = qd;
+                pv = qv;
+            }
         }
         c = cn;
         s = sn;
@@ -365,7 +413,7 @@ SD_HD static SD_INLINE int sd_cylc_scan(const sd_cylc_arc *arc, const sd_cylc_ri
  * at α = π/2 or 3π/2, where f has a V of width ~γ) 9 more at offsets
  * 0, ±γ/4, ±γ, ±4γ, ±16γ about that point when it lies in the arc. */
 SD_HD static SD_INLINE void sd_cylc_arc_search(sd_cylc_search *S, sd_vec3 e1, sd_vec3 e2, sd_vec3 w, sd_real R,
-                                               sd_real g2, sd_real a0, sd_real len, int feature)
+                                               sd_real g2, sd_real off, sd_real a0, sd_real len, int feature)
 {
     const sd_real pi = SD_R(3.14159265358979323846);
     sd_cylc_arc f;
@@ -397,7 +445,9 @@ SD_HD static SD_INLINE void sd_cylc_arc_search(sd_cylc_search *S, sd_vec3 e1, sd
         int n = (int)(bl / (pi / 16) + SD_R(0.999));
         if (n < 2)
             n = 2;
-        int nm = sd_cylc_scan(&f, NULL, sd_cos(b0), sd_sin(b0), bl / (sd_real)n, n, 0, out);
+        /* f = phi + off on the circle; |phi′| ≤ sqrt(P² + Q²) + R */
+        int nm = sd_cylc_scan(&f, NULL, sd_cos(b0), sd_sin(b0), bl / (sd_real)n, n, 0, S->best - off,
+                              sd_sqrt(f.P * f.P + f.Q * f.Q) + f.R, out);
         for (int k = 0; k < nm; ++k)
             sd_cylc_try(S, sd_v3_add(sd_v3_scale(e1, out[k][0]), sd_v3_scale(e2, out[k][1])), feature);
     }
@@ -480,7 +530,7 @@ SD_HD static SD_INLINE void sd_cylc_side_circle(sd_cylc_search *S, const sd_cylc
          * ≥ 0·σ there); |u × y|² = cos²α + γ² sin²α in this frame too.
          * f = u·w + R_X + R_Y |u × y|: the constant R_X does not move the
          * minima, and sd_cylc_try evaluates the whole f */
-        sd_cylc_arc_search(S, sd_v3_scale(e1, sig), sd_v3_scale(e2, sig), w, Y->R, g2, SD_R(0.0),
+        sd_cylc_arc_search(S, sd_v3_scale(e1, sig), sd_v3_scale(e2, sig), w, Y->R, g2, X->R, SD_R(0.0),
                            SD_R(3.14159265358979323846), feature);
     }
 }
@@ -502,13 +552,14 @@ SD_HD static SD_INLINE void sd_cylc_rim_rim(sd_cylc_search *S)
         f.zb = B->e[2];
         f.Ra = A->R;
         f.Rb = B->R;
+        sd_cylc_rim_init(&f);
         /* any two rim points are at least |w| − R_A − R_B apart, and the
          * rim-rim minimiser is |p| = D ≤ best apart */
         if (sd_v3_norm(f.w) - A->R - B->R > S->best)
             continue;
         sd_real out[SD_CYLC_MAX_MIN][2];
-        int nm =
-            sd_cylc_scan(NULL, &f, SD_R(1.0), SD_R(0.0), SD_R(2.0) * SD_R(3.14159265358979323846) / 24, 24, 1, out);
+        int nm = sd_cylc_scan(NULL, &f, SD_R(1.0), SD_R(0.0), SD_R(2.0) * SD_R(3.14159265358979323846) / 24, 24, 1,
+                              S->best, A->R, out);
         for (int k = 0; k < nm; ++k) {
             sd_real c = out[k][0], s = out[k][1];
             sd_vec3 r = sd_v3_add(sd_v3_scale(f.e1, c), sd_v3_scale(f.e2, s)); /* unit radial of rim A */
@@ -588,7 +639,7 @@ SD_HD static SD_INLINE void sd_cylc_edge_circle(sd_cylc_search *S, const sd_cylc
         w = sd_v3_madd(w, sd_v3_dot(um, ej) >= SD_R(0.0) ? aa[j] : -aa[j], ej);
         w = sd_v3_madd(w, sd_v3_dot(um, ek) >= SD_R(0.0) ? aa[k] : -aa[k], ek);
         w = sd_v3_madd(w, sd_v3_dot(um, y) >= SD_R(0.0) ? Y->h : -Y->h, y);
-        sd_cylc_arc_search(S, e1, e2, w, Y->R, g2, a0, len, SD_CYLC_EDGE_RIM);
+        sd_cylc_arc_search(S, e1, e2, w, Y->R, g2, SD_R(0.0), a0, len, SD_CYLC_EDGE_RIM);
     }
 }
 
@@ -780,9 +831,9 @@ SD_HD static SD_INLINE sd_cylc_result sd_cylc_bodies(const sd_cylc_body *A, cons
         }
         /* rim on rim first: it is the common shallow contact and gives
          * the tightest best value for the pruning */
-        sd_cylc_rim_rim(&S);
         sd_cylc_side_circle(&S, A, B, SD_CYLC_SIDE_A);
         sd_cylc_side_circle(&S, B, A, SD_CYLC_SIDE_B);
+        sd_cylc_rim_rim(&S);
     } else {
         for (int i = 0; i < 3; ++i) {
             sd_vec3 n = sd_cylc_cross(O->e[i], C->e[2]);
@@ -863,6 +914,14 @@ SD_HD static SD_INLINE int sd_cylc_body_of(const sd_convex *c, sd_cylc_body *b)
     b->R = s->a.x;
     b->h = s->a.z;
     return 1;
+}
+
+/* 1 for the kind pairs the closed form handles: cylinder–cylinder and
+ * box–cylinder in either order. */
+SD_HD static SD_INLINE int sd_cylc_pair(int ka, int kb)
+{
+    return (ka == SD_SHAPE_CYLINDER && (kb == SD_SHAPE_CYLINDER || kb == SD_SHAPE_BOX)) ||
+           (ka == SD_SHAPE_BOX && kb == SD_SHAPE_CYLINDER);
 }
 
 /* The contact of two posed cores: cylinder–cylinder or box–cylinder (either
