@@ -14,10 +14,13 @@
  * out; no item takes sd_world, allocates or prints. The physics is that of
  * contact/: sphere contacts and Hertz / linear laws (seed 004 eqs. 9-16),
  * the convex narrow phase (seed 004 §2.5), the volume law of sharp
- * polyhedra (seed 000 eqs. 12-22) and the planar mode (seed 002).
+ * polyhedra (seed 000 eqs. 12-22) and the planar mode (seed 002); wall
+ * features (planes, box faces, their lines in the plane) are those of
+ * dynamics/walls.h. Which item a pair takes is decided once, at the
+ * rebuild (broad/bins.h, sd_bins_pair_kind): the kind segment says it.
  *
  * Single source (SD_HD): compiles as C17 and as CUDA C++
- * (tests/cuda/single_source.cu).
+ * (tests/cuda/items.cu).
  */
 #ifndef SD_BACKEND_ITEMS_H
 #define SD_BACKEND_ITEMS_H
@@ -29,6 +32,7 @@
 #include "contact/pair2d.h"
 #include "contact/pair_convex.h"
 #include "contact/pair_poly.h"
+#include "dynamics/walls.h"
 
 /* ---- views of one particle ----------------------------------------------- */
 
@@ -141,85 +145,6 @@ SD_HD static SD_INLINE int sd_item_shape2d_kind(const sd_step_view *v, size_t k)
 {
     int s = v->shape[k];
     return s >= 0 ? v->shapes2d[s].kind : SD_SHAPE2D_CIRCLE;
-}
-
-/* ---- classification: the kind of a pair, decided once per pair ---------- */
-
-/* The kind of the pair (i, j): two plain spheres or discs; in the planar
- * mode, 2D shapes; a pair of materials under a volume law; else the convex
- * narrow phase. */
-SD_HD static SD_INLINE int sd_item_pair_kind(const sd_step_view *v, size_t i, size_t j)
-{
-    if (v->shape[i] < 0 && v->shape[j] < 0)
-        return SD_PAIR_SPHERES;
-    if (v->dim2)
-        return SD_PAIR_CONVEX2D;
-    if (sd_law_is_volume(sd_item_params(v, v->material[i], v->material[j])->law))
-        return SD_PAIR_POLY_VOLUME;
-    return SD_PAIR_CONVEX;
-}
-
-/* The kind of particle i against wall wall. */
-SD_HD static SD_INLINE int sd_item_wall_pair_kind(const sd_step_view *v, size_t i, size_t wall)
-{
-    if (v->shape[i] < 0)
-        return SD_WALL_PAIR_SPHERE;
-    if (v->dim2)
-        return SD_WALL_PAIR_CONVEX2D;
-    if (sd_law_is_volume(sd_item_params(v, v->material[i], v->walls[wall].material)->law))
-        return SD_WALL_PAIR_POLY_VOLUME;
-    return SD_WALL_PAIR_CONVEX;
-}
-
-/* ---- wall features ----------------------------------------------------- */
-
-/* The plane of a wall feature: the plane wall itself, or a closed box face
- * (inward normal). 0 when x does not project inside the face's rectangle:
- * a shape beside a box face meets it only through the neighbouring face
- * (box rims are not resolved for shapes). */
-SD_HD static SD_INLINE int sd_item_wall_plane(const sd_wall_view *wl, int face, sd_vec3 x, sd_vec3 *p0, sd_vec3 *n)
-{
-    if (wl->kind == SD_VIEW_WALL_PLANE) {
-        *p0 = wl->point;
-        *n = wl->normal;
-        return 1;
-    }
-    int axis = face / 2;
-    sd_real lo[3] = {wl->lo.x, wl->lo.y, wl->lo.z}, hi[3] = {wl->hi.x, wl->hi.y, wl->hi.z}, c[3] = {x.x, x.y, x.z};
-    for (int k = 0; k < 3; ++k)
-        if (k != axis && (c[k] < lo[k] || c[k] > hi[k]))
-            return 0;
-    sd_real nn[3] = {0, 0, 0}, pp[3] = {c[0], c[1], c[2]};
-    nn[axis] = (face & 1) ? SD_R(-1.0) : SD_R(1.0);
-    pp[axis] = (face & 1) ? hi[axis] : lo[axis];
-    *p0 = sd_v3(pp[0], pp[1], pp[2]);
-    *n = sd_v3(nn[0], nn[1], nn[2]);
-    return 1;
-}
-
-/* The line of a wall feature in the plane: a plane wall, or an x or y face
- * of a box (inward normal). 0 when x lies beyond the face's ends. */
-SD_HD static SD_INLINE int sd_item_wall_line(const sd_wall_view *wl, int face, sd_vec3 x, sd_vec2 *p0, sd_vec2 *n)
-{
-    if (wl->kind == SD_VIEW_WALL_PLANE) {
-        *p0 = sd_v2(wl->point.x, wl->point.y);
-        *n = sd_v2(wl->normal.x, wl->normal.y);
-        return 1;
-    }
-    int axis = face / 2;
-    sd_real sign = (face & 1) ? SD_R(-1.0) : SD_R(1.0);
-    if (axis == 0) {
-        if (x.y < wl->lo.y || x.y > wl->hi.y)
-            return 0;
-        *p0 = sd_v2((face & 1) ? wl->hi.x : wl->lo.x, x.y);
-        *n = sd_v2(sign, SD_R(0.0));
-    } else {
-        if (x.x < wl->lo.x || x.x > wl->hi.x)
-            return 0;
-        *p0 = sd_v2(x.x, (face & 1) ? wl->hi.y : wl->lo.y);
-        *n = sd_v2(SD_R(0.0), sign);
-    }
-    return 1;
 }
 
 /* ---- write-back ---------------------------------------------------------- */
@@ -351,15 +276,11 @@ SD_HD static SD_HOT void sd_item_wall_sphere(const sd_step_view *v, sd_wall_pair
     sd_body a = sd_item_wall_body(v, wl, i);
     sd_contact_geom g;
     int touching = 0;
-    if (wl->kind == SD_VIEW_WALL_PLANE) {
-        touching = sd_sphere_plane(a.x, a.radius, wl->point, wl->normal, &g);
-    } else if (!v->dim2 || o->sub[e] < 4) {
-        int face = o->sub[e], axis = face / 2;
-        sd_real value = axis == 0 ? ((face & 1) ? wl->hi.x : wl->lo.x)
-                                  : (axis == 1 ? ((face & 1) ? wl->hi.y : wl->lo.y)
-                                               : ((face & 1) ? wl->hi.z : wl->lo.z));
-        touching = sd_sphere_box_face(a.x, a.radius, axis, value, (face & 1) ? SD_R(-1.0) : SD_R(1.0), wl->lo, wl->hi,
-                                      &g);
+    if (wl->g.kind == SD_WALL_PLANE) {
+        touching = sd_sphere_plane(a.x, a.radius, wl->g.point, wl->g.normal, &g);
+    } else if (!v->dim2 || o->sub[e] < 4) { /* the plane has no z faces */
+        sd_wall_face f = sd_wall_box_face_of(wl->g.lo, wl->g.hi, o->sub[e]);
+        touching = sd_sphere_box_face(a.x, a.radius, f.axis, f.value, f.dir, wl->g.lo, wl->g.hi, &g);
     }
     const sd_pair_params *prm = sd_item_params(v, v->material[i], wl->material);
     sd_pair_result r = sd_pair_wall(prm, &a, &g, touching, a.radius, &o->ds[e], v->dt);
@@ -376,7 +297,7 @@ SD_HD static SD_INLINE void sd_item_wall_convex(const sd_step_view *v, sd_wall_p
     sd_contact_geom g;
     sd_convex c = sd_item_shape_of(v, i);
     sd_vec3 p0, nw;
-    int inside = sd_item_wall_plane(wl, o->sub[e], a.x, &p0, &nw);
+    int inside = sd_wall_feature_plane(&wl->g, o->sub[e], a.x, &p0, &nw);
     sd_narrow_count ns;
     int touching = inside && sd_convex_wall_geom(&c, p0, nw, &g, &ns);
     const sd_pair_params *prm = sd_item_params(v, v->material[i], wl->material);
@@ -395,7 +316,7 @@ SD_HD static SD_INLINE void sd_item_wall_poly_volume(const sd_step_view *v, sd_w
     sd_vec3 p0, nw, point = a.x;
     sd_pair_result r;
     int s = v->shape[i];
-    if (!sd_shape_is_sharp_polyhedron(&v->shapes[s]) || !sd_item_wall_plane(wl, o->sub[e], a.x, &p0, &nw)) {
+    if (!sd_shape_is_sharp_polyhedron(&v->shapes[s]) || !sd_wall_feature_plane(&wl->g, o->sub[e], a.x, &p0, &nw)) {
         r = sd_pair_none(&o->ds[e]);
     } else {
         sd_convex c = sd_item_shape_of(v, i);
@@ -414,7 +335,7 @@ SD_HD static SD_INLINE void sd_item_wall_convex2d(const sd_step_view *v, sd_wall
     sd_shape2d tmp;
     sd_convex2d c = sd_item_convex2d_of(v, i, &tmp);
     sd_vec2 p0, nw;
-    int touching = sd_item_wall_line(wl, o->sub[e], a.x, &p0, &nw) && sd_convex2d_wall_geom(&c, p0, nw, &g);
+    int touching = sd_wall_feature_line(&wl->g, o->sub[e], a.x, &p0, &nw) && sd_convex2d_wall_geom(&c, p0, nw, &g);
     const sd_pair_params *prm = sd_item_params(v, v->material[i], wl->material);
     sd_pair_result r = sd_pair_wall(prm, &a, &g, touching, c.shape->eq_radius, &o->ds[e], v->dt);
     sd_item_wall_store(o, e, touching ? g.point : a.x, &r);

@@ -21,20 +21,17 @@
 #include "contact/kinds.h"
 #include "contact/params.h"
 #include "core/quat.h"
+#include "dynamics/walls.h"
 #include "shape/shape.h"
 #include "shape/shape2d.h"
 
-/* Wall kinds as the world numbers them (world/world.h). */
-enum { SD_VIEW_WALL_PLANE = 0, SD_VIEW_WALL_BOX = 1 };
-
-/* One wall, as the items see it: its geometry, its material and its
- * velocity this step (m/s; a moving wall, world/servo.c). */
+/* One wall, as the items see it: its geometry and features
+ * (dynamics/walls.h), its material and its velocity this step (m/s; a
+ * moving wall, world/servo.c). */
 typedef struct sd_wall_view {
-    int kind;               /* SD_VIEW_WALL_PLANE or SD_VIEW_WALL_BOX */
+    sd_wall_geom g;
     int material;
-    sd_vec3 point, normal;  /* m, -: a plane (the box's point is its reference for torques) */
-    sd_vec3 lo, hi;         /* m, a box's corners */
-    sd_vec3 velocity;       /* m/s */
+    sd_vec3 velocity;
 } sd_wall_view;
 
 /* The state one step reads (and the kick and drift write: x, v, w, q). */
@@ -75,7 +72,6 @@ typedef struct sd_step_view {
     sd_real skin;                  /* m, the Verlet skin in use */
     int dim2;                      /* the planar mode */
     int has_shapes;                /* some particle is not a plain sphere */
-    int has_volume_law;            /* some pair of materials uses a volume law */
 } sd_step_view;
 
 /* The particle-particle pair list as the items read and write it
@@ -127,11 +123,6 @@ typedef struct sd_stage {
     sd_wall_view *walls;           /* the copies v.walls points at */
     sd_vec3 *wall_force, *wall_torque; /* N, N m: per wall, summed by the wall totals stage */
     size_t wall_cap;
-    /* 1 while a list's kinds are not yet in segments of their own: the
-     * particle pairs' 3D narrow-phase segment (CONVEX) then also holds the
-     * POLY_VOLUME pairs, and the wall pairs are one interleaved range; the
-     * loops read each pair's kind from its shapes and materials */
-    int pairs_mixed, wpairs_mixed;
 } sd_stage;
 
 #endif

@@ -55,19 +55,9 @@ typedef double sd_real;
 #define sd_floor floor
 #endif
 
-/* CPU parallel loops over the items of world `w` (static schedule: each
- * thread always gets the same block, and every item writes only its own
- * slot, so results do not depend on the thread count). w->parallel is
- * decided once per pair-list rebuild: small worlds stay serial, since forking
- * threads costs more than it saves and waiting threads spin on the cores. */
+/* A pragma from a macro (the CPU backend's OpenMP loops build theirs with
+ * it: backend/cpu/parallel.h). */
 #define SD_PRAGMA(x) _Pragma(#x)
-#define SD_PARALLEL_FOR SD_PRAGMA(omp parallel for schedule(static) num_threads(w->threads) if (w->parallel))
-/* Items of very uneven cost (convex narrow phase): dynamic chunks. Still the
- * same bits for any thread count, since each item writes only its slot. */
-#define SD_PARALLEL_FOR_DYNAMIC \
-    SD_PRAGMA(omp parallel for schedule(dynamic, 64) num_threads(w->threads) if (w->parallel))
-#define SD_PARALLEL_FOR_REDUCE_OR(v) \
-    SD_PRAGMA(omp parallel for schedule(static) num_threads(w->threads) if (w->parallel) reduction(| : v))
 
 #define SD_PI SD_R(3.14159265358979323846)
 #define SD_PI_D 3.14159265358979323846 /* always double: parameter set-up */

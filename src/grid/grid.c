@@ -25,6 +25,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "backend/cpu/parallel.h"
 #include "core/alloc.h"
 #include "core/error.h"
 #include "world/world.h"

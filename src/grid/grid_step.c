@@ -15,6 +15,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "backend/cpu/parallel.h"
 #include "core/error.h"
 #include "dynamics/integrate.h"
 #include "grid/grid.h"

@@ -1,7 +1,14 @@
-/* step.c — the time step, stage by stage (DESIGN.md data flow).
+/* step.c — the time step of the cells solver, stage by stage (DESIGN.md
+ * data flow).
  *
- *   kick + drift ─► rebuild pairs when the skin is used up ─► pair forces
- *   ─► wall forces ─► gather per particle ─► kick ─► clock
+ *   kick + drift ─► rebuild pairs when the skin is used up ─► ghosts
+ *   ─► pair forces, one kind segment at a time ─► wall forces, wall totals
+ *   ─► gather per particle ─► kick ─► clock ─► finite check
+ *
+ * Each stage is an entry of the backend's stage table (backend/backend.h)
+ * working on the views the world fills (world/view.c), never a loop of
+ * its own here; each is timed into the world's profile (sd_profile: two
+ * clock reads per stage per step).
  *
  * Within one call the gather and kick that end a step and the kick and
  * drift that start the next run as one pass over the particles (the same
@@ -11,8 +18,8 @@
  * Velocity Verlet (seed 004 eq. 9): forces at the start of a step are the
  * ones computed at the end of the previous step, so sd_world_prepare
  * computes them once before the first step (sd_cells_prepare: the cells
- * solver's half of the solver interface, world/solver.h). Every stage is one loop of the
- * backend; the CUDA backend will provide the same stages.
+ * solver's half of the solver interface, world/solver.h). The CUDA backend
+ * will provide the same stages on device copies of the same views.
  */
 #include "backend/backend.h"
 #include "core/error.h"

@@ -22,7 +22,6 @@ static void sd_view_pairs(sd_world *w)
     o->n = l->n;
     for (size_t k = 0; k <= SD_PAIR_KIND_COUNT; ++k)
         o->kind_start[k] = l->kind_start[k];
-    s->pairs_mixed = 0; /* the broad phase sorts the pairs by kind */
     o->i = l->i;
     o->j = l->j;
     o->flip = l->flip;
@@ -44,7 +43,6 @@ static void sd_view_pairs(sd_world *w)
     wo->n = wl->n;
     for (size_t k = 0; k <= SD_WALL_PAIR_KIND_COUNT; ++k)
         wo->kind_start[k] = wl->kind_start[k];
-    s->wpairs_mixed = 0; /* the broad phase sorts the wall pairs by kind */
     wo->i = wl->i;
     wo->wall = wl->wall;
     wo->sub = wl->sub;
@@ -96,7 +94,6 @@ sd_status sd_world_views(sd_world *w)
     v->skin = w->skin;
     v->dim2 = w->dim2;
     v->has_shapes = w->has_shapes;
-    v->has_volume_law = w->has_volume_law;
     s->exec.threads = w->threads;
     s->exec.parallel = w->parallel;
     s->narrow = w->narrow;
@@ -128,12 +125,8 @@ void sd_world_views_walls(sd_world *w)
     for (size_t k = 0; k < w->wall_count && k < s->wall_cap; ++k) {
         const sd_wall *wl = &w->walls[k];
         sd_wall_view *o = &s->walls[k];
-        o->kind = wl->kind;
+        o->g = wl->geom;
         o->material = wl->material;
-        o->point = wl->point;
-        o->normal = wl->normal;
-        o->lo = wl->lo;
-        o->hi = wl->hi;
         o->velocity = wl->velocity;
     }
 }

@@ -34,7 +34,6 @@ SD_KERNEL void sd_check_pair_kind(const sd_step_view *v, sd_pair_out *o, int kin
         sd_item_convex2d(v, o, e);
         break;
     default:
-        o->iters[e] = sd_item_pair_kind(v, o->i[e], o->j[e]);
         break;
     }
 }
@@ -59,7 +58,6 @@ SD_KERNEL void sd_check_wall_kind(const sd_step_view *v, sd_wall_pair_out *o, in
         sd_item_wall_convex2d(v, o, e);
         break;
     default:
-        o->delta[e] = (sd_real)sd_item_wall_pair_kind(v, o->i[e], o->wall[e]);
         break;
     }
 }

@@ -61,27 +61,30 @@ SD_PRAGMA(omp critical(sd_narrow_tally))
                 s->narrow[a][b][c] += y->t[a][b][c];
 }
 
-/* The 3D narrow-phase kinds over [e0, e1). classify: the segment still
- * holds both CONVEX and POLY_VOLUME pairs (a pair list not yet sorted by
- * kind), each pair's kind read from its materials' law. */
-static void sd_cpu_convex3d(sd_stage *s, size_t e0, size_t e1, int kind, int classify)
+/* A 3D narrow-phase kind segment [e0, e1): the convex narrow phase, or the
+ * volume law with one overlap workspace per thread (a few KB to tens of
+ * KB, on that thread's stack: never one per pair). */
+static void sd_cpu_convex3d(sd_stage *s, size_t e0, size_t e1, int volume)
 {
     const sd_step_view *v = &s->v;
     sd_pair_out *o = &s->pairs;
 SD_CPU_REGION(s->exec)
     {
-    /* one overlap workspace per thread, for the volume-law pairs */
     sd_overlap_workspace ws;
     sd_tally3 y;
     memset(&y, 0, sizeof y);
+    if (volume) {
 SD_PRAGMA(omp for schedule(dynamic, 64))
-    for (size_t e = e0; e < e1; ++e) {
-        int k = classify ? sd_item_pair_kind(v, o->i[e], o->j[e]) : kind;
-        if (k == SD_PAIR_POLY_VOLUME)
+        for (size_t e = e0; e < e1; ++e) {
             sd_item_poly_volume(v, o, e, &ws);
-        else
+            sd_tally3_add(&y, v, o, e);
+        }
+    } else {
+SD_PRAGMA(omp for schedule(dynamic, 64))
+        for (size_t e = e0; e < e1; ++e) {
             sd_item_convex(v, o, e);
-        sd_tally3_add(&y, v, o, e);
+            sd_tally3_add(&y, v, o, e);
+        }
     }
     sd_tally3_flush(s, &y);
     }
@@ -140,8 +143,10 @@ void sd_cpu_forces(sd_stage *s, sd_pair_kind kind)
         sd_cpu_spheres(s, e0, e1);
         break;
     case SD_PAIR_CONVEX:
+        sd_cpu_convex3d(s, e0, e1, 0);
+        break;
     case SD_PAIR_POLY_VOLUME:
-        sd_cpu_convex3d(s, e0, e1, kind, s->pairs_mixed);
+        sd_cpu_convex3d(s, e0, e1, 1);
         break;
     case SD_PAIR_CONVEX2D:
         sd_cpu_convex2d(s, e0, e1);

@@ -238,6 +238,6 @@ void sd_cpu_wall_totals(sd_stage *s)
          * contact point (rolling resistance torques are left out) */
         sd_vec3 fw = sd_v3_neg(l->f[e]);
         s->wall_force[k] = sd_v3_add(s->wall_force[k], fw);
-        s->wall_torque[k] = sd_v3_add(s->wall_torque[k], sd_v3_cross(sd_v3_sub(l->c[e], walls[k].point), fw));
+        s->wall_torque[k] = sd_v3_add(s->wall_torque[k], sd_v3_cross(sd_v3_sub(l->c[e], walls[k].g.point), fw));
     }
 }
