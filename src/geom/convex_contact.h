@@ -8,6 +8,9 @@
  * n = (pa − pb)/d, exactly, with no EPA (n is taken from GJK's v = pa − pb). Only when the cores themselves
  * touch or overlap does EPA give the core depth D, and then δ = D + ra + rb
  * along EPA's normal (DESIGN.md note "GJK/EPA"; notes/algorithms.md §C).
+ * Sharp cylinder–cylinder and box–cylinder cores (ra = rb = 0) take the
+ * closed form of geom/cylinder_contact.h instead of EPA, which stays their
+ * fallback.
  *
  * Invariants: n is unit and points from b to a (moving a along n reduces the
  * overlap); the contact point lies halfway between the two outer surfaces
@@ -20,18 +23,20 @@
 #ifndef SD_GEOM_CONVEX_CONTACT_H
 #define SD_GEOM_CONVEX_CONTACT_H
 
+#include "geom/cylinder_contact.h"
 #include "geom/epa.h"
 
 typedef struct sd_convex_contact {
-    int touching;  /* 1 when the swept bodies overlap (delta > 0) */
-    sd_vec3 n;     /* unit, from b to a */
-    sd_vec3 point; /* m, midway through the overlap */
-    sd_real delta; /* m, overlap > 0 (negative: the gap when GJK measured one, or,
-                      when GJK stopped early, an upper bound of −gap) */
-    int used_epa;  /* the cores overlapped: EPA gave the depth */
+    int touching;                  /* 1 when the swept bodies overlap (delta > 0) */
+    sd_vec3 n;                     /* unit, from b to a */
+    sd_vec3 point;                 /* m, midway through the overlap */
+    sd_real delta;                 /* m, overlap > 0 (negative: the gap when GJK measured one, or,
+                                      when GJK stopped early, an upper bound of −gap) */
+    int used_epa;                  /* the cores overlapped: EPA (or the closed form) gave the depth */
+    int closed_form;               /* the depth came from geom/cylinder_contact.h, not EPA */
     int iterations, support_calls; /* GJK + EPA together */
-    int status;     /* sd_gjk_status of the core distance */
-    int epa_status; /* sd_epa_status when used_epa, else -1 */
+    int status;                    /* sd_gjk_status of the core distance */
+    int epa_status;                /* sd_epa_status when used_epa, else -1 */
 } sd_convex_contact;
 
 /* Contact of the swept bodies a and b. warm_dir (may be NULL) holds the
@@ -48,6 +53,7 @@ SD_HD static SD_INLINE sd_convex_contact sd_convex_collide(const sd_convex *a, c
     c.status = g.status;
     c.epa_status = -1;
     c.used_epa = 0;
+    c.closed_form = 0;
     c.iterations = g.iterations;
     c.support_calls = g.support_calls;
     c.touching = 0;
@@ -67,16 +73,31 @@ SD_HD static SD_INLINE sd_convex_contact sd_convex_collide(const sd_convex *a, c
         if (d > SD_R(0.0) || g.bounded)
             c.n = sd_v3_normalize(sd_v3_neg(g.dir));
     } else {
-        /* the cores touch or overlap: EPA on the cores */
-        sd_epa_result e = sd_epa_penetration(a, b, &g);
+        /* the cores touch or overlap. Sharp cylinder–cylinder and
+         * box–cylinder cores (no margin, no rounding): the closed form of
+         * geom/cylinder_contact.h (EPA needs ~21 iterations on their curved
+         * sides, issue 11 §5); everything else, and its fallback: EPA */
+        sd_cylc_result k;
+        k.status = SD_CYLC_FALLBACK;
+        if (ra == SD_R(0.0) && rb == SD_R(0.0) && sd_cylc_pair(a->shape->kind, b->shape->kind))
+            k = sd_cylc_penetration(a, b);
         c.used_epa = 1;
-        c.epa_status = e.status;
-        c.iterations += e.iterations;
-        c.support_calls += e.support_calls;
-        c.delta = e.depth + ra + rb;
-        c.n = e.normal;
-        pa = e.pa;
-        pb = e.pb;
+        if (k.status == SD_CYLC_OK) {
+            c.closed_form = 1;
+            c.delta = k.depth;
+            c.n = k.normal;
+            pa = k.pa;
+            pb = k.pb;
+        } else {
+            sd_epa_result e = sd_epa_penetration(a, b, &g);
+            c.epa_status = e.status;
+            c.iterations += e.iterations;
+            c.support_calls += e.support_calls;
+            c.delta = e.depth + ra + rb;
+            c.n = e.normal;
+            pa = e.pa;
+            pb = e.pb;
+        }
     }
     c.touching = c.delta > SD_R(0.0);
     c.point = sd_v3_scale(sd_v3_add(sd_v3_madd(pa, -ra, c.n), sd_v3_madd(pb, rb, c.n)), SD_R(0.5));
@@ -116,6 +137,7 @@ SD_HD static SD_INLINE sd_convex_contact sd_convex_plane(const sd_convex *a, sd_
     c.status = sd_gjk_finite(s) ? SD_GJK_SEPARATED : SD_GJK_DEGENERATE;
     c.epa_status = -1;
     c.used_epa = 0;
+    c.closed_form = 0;
     c.iterations = 0;
     c.support_calls = 1;
     c.n = nplane;
