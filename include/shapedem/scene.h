@@ -92,6 +92,12 @@ const char *sd_scene_material_name(const sd_scene *s, size_t i);
 const char *sd_scene_shape_name(const sd_scene *s, size_t i);
 const char *sd_scene_shape_warning(const sd_scene *s, size_t i);
 
+/* The scene's pour: and outlet: (solver grid) as the world gets them
+ * (sd_world_set_pour / sd_world_set_outlet): 1 and *out filled when the
+ * scene has the section, else 0. */
+int sd_scene_get_pour(const sd_scene *s, sd_pour_def *out);
+int sd_scene_get_outlet(const sd_scene *s, sd_outlet_def *out);
+
 /* The directory a run of the scene writes to when none is given:
  * output.directory, else out/<scene file name without extension>. */
 void sd_scene_output_directory(const sd_scene *s, char *buf, size_t size);

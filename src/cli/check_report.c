@@ -57,10 +57,11 @@ void sd_check_count(const sd_scene *s, const sd_world *w, sd_check_counts *c)
             c->big_density = rho;
         }
     }
-    if (s->pour.given && s->pour.count > 0) {
-        double r = s->pour.radius, rho = s->materials[s->pour.material].def.density;
+    sd_pour_def pd; /* the pour as the world gets it (the public scene query) */
+    if (sd_scene_get_pour(s, &pd) && pd.count > 0) {
+        double r = pd.radius, rho = s->materials[pd.material].def.density;
         double m = rho * 4.0 / 3.0 * SD_PI_D * r * r * r;
-        c->poured = (size_t)s->pour.count;
+        c->poured = pd.count;
         c->mass_poured = m * (double)c->poured;
         c->rmin = fmin(c->rmin, r);
         c->rmax = fmax(c->rmax, r);
@@ -275,15 +276,17 @@ void sd_check_format_bytes(double b, char *buf, size_t size)
 
 void sd_check_print_grid(FILE *f, const sd_scene *s)
 {
-    if (s->pour.given)
+    sd_pour_def pd;
+    sd_outlet_def od;
+    if (sd_scene_get_pour(s, &pd))
         fprintf(f,
                 "pour         %ld spheres of radius %.4g m (material %s), sheets at z = %.4g m, %.4g per s from "
                 "t = %.4g s, speeds vz in +-%.3g m/s, vx, vy in +-%.3g m/s\n",
-                s->pour.count, s->pour.radius, s->materials[s->pour.material].name, s->pour.height, s->pour.rate,
-                s->pour.start, s->pour.vertical_speed, s->pour.horizontal_speed);
-    if (s->outlet.given)
+                (long)pd.count, pd.radius, sd_scene_material_name(s, (size_t)pd.material), pd.height,
+                pd.layers_per_second, pd.start_time, pd.vz_range, pd.vh_range);
+    if (sd_scene_get_outlet(s, &od))
         fprintf(f, "outlet       hole x in [%.4g, %.4g] m, y in [%.4g, %.4g] m in the box floor, opens at t = %.4g s\n",
-                s->outlet.lo[0], s->outlet.hi[0], s->outlet.lo[1], s->outlet.hi[1], s->outlet.open_at);
+                od.x0, od.x1, od.y0, od.y1, od.open_at);
 }
 
 void sd_check_print_output(FILE *f, const sd_scene *s, const sd_world *w, size_t total, long frames, long rows,

@@ -59,6 +59,35 @@ const char *sd_scene_shape_warning(const sd_scene *s, size_t i)
     return i < s->shape_count ? s->shapes[i].warning : NULL;
 }
 
+int sd_scene_get_pour(const sd_scene *s, sd_pour_def *out)
+{
+    if (!s->pour.given)
+        return 0;
+    *out = sd_pour_def_default();
+    out->radius = s->pour.radius;
+    out->material = s->pour.material;
+    out->height = s->pour.height;
+    out->layers_per_second = s->pour.rate;
+    out->count = (size_t)s->pour.count;
+    out->vz_range = s->pour.vertical_speed;
+    out->vh_range = s->pour.horizontal_speed;
+    out->start_time = s->pour.start;
+    return 1;
+}
+
+int sd_scene_get_outlet(const sd_scene *s, sd_outlet_def *out)
+{
+    if (!s->outlet.given)
+        return 0;
+    *out = sd_outlet_def_default();
+    out->x0 = s->outlet.lo[0];
+    out->x1 = s->outlet.hi[0];
+    out->y0 = s->outlet.lo[1];
+    out->y1 = s->outlet.hi[1];
+    out->open_at = s->outlet.open_at;
+    return 1;
+}
+
 void sd_scene_output_directory(const sd_scene *s, char *buf, size_t size)
 {
     if (s->output.directory[0]) {

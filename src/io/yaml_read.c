@@ -653,6 +653,31 @@ sd_status sd_yaml_entry(const sd_yaml *y, const yaml_node_t *list, size_t i, con
     return SD_OK;
 }
 
+sd_status sd_yaml_place_numbers(const sd_yaml *y, yaml_node_t *map, sd_scene_section sec, const char *path,
+                                const sd_yaml_place *place, size_t n, const char *const *rules, void *base)
+{
+    for (size_t i = 0; i < sd_scene_key_count; ++i) {
+        const sd_scene_key *k = &sd_scene_keys[i];
+        if (k->section != sec)
+            continue;
+        int known = 0;
+        for (size_t j = 0; j < n && !known; ++j)
+            known = !strcmp(place[j].key, k->key) && (k->type == SD_KT_NUMBER || k->type == SD_KT_INT);
+        for (const char *const *r = rules; *r && !known; ++r)
+            known = !strcmp(*r, k->key);
+        if (!known)
+            return sd_error_set(y->err, SD_ERR_INTERNAL, y->path, 0, k->key,
+                                "a bug: key '%s' of %s is neither placed nor read by its section", k->key,
+                                sd_scene_section_name(sec));
+    }
+    for (size_t j = 0; j < n; ++j) {
+        sd_yaml_value v;
+        sd_yaml_get(y, map, sec, place[j].key, path, &v);
+        memcpy((char *)base + place[j].offset, &v.num, sizeof v.num);
+    }
+    return SD_OK;
+}
+
 /* ---- reading the file ---------------------------------------------------- */
 
 /* Limits checked before libyaml builds the node tree. libyaml's scanner

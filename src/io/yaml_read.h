@@ -104,4 +104,20 @@ sd_status sd_yaml_check_map(const sd_yaml *y, yaml_node_t *map, sd_scene_section
 int sd_yaml_get(const sd_yaml *y, yaml_node_t *map, sd_scene_section sec, const char *name, const char *path,
                 sd_yaml_value *v);
 
+/* A number key placed by the table: the double at offset (offsetof) in
+ * a section's target struct. */
+typedef struct sd_yaml_place {
+    const char *key;
+    size_t offset;
+} sd_yaml_place;
+
+/* Places each of the n keys of place (already checked by
+ * sd_yaml_check_map) as a double at base + offset: its value, or the
+ * table's default when absent. Every key of sec must be placed or named
+ * in rules (a NULL-terminated list of the keys the section reads by
+ * name), else SD_ERR_INTERNAL names it: a key added to the table and
+ * forgotten in its section cannot become a silent default. */
+sd_status sd_yaml_place_numbers(const sd_yaml *y, yaml_node_t *map, sd_scene_section sec, const char *path,
+                                const sd_yaml_place *place, size_t n, const char *const *rules, void *base);
+
 #endif

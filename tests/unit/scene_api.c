@@ -168,6 +168,35 @@ int main(void)
     sd_world_destroy(w);
     sd_scene_free(s);
 
+    /* the pour of a grid scene, as the scene gives it and as the world got it */
+    const char *src = getenv("SD_SOURCE_DIR");
+    if (src) {
+        char hop[1024];
+        snprintf(hop, sizeof hop, "%s/examples/hopper-grid.yaml", src);
+        sd_test_require(sd_scene_load(hop, &s, &err) == SD_OK, "load examples/hopper-grid.yaml", &err);
+        sd_pour_def sp, wp;
+        sd_outlet_def so;
+        sd_scene_info hi;
+        sd_scene_get_info(s, &hi);
+        CHECK(hi.has_pour && hi.has_outlet && sd_scene_get_pour(s, &sp) == 1 && sd_scene_get_outlet(s, &so) == 1);
+        sd_test_require(sd_scene_build(s, &w, &err) == SD_OK, "build the hopper", &err);
+        CHECK(sd_world_get_pour(w, &wp) == 1);
+        printf("hopper pour: %zu spheres of radius %g m at z = %g m (world: %zu, %g m, %g m); outlet x in [%g, %g]\n",
+               sp.count, sp.radius, sp.height, wp.count, wp.radius, wp.height, so.x0, so.x1);
+        CHECK(sp.count == wp.count && sp.radius == wp.radius && sp.height == wp.height &&
+              sp.layers_per_second == wp.layers_per_second && sp.material == wp.material);
+        CHECK(so.x1 > so.x0 && so.y1 > so.y0);
+        sd_world_destroy(w);
+        sd_scene_free(s);
+    } else {
+        printf("SD_SOURCE_DIR not set: the hopper's pour not checked\n");
+    }
+    /* a scene without them */
+    sd_test_require(sd_scene_load(path, &s, &err) == SD_OK, "load", &err);
+    sd_pour_def none;
+    CHECK(sd_scene_get_pour(s, &none) == 0);
+    sd_scene_free(s);
+
     unlink(path);
     snprintf(path, sizeof path, "%s/example.yaml", dir);
     unlink(path);
