@@ -16,6 +16,7 @@
 #include "io/vtk.h"
 
 #include "core/error.h"
+#include "world/rebuild.h"
 
 #include <errno.h>
 #include <inttypes.h>
@@ -145,6 +146,7 @@ static sd_status sd_vtk_get(const sd_world *w, size_t i, sd_particle_state *p, s
     sd_status s = sd_world_get_particle(w, i, p);
     if (s != SD_OK)
         return sd_error_set(err, s, "", 0, "", "cannot read particle %zu of the world", i);
+    sd_world_wrap_periodic(w, &p->position); /* frames show the periodic box (world/rebuild.h) */
     return SD_OK;
 }
 

@@ -5,11 +5,26 @@
  * key (DESIGN.md engineering notes). The broad phase itself never sees the
  * world; the threading policy and the wall marks are the world's.
  *
+ * Periodic boundaries (seed 004 §2.8, the usual minimum-image scheme done
+ * with images): at each rebuild the owned particles are wrapped into the
+ * periodic box, then every owned particle within band = 2 r_max + skin of
+ * a periodic face gets an image (a ghost) shifted by the period across it,
+ * with the edge and corner images where it is near two or three faces. A
+ * contact across the boundary is then an ordinary pair of an owned
+ * particle and a ghost, evaluated once (broad/bins.h); each step the
+ * ghosts follow their owners (the backend's ghost exchange stage,
+ * dynamics/periodic.h). A period of at
+ * least 2 band on every periodic axis guarantees that a particle meets at
+ * most one image of another, never its own, and that every pair within
+ * r_i + r_j + skin across a face has its image among the ghosts.
+ *
  * Invariant: after a rebuild, x_ref and q_ref are the positions and
- * orientations the lists were built from, the walls are marked at their
+ * orientations the lists were built from (wrapped ones: a wrapped
+ * particle's reference moves with it), the walls are marked at their
  * positions (servo.c), and ghosts p.n .. p.n + n_ghost - 1 hold copies of
- * their owners.
+ * their owners shifted by ghost_shift.
  */
+#include <math.h>
 #include <string.h>
 
 #include "core/alloc.h"
@@ -26,6 +41,220 @@ void sd_world_broad_free(sd_world *w)
     w->ghost_owner = NULL;
     w->ghost_shift = NULL;
     w->n_ghost = w->ghost_cap = 0;
+}
+
+/* ---- periodic boundaries --------------------------------------------------- */
+
+static const char sd_axis_name[3] = {'x', 'y', 'z'};
+
+static sd_real sd_axis(sd_vec3 v, int a)
+{
+    return a == 0 ? v.x : (a == 1 ? v.y : v.z);
+}
+
+static void sd_axis_add(sd_vec3 *v, int a, sd_real d)
+{
+    if (a == 0)
+        v->x += d;
+    else if (a == 1)
+        v->y += d;
+    else
+        v->z += d;
+}
+
+sd_status sd_world_check_periodic_def(const sd_world_def *def, sd_error *err)
+{
+    unsigned m = def->periodic;
+    if (m == 0)
+        return SD_OK;
+    if (m & ~7u)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.periodic",
+                            "expected periodic axes x, y, z (SD_PERIODIC_X | _Y | _Z), got the mask %u", m);
+    if (def->dimension == 2 && (m & SD_PERIODIC_Z))
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.periodic",
+                            "dimension 2: only x and y can be periodic (the plane z = 0 has no z extent)");
+    if (def->solver == SD_SOLVER_GRID)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.periodic",
+                            "periodic boundaries run on the cells solver only (the grid solver's domain is a box "
+                            "wall); use solver: cells");
+    double lo[3] = {def->domain_lo.x, def->domain_lo.y, def->domain_lo.z};
+    double hi[3] = {def->domain_hi.x, def->domain_hi.y, def->domain_hi.z};
+    for (int a = 0; a < 3; ++a)
+        if ((m & (1u << a)) && !(hi[a] > lo[a] && isfinite(hi[a] - lo[a])))
+            return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.domain",
+                                "periodic axis %c: the domain needs max > min, got [%g, %g]", sd_axis_name[a], lo[a],
+                                hi[a]);
+    return SD_OK;
+}
+
+static sd_vec3 sd_domain_lo(const sd_world *w)
+{
+    return sd_v3((sd_real)w->def.domain_lo.x, (sd_real)w->def.domain_lo.y, (sd_real)w->def.domain_lo.z);
+}
+
+static sd_vec3 sd_domain_hi(const sd_world *w)
+{
+    return sd_v3((sd_real)w->def.domain_hi.x, (sd_real)w->def.domain_hi.y, (sd_real)w->def.domain_hi.z);
+}
+
+/* What a periodic world must satisfy whenever particles or walls change:
+ * no wall across a periodic axis, a period of at least 2 (2 r_max + skin),
+ * and (at the start) every particle inside the box. */
+static sd_status sd_periodic_check(const sd_world *w, sd_error *err)
+{
+    unsigned m = w->def.periodic;
+    const sd_particles *p = &w->p;
+    for (size_t k = 0; k < w->wall_count; ++k)
+        for (int a = 0; a < 3; ++a)
+            if ((m & (1u << a)) && sd_wall_crosses_axis(&w->walls[k].geom, a))
+                return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.periodic",
+                                    "wall '%s' lies across the periodic axis %c (%s): periodic images would pass "
+                                    "through it; make the axis non-periodic or the wall parallel to it",
+                                    w->walls[k].name, sd_axis_name[a],
+                                    w->walls[k].kind == SD_WALL_PLANE ? "its normal has a component along it"
+                                                                      : "its faces on that axis are closed");
+    sd_real rmax = 0;
+    for (size_t k = 0; k < p->n; ++k)
+        rmax = sd_max(rmax, p->radius[k]);
+    sd_vec3 lo = sd_domain_lo(w), hi = sd_domain_hi(w);
+    sd_real need = SD_R(2.0) * (SD_R(2.0) * rmax + w->skin);
+    for (int a = 0; a < 3; ++a)
+        if ((m & (1u << a)) && sd_axis(hi, a) - sd_axis(lo, a) < need)
+            return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.domain",
+                                "periodic axis %c: the period %g m is shorter than 2 (2 r_max + skin) = %g m "
+                                "(r_max = %g m, skin = %g m): a particle could meet two images of another",
+                                sd_axis_name[a], (double)(sd_axis(hi, a) - sd_axis(lo, a)), (double)need,
+                                (double)rmax, (double)w->skin);
+    if (!w->prepared)
+        for (size_t k = 0; k < p->n; ++k)
+            for (int a = 0; a < 3; ++a) {
+                sd_real x = sd_axis(p->x[k], a);
+                if ((m & (1u << a)) && !(x >= sd_axis(lo, a) && x < sd_axis(hi, a)))
+                    return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.domain",
+                                        "particle %zu (id %llu) lies outside the periodic box on axis %c: %c = %g m, "
+                                        "the box is [%g, %g) m",
+                                        k, (unsigned long long)p->id[k], sd_axis_name[a], sd_axis_name[a], (double)x,
+                                        (double)sd_axis(lo, a), (double)sd_axis(hi, a));
+            }
+    return SD_OK;
+}
+
+void sd_world_wrap_periodic(const sd_world *w, sd_v3d *x)
+{
+    unsigned m = w->def.periodic;
+    double *c[3] = {&x->x, &x->y, &x->z};
+    const double lo[3] = {w->def.domain_lo.x, w->def.domain_lo.y, w->def.domain_lo.z};
+    const double hi[3] = {w->def.domain_hi.x, w->def.domain_hi.y, w->def.domain_hi.z};
+    for (int a = 0; a < 3; ++a) {
+        if (!(m & (1u << a)))
+            continue;
+        double len = hi[a] - lo[a];
+        while (*c[a] >= hi[a])
+            *c[a] -= len;
+        while (*c[a] < lo[a])
+            *c[a] += len;
+    }
+}
+
+/* Wraps the owned particles into the box on the periodic axes (a particle
+ * moves less than half the skin between rebuilds, far less than a period,
+ * but the loop is safe for any distance). */
+static void sd_periodic_wrap(sd_world *w)
+{
+    unsigned m = w->def.periodic;
+    sd_particles *p = &w->p;
+    sd_vec3 lo = sd_domain_lo(w), hi = sd_domain_hi(w);
+    for (int a = 0; a < 3; ++a) {
+        if (!(m & (1u << a)))
+            continue;
+        sd_real l0 = sd_axis(lo, a), l1 = sd_axis(hi, a), len = l1 - l0;
+        for (size_t k = 0; k < p->n; ++k) {
+            while (sd_axis(p->x[k], a) >= l1)
+                sd_axis_add(&p->x[k], a, -len);
+            while (sd_axis(p->x[k], a) < l0)
+                sd_axis_add(&p->x[k], a, len);
+        }
+    }
+}
+
+/* The images of owned particle k: the shifts (in periods) on each periodic
+ * axis it may take, -1, 0 or +1, and their count less the particle itself.
+ * out gets up to 7 shifts. */
+static int sd_periodic_images(const sd_world *w, size_t k, sd_real band, sd_vec3 *out)
+{
+    unsigned m = w->def.periodic;
+    sd_vec3 lo = sd_domain_lo(w), hi = sd_domain_hi(w), x = w->p.x[k];
+    sd_real opt[3][2];
+    int nopt[3];
+    for (int a = 0; a < 3; ++a) {
+        opt[a][0] = 0;
+        nopt[a] = 1;
+        if (!(m & (1u << a)))
+            continue;
+        sd_real len = sd_axis(hi, a) - sd_axis(lo, a), c = sd_axis(x, a);
+        /* near the low face: an image one period up; near the high face:
+         * one down (a period of 2 band or more: never both) */
+        if (c < sd_axis(lo, a) + band)
+            opt[a][nopt[a]++] = len;
+        else if (c >= sd_axis(hi, a) - band)
+            opt[a][nopt[a]++] = -len;
+    }
+    int count = 0;
+    for (int ix = 0; ix < nopt[0]; ++ix)
+        for (int iy = 0; iy < nopt[1]; ++iy)
+            for (int iz = 0; iz < nopt[2]; ++iz) {
+                if (ix == 0 && iy == 0 && iz == 0)
+                    continue;
+                if (out)
+                    out[count] = sd_v3(opt[0][ix], opt[1][iy], opt[2][iz]);
+                ++count;
+            }
+    return count;
+}
+
+/* Makes the ghosts of the (sorted) owned particles: counts, room after the
+ * owned ones, then each image a copy of its owner with the shift. */
+static sd_status sd_periodic_ghosts(sd_world *w)
+{
+    sd_particles *p = &w->p;
+    size_t n = p->n;
+    sd_real rmax = 0;
+    for (size_t k = 0; k < n; ++k)
+        rmax = sd_max(rmax, p->radius[k]);
+    sd_real band = SD_R(2.0) * rmax + w->skin;
+    size_t ng = 0;
+    for (size_t k = 0; k < n; ++k)
+        ng += (size_t)sd_periodic_images(w, k, band, NULL);
+    if (ng > w->ghost_cap) {
+        size_t cap = ng + ng / 2 + 16;
+        uint32_t *o = sd_realloc(w->ghost_owner, cap * sizeof *o);
+        if (!o)
+            return SD_ERR_MEMORY;
+        w->ghost_owner = o;
+        sd_vec3 *s = sd_realloc(w->ghost_shift, cap * sizeof *s);
+        if (!s)
+            return SD_ERR_MEMORY;
+        w->ghost_shift = s;
+        w->ghost_cap = cap;
+    }
+    if (n + ng > p->cap && sd_particles_reserve(p, n + ng) != SD_OK)
+        return SD_ERR_MEMORY;
+    size_t g = 0;
+    for (size_t k = 0; k < n; ++k) {
+        sd_vec3 sh[7];
+        int c = sd_periodic_images(w, k, band, sh);
+        for (int t = 0; t < c; ++t, ++g) {
+            size_t d = n + g;
+#define SD_X_COPY(type, name, ...) p->name[d] = p->name[k];
+            SD_PARTICLE_FIELDS(SD_X_COPY)
+#undef SD_X_COPY
+            p->x[d] = sd_v3_add(p->x[k], sh[t]);
+            w->ghost_owner[g] = (uint32_t)k;
+            w->ghost_shift[g] = sh[t];
+        }
+    }
+    w->n_ghost = ng;
+    return SD_OK;
 }
 
 /* The tables the input points into, made for one rebuild (a few bytes per
@@ -86,6 +315,9 @@ static sd_status sd_rebuild_input_of(const sd_world *w, sd_bins_input *in, sd_re
     in->walls = t->walls;
     in->wall_material = t->wall_material;
     in->skin = w->skin;
+    in->lo = sd_domain_lo(w);
+    in->hi = sd_domain_hi(w);
+    in->periodic = w->def.periodic;
     in->threads = w->threads;
     in->parallel = w->parallel;
     return SD_OK;
@@ -107,6 +339,12 @@ sd_status sd_world_rebuild(sd_world *w, sd_error *err)
         return SD_OK;
     }
     w->n_ghost = 0; /* made again below, after the owned particles are sorted */
+    if (w->def.periodic) {
+        sd_status pst = w->dirty ? sd_periodic_check(w, err) : SD_OK;
+        if (pst != SD_OK)
+            return pst;
+        sd_periodic_wrap(w);
+    }
     sd_bins_input in;
     sd_rebuild_tables tables;
     sd_status st = sd_rebuild_input_of(w, &in, &tables);
@@ -118,9 +356,18 @@ sd_status sd_world_rebuild(sd_world *w, sd_error *err)
             /* the pair lists hold their history under stable keys, so the
              * storage order may change under them */
             sd_particles_permute(p, perm, scratch, w->threads, w->parallel);
+            if (w->def.periodic)
+                st = sd_periodic_ghosts(w);
+            /* the arrays may have grown for the ghosts */
+            in.x = p->x;
+            in.radius = p->radius;
+            in.id = p->id;
+            in.shape = w->has_shapes ? p->shape : NULL;
+            in.material = p->material;
             in.n_total = p->n + w->n_ghost;
             in.ghost_owner = w->ghost_owner;
-            st = sd_bins_build(&w->bins, &in, &w->pairs, &w->wpairs);
+            if (st == SD_OK)
+                st = sd_bins_build(&w->bins, &in, &w->pairs, &w->wpairs);
         }
         sd_rebuild_tables_free(&tables);
     }

@@ -10,6 +10,14 @@
  * order, makes the ghosts and has the pair lists rebuilt with their
  * history carried by key; x_ref, q_ref and the wall marks follow. */
 sd_status sd_world_rebuild(sd_world *w, sd_error *err);
+/* The periodic axes of a world def are possible: not z in 2D, not with the
+ * grid solver, a box with domain_hi > domain_lo on each (keys
+ * "simulation.periodic", "simulation.domain"). */
+sd_status sd_world_check_periodic_def(const sd_world_def *def, sd_error *err);
+/* Wraps a position into the periodic box on the periodic axes (between
+ * rebuilds an owned particle may stand up to half the skin outside it);
+ * leaves it alone in a world without periodic axes. */
+void sd_world_wrap_periodic(const sd_world *w, sd_v3d *x);
 /* The memory of the pair lists, bins and ghosts. */
 void sd_world_broad_free(sd_world *w);
 
