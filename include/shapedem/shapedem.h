@@ -58,14 +58,37 @@ typedef struct sd_v3d {
 
 /* X(enum, scene name, description): the list is the single source for the
  * enum, the scene-file names and the help text (STYLE.md convention 4). */
+/* What a law needs from the materials of a pair that meets under it: the
+ * world checks these at prepare (sd_world_check_params) and the scene
+ * loader with the file and line, both from the `needs` column below. */
+#define SD_LAW_NEEDS_MODULUS 1u          /* youngs_modulus of both materials, walls included */
+#define SD_LAW_NEEDS_PARTICLE_MODULUS 2u /* youngs_modulus of the particles' materials (walls are rigid) */
+#define SD_LAW_NEEDS_STIFFNESS 4u        /* stiffness k_n (N/m), of the materials or of their interaction */
+#define SD_LAW_NEEDS_VOLUME_STIFFNESS 8u /* volume_stiffness k_V (N/m^3), of the materials or their interaction */
+#define SD_LAW_NEEDS_SHARP 16u           /* sharp polyhedra only (type polyhedron, no rounding or margin) */
+
+/* What a law is (the `traits` column), read where code depends on it. */
+#define SD_LAW_IS_HERTZ 1u  /* Hertz normal force on the overlap depth: contact time and Rayleigh time from Y* */
+#define SD_LAW_IS_LINEAR 2u /* a constant normal stiffness k_n: contact time, servo gain and the grid
+                               solver's time-step limit from k_n; elastic energy 1/2 k_n delta^2 */
+#define SD_LAW_IS_VOLUME 4u /* force from the overlap volume of two bodies (seed 000; contact/law_volume.h) */
+
+/* The contact laws: X(enum, scene name, doc, needs, traits). The one list
+ * behind the enum, the scene names, the help text, the parameter checks and
+ * the law switch of contact/law.h (a law without a case there does not
+ * compile). */
 #define SD_CONTACT_LAWS(X)                                                                       \
-    X(SD_LAW_HERTZ_MINDLIN, "hertz_mindlin", "Hertz normal, Mindlin tangential with history (LIGGGHTS form)") \
-    X(SD_LAW_LINEAR, "linear", "linear spring-dashpot-Coulomb, damping from restitution (seed 004 eqs. 10, 16)") \
-    X(SD_LAW_VOLUME, "volume", "polyhedra: energy-conserving overlap-volume law, F = (E1/R1 + E2/R2) A_n V^(1/3) (seed 000 eqs. 12-22)") \
-    X(SD_LAW_VOLUME_LINEAR, "volume_linear", "polyhedra: linear overlap-volume law F = k_V V with volume_stiffness k_V (N/m^3)")
+    X(SD_LAW_HERTZ_MINDLIN, "hertz_mindlin", "Hertz normal, Mindlin tangential with history (LIGGGHTS form)", \
+      SD_LAW_NEEDS_MODULUS, SD_LAW_IS_HERTZ)                                                     \
+    X(SD_LAW_LINEAR, "linear", "linear spring-dashpot-Coulomb, damping from restitution (seed 004 eqs. 10, 16)", \
+      SD_LAW_NEEDS_STIFFNESS, SD_LAW_IS_LINEAR)                                                  \
+    X(SD_LAW_VOLUME, "volume", "polyhedra: energy-conserving overlap-volume law, F = (E1/R1 + E2/R2) A_n V^(1/3) (seed 000 eqs. 12-22)", \
+      SD_LAW_NEEDS_PARTICLE_MODULUS | SD_LAW_NEEDS_SHARP, SD_LAW_IS_VOLUME)                      \
+    X(SD_LAW_VOLUME_LINEAR, "volume_linear", "polyhedra: linear overlap-volume law F = k_V V with volume_stiffness k_V (N/m^3)", \
+      SD_LAW_NEEDS_VOLUME_STIFFNESS | SD_LAW_NEEDS_SHARP, SD_LAW_IS_VOLUME)
 
 typedef enum sd_contact_law {
-#define SD_X_ENUM(e, name, doc) e,
+#define SD_X_ENUM(e, name, doc, needs, traits) e,
     SD_CONTACT_LAWS(SD_X_ENUM)
 #undef SD_X_ENUM
     SD_LAW_COUNT
@@ -74,6 +97,10 @@ typedef enum sd_contact_law {
 const char *sd_contact_law_name(sd_contact_law law);
 /* Returns SD_LAW_COUNT when the name is unknown. */
 sd_contact_law sd_contact_law_from_name(const char *name);
+/* The law's needs and traits columns (SD_LAW_NEEDS_*, SD_LAW_IS_*); 0 for
+ * an unknown law. */
+unsigned sd_contact_law_needs(sd_contact_law law);
+unsigned sd_contact_law_traits(sd_contact_law law);
 
 /* ---- materials and interactions ----------------------------------------- */
 
@@ -121,9 +148,6 @@ typedef enum sd_solver {
     SD_SOLVER_GRID       /* one particle per grid cell, fixed stencil (seed 001) */
 } sd_solver;
 
-/* Periodic axes of sd_world_def.periodic. */
-enum { SD_PERIODIC_X = 1 << 0, SD_PERIODIC_Y = 1 << 1, SD_PERIODIC_Z = 1 << 2 };
-
 typedef struct sd_world_def {
     int dimension;          /* 3, or 2: the planar mode (z = 0, rotation about z only,
                                masses per unit thickness of 1 m; docs/physics.md) */
@@ -137,9 +161,6 @@ typedef struct sd_world_def {
     double local_damping;   /* -, in [0, 1): velocity-based local (non-viscous) damping of
                                seed 002 §3.2: each force and torque component gets
                                -alpha |unbalanced| sign(velocity); 0 = off */
-    unsigned periodic;      /* SD_PERIODIC_X | _Y | _Z: the axes that are periodic, with
-                               period domain_hi - domain_lo (cells solver; not z in 2D) */
-    sd_v3d domain_lo, domain_hi; /* m, the periodic box; read on the periodic axes only */
     int cookie;
 } sd_world_def;
 

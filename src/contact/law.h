@@ -59,8 +59,12 @@ SD_HD static SD_HOT sd_contact_out sd_law_eval(const sd_pair_params *p, sd_vec3 
     sd_contact_out out;
     sd_real un = sd_v3_dot(v_rel, n);
     sd_vec3 vt = sd_v3_madd(v_rel, -un, n);
-    sd_real kn, kt, gn, gt;
-    if (p->law == SD_LAW_LINEAR) {
+    sd_real kn = SD_R(0.0), kt = SD_R(0.0), gn = SD_R(0.0), gt = SD_R(0.0);
+    out.energy = SD_R(0.0);
+    /* every law has a case and there is no default: -Wswitch (and
+     * -Werror) fails on a law added to SD_CONTACT_LAWS without one */
+    switch ((sd_contact_law)p->law) {
+    case SD_LAW_LINEAR:
         kn = p->kn;
         kt = p->kt_ratio * p->kn;
         /* seed 004 eq. 16 with omega_0 = sqrt(k_n / m*); eq. 10 damps with 2 gamma m* */
@@ -73,7 +77,8 @@ SD_HD static SD_HOT sd_contact_out sd_law_eval(const sd_pair_params *p, sd_vec3 
         }
         gt = gn;
         out.energy = SD_R(0.5) * kn * delta * delta;
-    } else {
+        break;
+    case SD_LAW_HERTZ_MINDLIN: {
         sd_real a = sd_sqrt(r_star * delta);
         sd_real sn = SD_R(2.0) * p->y_star * a;
         kn = SD_R(4.0) / SD_R(3.0) * p->y_star * a;
@@ -84,6 +89,16 @@ SD_HD static SD_HOT sd_contact_out sd_law_eval(const sd_pair_params *p, sd_vec3 
         gt = gn * p->gt_over_gn;
         /* integral of 4/3 Y* sqrt(R*) d^{3/2} */
         out.energy = SD_R(0.4) * kn * delta * delta;
+        break;
+    }
+    case SD_LAW_VOLUME:
+    case SD_LAW_VOLUME_LINEAR:
+    case SD_LAW_COUNT:
+        /* the volume laws act on the overlap volume (contact/pair_poly.h)
+         * and never reach a depth law: the world refuses, at prepare, a
+         * pair under them that is not two sharp polyhedra (needs column);
+         * no force rather than another law's */
+        break;
     }
     sd_real fn = kn * delta - gn * un;
     out.fn = fn;

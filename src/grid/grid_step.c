@@ -238,7 +238,7 @@ static double sd_grid_dt_limit(const sd_world *w)
     }
     size_t nm = w->material_count;
     for (size_t e = 0; e < nm * nm; ++e)
-        if (w->mix[e].law == SD_LAW_LINEAR)
+        if (sd_law_traits(w->mix[e].law) & SD_LAW_IS_LINEAR) /* a constant k_n (the law table) */
             kmax = fmax(kmax, (double)w->mix[e].kn);
     if (!(kmax > 0) || !isfinite(mmin))
         return INFINITY;
@@ -355,7 +355,7 @@ static void sd_grid_stats_pair(const sd_world *w, size_t k, size_t j, long *cont
     const sd_pair_params *prm = &w->mix[(size_t)kk->material * w->material_count + (size_t)kj->material];
     sd_vec3 s = sd_grid_pair_spring(g->tag, g->ds, k, j, part);
     double kn = (double)prm->kn, kt = (double)(prm->kt_ratio * prm->kn);
-    if (prm->law == SD_LAW_LINEAR)
+    if (sd_law_traits(prm->law) & SD_LAW_IS_LINEAR)
         *energy += 0.5 * kn * (double)(delta * delta) + 0.5 * kt * (double)sd_v3_norm2(s);
     double ratio = (double)(delta / sd_min(kk->radius, kj->radius));
     if (ratio > *max_overlap_ratio)

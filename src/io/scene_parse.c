@@ -28,6 +28,7 @@
 #include <sys/stat.h>
 #include <yaml.h>
 
+#include "contact/params.h" /* the law table's needs, for sd_check_laws */
 #include "core/alloc.h"
 #include "core/error.h"
 #include "io/scene.h"
@@ -147,52 +148,6 @@ static sd_status sd_parse_simulation(sd_parse *p, yaml_node_t *root)
     /* choices in sd_solver order: cells, grid */
     if (sd_yaml_get(&p->y, sim, SD_SEC_SIMULATION, "solver", path, &v))
         s->world.solver = v.choice == 1 ? SD_SOLVER_GRID : SD_SOLVER_CELLS;
-    /* periodic boundaries (world/rebuild.c): choices x, y, z in the order
-     * of SD_PERIODIC_X, _Y, _Z */
-    if (sd_yaml_get(&p->y, sim, SD_SEC_SIMULATION, "periodic", path, &v) && v.mask) {
-        s->world.periodic = v.mask;
-        if (s->world.dimension == 2 && (v.mask & SD_PERIODIC_Z))
-            return sd_fail(p, v.line, "simulation.periodic", "dimension 2: only x and y can be periodic");
-        if (s->world.solver == SD_SOLVER_GRID)
-            return sd_fail(p, v.line, "simulation.periodic",
-                           "periodic boundaries run on the cells solver only (the grid solver's domain is a box "
-                           "wall); use solver: cells");
-        int pline = v.line;
-        if (!sd_yaml_get(&p->y, sim, SD_SEC_SIMULATION, "domain", path, &v))
-            return sd_fail(p, pline, "simulation.domain",
-                           "periodic boundaries need the periodic box, domain: {min: [x, y, z], max: [x, y, z]}");
-        s->world.domain_lo = v.box_lo;
-        s->world.domain_hi = v.box_hi;
-    }
-    return SD_OK;
-}
-
-/* No wall may lie across a periodic axis: a plane whose normal has a
- * component along it, a box with closed faces on it (dynamics/walls.h
- * decides the same for the world). */
-static sd_status sd_check_periodic_walls(sd_parse *p)
-{
-    const sd_scene *s = p->s;
-    static const char axis[3] = {'x', 'y', 'z'};
-    char key[64];
-    for (size_t k = 0; k < s->wall_count; ++k) {
-        const sd_scene_wall *w = &s->walls[k];
-        const double n[3] = {w->normal.x, w->normal.y, w->normal.z};
-        for (int a = 0; a < 3; ++a) {
-            if (!(s->world.periodic & (1u << a)))
-                continue;
-            int across = w->kind == 0 ? n[a] != 0.0 : (w->open_faces & (3u << (2 * a))) != (3u << (2 * a));
-            if (across) {
-                snprintf(key, sizeof key, "walls[%zu]", k);
-                return sd_fail(p, w->line, key,
-                               "wall '%s' lies across the periodic axis %c (%s); make the axis non-periodic or "
-                               "the wall parallel to it",
-                               w->name, axis[a],
-                               w->kind == 0 ? "its normal has a component along it"
-                                            : "its faces on that axis are closed: open them");
-            }
-        }
-    }
     return SD_OK;
 }
 
@@ -645,33 +600,26 @@ static sd_status sd_check_laws(sd_parse *p)
             }
             int law = (in && in->def.law >= 0) ? in->def.law : (int)s->world.law;
             const sd_scene_material *m = &s->materials[a];
-            char key[96];
-            if (law == SD_LAW_HERTZ_MINDLIN && !(m->def.youngs_modulus > 0.0)) {
-                snprintf(key, sizeof key, "materials[%zu].youngs_modulus", a);
-                st = sd_fail(p, m->line, key,
-                             "missing youngs_modulus (Pa): the hertz_mindlin contact between "
-                             "'%s' and '%s' needs it",
-                             m->name, s->materials[b].name);
-            } else if (law == SD_LAW_LINEAR && !(m->def.stiffness > 0.0) &&
-                       !(in && in->def.stiffness > 0.0)) {
-                snprintf(key, sizeof key, "materials[%zu].stiffness", a);
-                st = sd_fail(p, m->line, key,
-                             "missing stiffness (N/m): the linear contact between '%s' and '%s' "
-                             "needs it (or set stiffness in their interaction)",
-                             m->name, s->materials[b].name);
-            } else if (law == SD_LAW_VOLUME && (use[a] & 1) && !(m->def.youngs_modulus > 0.0)) {
-                snprintf(key, sizeof key, "materials[%zu].youngs_modulus", a);
-                st = sd_fail(p, m->line, key,
-                             "missing youngs_modulus (Pa): the volume contact between '%s' and '%s' "
-                             "needs it (eq. 13 of [Xu n.d.])",
-                             m->name, s->materials[b].name);
-            } else if (law == SD_LAW_VOLUME_LINEAR && !(m->def.volume_stiffness > 0.0) &&
-                       !(in && in->def.volume_stiffness > 0.0)) {
-                snprintf(key, sizeof key, "materials[%zu].volume_stiffness", a);
-                st = sd_fail(p, m->line, key,
-                             "missing volume_stiffness (N/m^3): the volume_linear contact between '%s' "
-                             "and '%s' needs it (or set volume_stiffness in their interaction)",
-                             m->name, s->materials[b].name);
+            /* the law's needs column (shapedem.h SD_CONTACT_LAWS, read
+             * through contact/params.h, as sd_world_check_params does) */
+            unsigned needs = sd_law_needs(law);
+            for (unsigned f = 1; f <= needs && st == SD_OK; f <<= 1) {
+                sd_law_need nd;
+                if (!(needs & f) || !sd_law_need_of(f, &nd))
+                    continue;
+                if (nd.particles_only && !(use[a] & 1))
+                    continue; /* a wall's material: walls are rigid */
+                if (sd_law_need_field(&m->def, nd.material_field) > 0.0 ||
+                    (in && nd.interaction_field >= 0 &&
+                     sd_law_need_field(&in->def, (size_t)nd.interaction_field) > 0.0))
+                    continue;
+                char key[96], also[96] = "";
+                snprintf(key, sizeof key, "materials[%zu].%s", a, nd.key);
+                if (nd.interaction_field >= 0)
+                    snprintf(also, sizeof also, " (or set %s in their interaction)", nd.key);
+                st = sd_fail(p, m->line, key, "missing %s (%s): the %s contact between '%s' and '%s' needs it%s%s",
+                             nd.key, nd.unit, sd_contact_law_name((sd_contact_law)law), m->name,
+                             s->materials[b].name, nd.note, also);
             }
         }
     }
@@ -697,7 +645,7 @@ static sd_status sd_check_laws(sd_parse *p)
                         in = c;
                 }
                 int law = (in && in->def.law >= 0) ? in->def.law : (int)s->world.law;
-                if (law != SD_LAW_VOLUME && law != SD_LAW_VOLUME_LINEAR)
+                if (!(sd_law_needs(law) & SD_LAW_NEEDS_SHARP))
                     continue;
                 char key[96];
                 snprintf(key, sizeof key, "particles[%zu]", g);
@@ -754,7 +702,7 @@ static sd_status sd_parse_root(sd_parse *p, yaml_node_t *root)
         if ((st = sd_parse_particles(p, v.node, sd_yaml_key_line(&p->y, root, "particles"))))
             return st;
     sd_yaml_get(&p->y, root, SD_SEC_ROOT, "walls", "", &v);
-    if ((st = sd_parse_walls(p, v.node)) || (st = sd_check_periodic_walls(p)))
+    if ((st = sd_parse_walls(p, v.node)))
         return st;
     if ((st = sd_parse_output(p, root, sd_yaml_map_get(&p->y, root, "output") ? sd_yaml_key_line(&p->y, root, "output") : 1)))
         return st;

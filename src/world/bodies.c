@@ -200,13 +200,12 @@ sd_status sd_world_add_bodies(sd_world *w, size_t n, const sd_body_def *defs, sd
         sd_real mass = rho * s->volume;
         sd_quat q = sd_quat_make((sd_real)d->orientation[0], (sd_real)d->orientation[1], (sd_real)d->orientation[2],
                                  (sd_real)d->orientation[3]);
+        sd_particles_init(p, e, w->next_id++); /* the defaults (world.h), then what differs */
         p->x[e] = sd_v3((sd_real)d->position.x, (sd_real)d->position.y, (sd_real)d->position.z);
         p->v[e] = sd_v3((sd_real)d->velocity.x, (sd_real)d->velocity.y, (sd_real)d->velocity.z);
         p->w[e] = sd_v3((sd_real)d->angular_velocity.x, (sd_real)d->angular_velocity.y,
                         (sd_real)d->angular_velocity.z);
         p->q[e] = sd_quat_normalize(q); /* a zero quaternion becomes the identity */
-        p->f[e] = sd_v3_zero();
-        p->t[e] = sd_v3_zero();
         p->radius[e] = s->bound;
         p->inv_mass[e] = SD_R(1.0) / mass;
         p->inv_inertia[e] = sd_v3(SD_R(1.0) / (rho * s->inertia.x), SD_R(1.0) / (rho * s->inertia.y),
@@ -215,7 +214,6 @@ sd_status sd_world_add_bodies(sd_world *w, size_t n, const sd_body_def *defs, sd
         p->q_ref[e] = p->q[e];
         p->material[e] = d->material;
         p->shape[e] = d->shape;
-        p->id[e] = w->next_id++;
     }
     p->n += n;
     w->has_shapes = 1;

@@ -166,12 +166,11 @@ sd_status sd_world_add_bodies2d(sd_world *w, size_t n, const sd_body_def *defs, 
         sd_real mass = rho * s->area, inertia = rho * s->inertia;
         int circle = s->kind == SD_SHAPE2D_CIRCLE;
         sd_quat q = sd_quat_make((sd_real)d->orientation[0], SD_R(0.0), SD_R(0.0), (sd_real)d->orientation[3]);
+        sd_particles_init(p, e, w->next_id++); /* the defaults (world.h), then what differs */
         p->x[e] = sd_v3((sd_real)d->position.x, (sd_real)d->position.y, SD_R(0.0));
         p->v[e] = sd_v3((sd_real)d->velocity.x, (sd_real)d->velocity.y, SD_R(0.0));
         p->w[e] = sd_v3(SD_R(0.0), SD_R(0.0), (sd_real)d->angular_velocity.z);
         p->q[e] = circle ? sd_quat_identity() : sd_quat_normalize(q); /* zero: identity */
-        p->f[e] = sd_v3_zero();
-        p->t[e] = sd_v3_zero();
         p->radius[e] = circle ? s->radius : s->bound;
         p->inv_mass[e] = SD_R(1.0) / mass;
         p->inv_inertia[e] = sd_v3(SD_R(1.0) / inertia, SD_R(1.0) / inertia, SD_R(1.0) / inertia);
@@ -179,7 +178,6 @@ sd_status sd_world_add_bodies2d(sd_world *w, size_t n, const sd_body_def *defs, 
         p->q_ref[e] = p->q[e];
         p->material[e] = d->material;
         p->shape[e] = circle ? -1 : d->shape;
-        p->id[e] = w->next_id++;
         any_shape |= !circle;
     }
     p->n += n;

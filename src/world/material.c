@@ -146,13 +146,13 @@ sd_status sd_world_mix_materials(sd_world *w, sd_error *err)
             p->shear_a = (sd_real)(ma->youngs_modulus / (2.0 * (1.0 + ma->poisson_ratio)));
             p->shear_b = (sd_real)(mb->youngs_modulus / (2.0 * (1.0 + mb->poisson_ratio)));
             p->kv = (sd_real)kv;
-            if (law == SD_LAW_VOLUME || law == SD_LAW_VOLUME_LINEAR) {
+            if (sd_law_traits(law) & SD_LAW_IS_VOLUME) {
                 w->has_volume_law = 1;
                 /* the calibration costs ~0.1 s: reuse it for an equal e */
                 int done = 0;
                 for (size_t q = 0; q < a * nm + b && !done; ++q) {
                     const sd_pair_params *o = &mix[q];
-                    if ((o->law == SD_LAW_VOLUME || o->law == SD_LAW_VOLUME_LINEAR) && o->restitution == p->restitution) {
+                    if ((sd_law_traits(o->law) & SD_LAW_IS_VOLUME) && o->restitution == p->restitution) {
                         memcpy(p->zeta, o->zeta, sizeof p->zeta);
                         done = 1;
                     }
@@ -189,7 +189,7 @@ static sd_status sd_world_check_volume_shapes(const sd_world *w, const char *use
             if (!used[b])
                 continue;
             int law = w->mix[(size_t)a * nm + b].law;
-            if (law != SD_LAW_VOLUME && law != SD_LAW_VOLUME_LINEAR)
+            if (!(sd_law_needs(law) & SD_LAW_NEEDS_SHARP))
                 continue;
             if (sharp) /* the overlap's fixed workspace (geom/overlap.h) holds this many faces per body */
                 return sd_error_set(err, SD_ERR_INPUT, "", 0, "contact_law",
@@ -233,28 +233,30 @@ sd_status sd_world_check_params(const sd_world *w, sd_error *err)
             if (!used[a] || !used[b])
                 continue;
             const sd_pair_params *p = &w->mix[a * nm + b];
-            if (p->law == SD_LAW_LINEAR && !(p->kn > 0))
-                return sd_error_set(err, SD_ERR_INPUT, "", 0, "stiffness",
-                                    "materials '%s' and '%s' meet with the linear law but no stiffness is set "
-                                    "(set materials[].stiffness or interactions[].stiffness, N/m)",
-                                    w->materials[a].name, w->materials[b].name);
-            if (p->law == SD_LAW_VOLUME_LINEAR && !(p->kv > 0))
-                return sd_error_set(err, SD_ERR_INPUT, "", 0, "volume_stiffness",
-                                    "materials '%s' and '%s' meet with the volume_linear law but no volume "
-                                    "stiffness is set (set materials[].volume_stiffness or "
-                                    "interactions[].volume_stiffness, N/m^3)",
-                                    w->materials[a].name, w->materials[b].name);
-            if (p->law == SD_LAW_VOLUME && (!(p->young_a > 0) || !(p->young_b > 0)) &&
-                (!(p->young_a > 0) ? used_p[a] : used_p[b]))
-                return sd_error_set(err, SD_ERR_INPUT, "", 0, "youngs_modulus",
-                                    "materials '%s' and '%s' meet with the volume law but a Young's modulus "
-                                    "is missing (set materials[].youngs_modulus, Pa)",
-                                    w->materials[a].name, w->materials[b].name);
-            if (p->law == SD_LAW_HERTZ_MINDLIN && !(p->y_star > 0))
-                return sd_error_set(err, SD_ERR_INPUT, "", 0, "youngs_modulus",
-                                    "materials '%s' and '%s' meet with the Hertz-Mindlin law but a Young's "
-                                    "modulus is missing (set materials[].youngs_modulus, Pa)",
-                                    w->materials[a].name, w->materials[b].name);
+            /* the law's needs column (shapedem.h SD_CONTACT_LAWS) */
+            unsigned needs = sd_law_needs(p->law);
+            for (unsigned f = 1; f <= needs; f <<= 1) {
+                sd_law_need nd;
+                if (!(needs & f) || !sd_law_need_of(f, &nd))
+                    continue;
+                int missing;
+                if (f == SD_LAW_NEEDS_MODULUS)
+                    missing = !(p->y_star > 0);
+                else if (f == SD_LAW_NEEDS_PARTICLE_MODULUS) /* walls are rigid: only a particle's E */
+                    missing = (!(p->young_a > 0) || !(p->young_b > 0)) && (!(p->young_a > 0) ? used_p[a] : used_p[b]);
+                else if (f == SD_LAW_NEEDS_STIFFNESS)
+                    missing = !(p->kn > 0);
+                else
+                    missing = !(p->kv > 0);
+                if (missing)
+                    return sd_error_set(err, SD_ERR_INPUT, "", 0, nd.key,
+                                        "materials '%s' and '%s' meet with the %s law but no %s is set "
+                                        "(set materials[].%s%s%s, %s)",
+                                        w->materials[a].name, w->materials[b].name,
+                                        sd_contact_law_name((sd_contact_law)p->law), nd.what, nd.key,
+                                        nd.interaction_field >= 0 ? " or interactions[]." : "",
+                                        nd.interaction_field >= 0 ? nd.key : "", nd.unit);
+            }
         }
     return SD_OK;
 }
@@ -297,7 +299,7 @@ static double sd_volume_rest_step(const sd_pair_params *p, double m, double r, d
 /* Contact duration of one contact between masses meeting at speed v. */
 static double sd_contact_duration(const sd_pair_params *p, double m_star, double r_star, double v)
 {
-    if (p->law == SD_LAW_LINEAR) {
+    if (sd_law_traits(p->law) & SD_LAW_IS_LINEAR) {
         /* seed 004 eq. 12 with gamma_n from eq. 16, or from eta directly */
         double w0 = sqrt((double)p->kn / m_star);
         double g = p->eta > 0 ? (double)p->eta / (2.0 * m_star) : -w0 * (double)p->log_e_factor;
@@ -366,13 +368,12 @@ double sd_world_recommended_dt(const sd_world *w, double *contact_duration)
         }
         for (size_t b = 0; b < nm && b < 256; ++b) {
             const sd_pair_params *pp = &w->mix[a * nm + b];
-            if ((pp->law == SD_LAW_LINEAR && !(pp->kn > 0)) || (pp->law == SD_LAW_HERTZ_MINDLIN && !(pp->y_star > 0)) ||
-                (pp->law == SD_LAW_VOLUME && !(pp->young_a > 0)) || (pp->law == SD_LAW_VOLUME_LINEAR && !(pp->kv > 0)))
+            if (!sd_law_params_ready(pp)) /* sd_world_check_params says why when it meets */
                 continue;
             int wall_b = 0;
             for (size_t k = 0; k < w->wall_count; ++k)
                 wall_b |= w->walls[k].material == (int)b;
-            int vol = pp->law == SD_LAW_VOLUME || pp->law == SD_LAW_VOLUME_LINEAR;
+            int vol = (sd_law_traits(pp->law) & SD_LAW_IS_VOLUME) != 0;
             if (pp->law == SD_LAW_VOLUME && g > 0 && isfinite(rmin[b]) && isfinite(mmin[a]))
                 rest_min = fmin(rest_min, sd_volume_rest_step(pp, mmin[a], fmin(rmin[a], rmin[b]), g));
             if (isfinite(rmin[b])) {

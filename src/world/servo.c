@@ -99,11 +99,12 @@ static sd_real sd_wall_span(const sd_world *w, size_t k)
     return found == (w->dim2 ? 1 : 2) ? area : SD_R(0.0);
 }
 
-/* Normal stiffness of one wall contact (N/m): k_n of the linear law, the
- * tangent stiffness 2 Y* sqrt(R* delta) of Hertz. */
+/* Normal stiffness of one wall contact (N/m): k_n of a law with a constant
+ * one (the law table's SD_LAW_IS_LINEAR), else the tangent stiffness
+ * 2 Y* sqrt(R* delta) of Hertz (an estimate for the volume laws). */
 static sd_real sd_contact_stiffness(const sd_pair_params *prm, sd_real r, sd_real delta)
 {
-    if (prm->law == SD_LAW_LINEAR)
+    if (sd_law_traits(prm->law) & SD_LAW_IS_LINEAR)
         return prm->kn;
     return SD_R(2.0) * prm->y_star * sd_sqrt(r * delta);
 }

@@ -70,7 +70,7 @@ sd_interaction_def sd_interaction_def_default(void)
 }
 
 static const char *const sd_law_names[] = {
-#define SD_X_NAME(e, name, doc) name,
+#define SD_X_NAME(e, name, doc, needs, traits) name,
     SD_CONTACT_LAWS(SD_X_NAME)
 #undef SD_X_NAME
 };
@@ -79,6 +79,9 @@ const char *sd_contact_law_name(sd_contact_law law)
 {
     return (law >= 0 && law < SD_LAW_COUNT) ? sd_law_names[law] : "unknown";
 }
+
+unsigned sd_contact_law_needs(sd_contact_law law) { return sd_law_needs((int)law); }
+unsigned sd_contact_law_traits(sd_contact_law law) { return sd_law_traits((int)law); }
 
 sd_contact_law sd_contact_law_from_name(const char *name)
 {
@@ -99,7 +102,7 @@ sd_status sd_particles_reserve(sd_particles *p, size_t cap)
      * reserve half as much again and never use it */
     if (p->cap)
         cap = cap + cap / 2 + 64;
-#define SD_X_GROW(type, name, unit, doc)                          \
+#define SD_X_GROW(type, name, ...)                                \
     {                                                             \
         type *q = sd_realloc(p->name, cap * sizeof(type));        \
         if (!q)                                                   \
@@ -114,16 +117,24 @@ sd_status sd_particles_reserve(sd_particles *p, size_t cap)
 
 void sd_particles_free(sd_particles *p)
 {
-#define SD_X_FREE(type, name, unit, doc) sd_free(p->name);
+#define SD_X_FREE(type, name, ...) sd_free(p->name);
     SD_PARTICLE_FIELDS(SD_X_FREE)
 #undef SD_X_FREE
     memset(p, 0, sizeof *p);
 }
 
+void sd_particles_init(sd_particles *p, size_t e, uint64_t id)
+{
+#define SD_X_INIT(type, name, unit, doc, def, ...) p->name[e] = def;
+    SD_PARTICLE_FIELDS(SD_X_INIT)
+#undef SD_X_INIT
+    p->id[e] = id;
+}
+
 void sd_particles_permute(sd_particles *p, const uint32_t *perm, void *scratch, int threads, int parallel)
 {
     size_t n = p->n;
-#define SD_X_PERMUTE(type, name, unit, doc)                                                                 \
+#define SD_X_PERMUTE(type, name, ...)                                                                       \
     {                                                                                                       \
         _Static_assert(sizeof(type) <= 32, "scratch too small");                                            \
         type *tmp = (type *)scratch;                                                                        \
@@ -175,9 +186,6 @@ sd_status sd_world_create(const sd_world_def *def, sd_world **out, sd_error *err
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.contact_law", "unknown contact law %d", (int)def->law);
     if (def->skin < 0)
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.skin", "expected a skin >= 0, got %g", def->skin);
-    sd_status periodic_st = sd_world_check_periodic_def(def, err); /* world/rebuild.c */
-    if (periodic_st != SD_OK)
-        return periodic_st;
     sd_world *w = sd_calloc(1, sizeof *w);
     if (!w)
         return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory creating the world");
@@ -332,21 +340,16 @@ sd_status sd_world_add_spheres(sd_world *w, size_t n, const sd_sphere_def *defs,
             mass = rho * SD_PI * r * r;
             inertia = SD_R(0.5) * mass * r * r;
         }
+        sd_particles_init(p, e, w->next_id++); /* a plain sphere (shape -1), at rest in orientation */
         p->x[e] = sd_v3((sd_real)d->position.x, (sd_real)d->position.y, (sd_real)d->position.z);
         p->v[e] = sd_v3((sd_real)d->velocity.x, (sd_real)d->velocity.y, (sd_real)d->velocity.z);
         p->w[e] = sd_v3((sd_real)d->angular_velocity.x, (sd_real)d->angular_velocity.y,
                         (sd_real)d->angular_velocity.z);
-        p->q[e] = sd_quat_identity();
-        p->f[e] = sd_v3_zero();
-        p->t[e] = sd_v3_zero();
         p->radius[e] = r;
         p->inv_mass[e] = SD_R(1.0) / mass;
         p->inv_inertia[e] = sd_v3(SD_R(1.0) / inertia, SD_R(1.0) / inertia, SD_R(1.0) / inertia);
         p->x_ref[e] = p->x[e];
-        p->q_ref[e] = p->q[e];
         p->material[e] = d->material;
-        p->shape[e] = -1;
-        p->id[e] = w->next_id++;
     }
     p->n += n;
     w->dirty = 1;
@@ -563,20 +566,25 @@ sd_status sd_cells_read(const sd_world *w, size_t k, sd_particle_state *out)
     const sd_particles *p = &w->p;
     if (k >= p->n)
         return SD_ERR_INPUT;
-    out->id = p->id[k];
-    out->position = sd_v3d_of(p->x[k]);
-    out->velocity = sd_v3d_of(p->v[k]);
-    out->angular_velocity = sd_v3d_of(p->w[k]);
-    out->force = sd_v3d_of(p->f[k]);
-    out->torque = sd_v3d_of(p->t[k]);
-    out->quat[0] = (double)p->q[k].w;
-    out->quat[1] = (double)p->q[k].x;
-    out->quat[2] = (double)p->q[k].y;
-    out->quat[3] = (double)p->q[k].z;
-    out->radius = (double)p->radius[k];
-    out->mass = p->inv_mass[k] > 0 ? 1.0 / (double)p->inv_mass[k] : (double)INFINITY;
-    out->material = p->material[k];
-    out->shape = p->shape[k];
+    /* every public field, from the query column of SD_PARTICLE_FIELDS */
+#define SD_QUERY_V3(dst, val) dst = sd_v3d_of(val);
+#define SD_QUERY_QUAT(dst, val)                                                                      \
+    dst[0] = (double)(val).w, dst[1] = (double)(val).x, dst[2] = (double)(val).y, dst[3] = (double)(val).z;
+#define SD_QUERY_REAL(dst, val) dst = (double)(val);
+#define SD_QUERY_INVERSE(dst, val) dst = (val) > 0 ? 1.0 / (double)(val) : (double)INFINITY;
+#define SD_QUERY_INT(dst, val) dst = (int)(val);
+#define SD_QUERY_U64(dst, val) dst = (val);
+#define SD_QUERY_NONE(dst, val)
+#define SD_X_QUERY(type, name, unit, doc, def, query, member) SD_QUERY_##query(out->member, p->name[k])
+    SD_PARTICLE_FIELDS(SD_X_QUERY)
+#undef SD_X_QUERY
+#undef SD_QUERY_V3
+#undef SD_QUERY_QUAT
+#undef SD_QUERY_REAL
+#undef SD_QUERY_INVERSE
+#undef SD_QUERY_INT
+#undef SD_QUERY_U64
+#undef SD_QUERY_NONE
     return SD_OK;
 }
 

@@ -22,26 +22,33 @@
 #include "shape/shape2d.h"
 #include "world/rebuild.h"
 
-/* X(type, name, unit, meaning) — hot per-step fields first. */
-#define SD_PARTICLE_FIELDS(X)                                                           \
-    X(sd_vec3, x, "m", "position of the centre of mass")                                \
-    X(sd_vec3, v, "m/s", "velocity")                                                    \
-    X(sd_vec3, w, "rad/s", "angular velocity, world frame")                             \
-    X(sd_quat, q, "-", "orientation, body frame to world frame")                        \
-    X(sd_vec3, f, "N", "total contact force of the last step")                          \
-    X(sd_vec3, t, "N m", "total contact torque of the last step")                       \
-    X(sd_real, radius, "m", "radius (bounding radius for non-spheres)")                 \
-    X(sd_real, inv_mass, "1/kg", "inverse mass, 0 for a fixed body")                    \
-    X(sd_vec3, inv_inertia, "1/(kg m^2)", "inverse principal moments, body frame")      \
-    X(sd_vec3, x_ref, "m", "position at the last pair-list rebuild")                    \
-    X(sd_quat, q_ref, "-", "orientation at the last pair-list rebuild")                 \
-    X(int32_t, material, "-", "material index")                                         \
-    X(int32_t, shape, "-", "shape template index, -1 for a plain sphere")               \
-    X(uint64_t, id, "-", "stable id")
+/* X(type, name, unit, meaning, default, query, member) — hot per-step
+ * fields first.
+ *  default: the value of a new particle (sd_particles_init); the add
+ *           functions set only what differs.
+ *  query, member: how sd_world_get_particle fills sd_particle_state
+ *           (SD_QUERY_<query>(out->member, value), world.c): V3, QUAT,
+ *           REAL, INVERSE (1/x, infinite for 0), INT, U64, or NONE (not
+ *           public). The frames (io/vtk.c) write what the query returns. */
+#define SD_PARTICLE_FIELDS(X)                                                                                 \
+    X(sd_vec3, x, "m", "position of the centre of mass", sd_v3_zero(), V3, position)                          \
+    X(sd_vec3, v, "m/s", "velocity", sd_v3_zero(), V3, velocity)                                              \
+    X(sd_vec3, w, "rad/s", "angular velocity, world frame", sd_v3_zero(), V3, angular_velocity)               \
+    X(sd_quat, q, "-", "orientation, body frame to world frame", sd_quat_identity(), QUAT, quat)              \
+    X(sd_vec3, f, "N", "total contact force of the last step", sd_v3_zero(), V3, force)                       \
+    X(sd_vec3, t, "N m", "total contact torque of the last step", sd_v3_zero(), V3, torque)                   \
+    X(sd_real, radius, "m", "radius (bounding radius for non-spheres)", SD_R(0.0), REAL, radius)              \
+    X(sd_real, inv_mass, "1/kg", "inverse mass, 0 for a fixed body", SD_R(0.0), INVERSE, mass)                \
+    X(sd_vec3, inv_inertia, "1/(kg m^2)", "inverse principal moments, body frame", sd_v3_zero(), NONE, none) \
+    X(sd_vec3, x_ref, "m", "position at the last pair-list rebuild", sd_v3_zero(), NONE, none)                \
+    X(sd_quat, q_ref, "-", "orientation at the last pair-list rebuild", sd_quat_identity(), NONE, none)       \
+    X(int32_t, material, "-", "material index", 0, INT, material)                                             \
+    X(int32_t, shape, "-", "shape template index, -1 for a plain sphere", -1, INT, shape)                     \
+    X(uint64_t, id, "-", "stable id", 0, U64, id)
 
 typedef struct sd_particles {
     size_t n, cap;
-#define SD_X_FIELD(type, name, unit, doc) type *name;
+#define SD_X_FIELD(type, name, ...) type *name;
     SD_PARTICLE_FIELDS(SD_X_FIELD)
 #undef SD_X_FIELD
 } sd_particles;
@@ -159,6 +166,9 @@ struct sd_world {
 /* Grows the particle arrays to hold at least cap particles. */
 sd_status sd_particles_reserve(sd_particles *p, size_t cap);
 void sd_particles_free(sd_particles *p);
+/* Gives slot e every field's default (SD_PARTICLE_FIELDS) and the stable
+ * id; the caller then sets what differs (and x_ref, q_ref from x, q). */
+void sd_particles_init(sd_particles *p, size_t e, uint64_t id);
 /* Reorders every field: new[k] = old[perm[k]]; scratch holds n * 32 bytes;
  * threaded (threads, when parallel) a field at a time. */
 void sd_particles_permute(sd_particles *p, const uint32_t *perm, void *scratch, int threads, int parallel);
