@@ -148,6 +148,9 @@ typedef enum sd_solver {
     SD_SOLVER_GRID       /* one particle per grid cell, fixed stencil (seed 001) */
 } sd_solver;
 
+/* Periodic axes of sd_world_def.periodic. */
+enum { SD_PERIODIC_X = 1 << 0, SD_PERIODIC_Y = 1 << 1, SD_PERIODIC_Z = 1 << 2 };
+
 typedef struct sd_world_def {
     int dimension;          /* 3, or 2: the planar mode (z = 0, rotation about z only,
                                masses per unit thickness of 1 m; docs/physics.md) */
@@ -161,6 +164,9 @@ typedef struct sd_world_def {
     double local_damping;   /* -, in [0, 1): velocity-based local (non-viscous) damping of
                                seed 002 §3.2: each force and torque component gets
                                -alpha |unbalanced| sign(velocity); 0 = off */
+    unsigned periodic;      /* SD_PERIODIC_X | _Y | _Z: the axes that are periodic, with
+                               period domain_hi - domain_lo (cells solver; not z in 2D) */
+    sd_v3d domain_lo, domain_hi; /* m, the periodic box; read on the periodic axes only */
     int cookie;
 } sd_world_def;
 

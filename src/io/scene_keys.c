@@ -100,6 +100,14 @@ const sd_scene_key sd_scene_keys[] = {
     {SD_SEC_SIMULATION, "solver", SD_KT_ENUM, SD_KR_ANY, "cells|grid", ALL, 0, "", "cells",
      "cells: the general engine; grid: the dense grid-stencil solver of [Naderi 2024] for equal "
      "(R_max/R_min <= 2) spheres inside a box wall, same physics (docs/grid-solver.md)"},
+    {SD_SEC_SIMULATION, "periodic", SD_KT_ENUM_LIST, SD_KR_ANY, "x|y|z", ALL, 0, "", "[]",
+     "axes with periodic boundaries (LIGGGHTS' boundary p), e.g. [x, y]: a particle leaving the "
+     "domain on one side comes back on the other, and contacts act across the boundary; needs "
+     "domain, solver cells, no wall across a periodic axis, and a period of at least "
+     "2 (2 r_max + skin); not z in dimension 2"},
+    {SD_SEC_SIMULATION, "domain", SD_KT_BOX, SD_KR_ANY, NULL, ALL, 0, "m", "-",
+     "the periodic box {min: [x, y, z], max: [x, y, z]}; read on the periodic axes, where every "
+     "particle must start inside [min, max); frames show positions wrapped into it"},
 
     {SD_SEC_MATERIAL, "name", SD_KT_STRING, SD_KR_NONEMPTY, NULL, ALL, ALL, "", "required",
      "unique name, used by particles, walls and interactions"},

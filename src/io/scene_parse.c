@@ -148,6 +148,52 @@ static sd_status sd_parse_simulation(sd_parse *p, yaml_node_t *root)
     /* choices in sd_solver order: cells, grid */
     if (sd_yaml_get(&p->y, sim, SD_SEC_SIMULATION, "solver", path, &v))
         s->world.solver = v.choice == 1 ? SD_SOLVER_GRID : SD_SOLVER_CELLS;
+    /* periodic boundaries (world/rebuild.c): choices x, y, z in the order
+     * of SD_PERIODIC_X, _Y, _Z */
+    if (sd_yaml_get(&p->y, sim, SD_SEC_SIMULATION, "periodic", path, &v) && v.mask) {
+        s->world.periodic = v.mask;
+        if (s->world.dimension == 2 && (v.mask & SD_PERIODIC_Z))
+            return sd_fail(p, v.line, "simulation.periodic", "dimension 2: only x and y can be periodic");
+        if (s->world.solver == SD_SOLVER_GRID)
+            return sd_fail(p, v.line, "simulation.periodic",
+                           "periodic boundaries run on the cells solver only (the grid solver's domain is a box "
+                           "wall); use solver: cells");
+        int pline = v.line;
+        if (!sd_yaml_get(&p->y, sim, SD_SEC_SIMULATION, "domain", path, &v))
+            return sd_fail(p, pline, "simulation.domain",
+                           "periodic boundaries need the periodic box, domain: {min: [x, y, z], max: [x, y, z]}");
+        s->world.domain_lo = v.box_lo;
+        s->world.domain_hi = v.box_hi;
+    }
+    return SD_OK;
+}
+
+/* No wall may lie across a periodic axis: a plane whose normal has a
+ * component along it, a box with closed faces on it (dynamics/walls.h
+ * decides the same for the world). */
+static sd_status sd_check_periodic_walls(sd_parse *p)
+{
+    const sd_scene *s = p->s;
+    static const char axis[3] = {'x', 'y', 'z'};
+    char key[64];
+    for (size_t k = 0; k < s->wall_count; ++k) {
+        const sd_scene_wall *w = &s->walls[k];
+        const double n[3] = {w->normal.x, w->normal.y, w->normal.z};
+        for (int a = 0; a < 3; ++a) {
+            if (!(s->world.periodic & (1u << a)))
+                continue;
+            int across = w->kind == 0 ? n[a] != 0.0 : (w->open_faces & (3u << (2 * a))) != (3u << (2 * a));
+            if (across) {
+                snprintf(key, sizeof key, "walls[%zu]", k);
+                return sd_fail(p, w->line, key,
+                               "wall '%s' lies across the periodic axis %c (%s); make the axis non-periodic or "
+                               "the wall parallel to it",
+                               w->name, axis[a],
+                               w->kind == 0 ? "its normal has a component along it"
+                                            : "its faces on that axis are closed: open them");
+            }
+        }
+    }
     return SD_OK;
 }
 
@@ -702,7 +748,7 @@ static sd_status sd_parse_root(sd_parse *p, yaml_node_t *root)
         if ((st = sd_parse_particles(p, v.node, sd_yaml_key_line(&p->y, root, "particles"))))
             return st;
     sd_yaml_get(&p->y, root, SD_SEC_ROOT, "walls", "", &v);
-    if ((st = sd_parse_walls(p, v.node)))
+    if ((st = sd_parse_walls(p, v.node)) || (st = sd_check_periodic_walls(p)))
         return st;
     if ((st = sd_parse_output(p, root, sd_yaml_map_get(&p->y, root, "output") ? sd_yaml_key_line(&p->y, root, "output") : 1)))
         return st;

@@ -186,6 +186,9 @@ sd_status sd_world_create(const sd_world_def *def, sd_world **out, sd_error *err
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.contact_law", "unknown contact law %d", (int)def->law);
     if (def->skin < 0)
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.skin", "expected a skin >= 0, got %g", def->skin);
+    sd_status periodic_st = sd_world_check_periodic_def(def, err); /* world/rebuild.c */
+    if (periodic_st != SD_OK)
+        return periodic_st;
     sd_world *w = sd_calloc(1, sizeof *w);
     if (!w)
         return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory creating the world");
