@@ -38,22 +38,30 @@
  * Every candidate u gives f(u) ≥ D, whatever its quality, and u* is among
  * them, so the least value is D (the global minimum): a missed or wrong
  * critical point can only be a candidate that is not the least, never a
- * wrong answer — provided the sampling brackets the minimum of u*'s
- * stratum (samples every π/16 on arcs and every π/12 on rims, denser near
- * where f's curvature is high: a side's circle passing near the other
- * axis). tests/unit/cylinder_contact.c checks this against EPA's rigorous
- * lower bound on many thousands of pairs.
+ * wrong answer — provided the 1D searches bracket the minimum of u*'s
+ * stratum. They sample every π/16 on arcs and every π/12 on rims (arcs
+ * are cut at their points nearest the other axis, where f has a V of
+ * width ~γ when the circle passes within γ of it, with 9 more samples
+ * there when γ < 0.2 rad), prune the
+ * intervals that a Lipschitz bound keeps above the best value so far, cut
+ * every other interval in 4 and bracket wherever the derivative turns
+ * from − to +. That density is what the test needed: tests/unit/
+ * cylinder_contact.c checks the result against EPA's rigorous bracket on
+ * 18,000 pairs (coarser sampling, or no cutting in 4, fails it), so the
+ * bracketing is supported by that test, not by a proof.
  *
  * Witness points: x in A's supporting face for u* and x − D u* in B's
- * (face = point, segment, disc or rectangle, within 1e-9 rad), found by
- * alternating projections between the two faces (a point of their
- * intersection; for a single-point face it is that point), started from
- * the midpoint of the face centres so it moves continuously.
+ * (face = point, segment, disc or rectangle, told apart at 1e-9 rad): a
+ * point face gives x; two segments, their crossing (or the middle of their
+ * overlap); a segment and a disc or rectangle, the middle of the part of
+ * the segment inside it; two discs, the middle of their common chord on
+ * the centre line; a disc and a rectangle, alternating projections from
+ * the midpoint of the face centres (a point of their intersection).
  *
  * Output convention (that of sd_epa_result): normal n = −u* points from b
  * into a (moving a by depth·n separates them), pa − pb = −depth·n.
- * Status SD_CYLC_FALLBACK (non-finite input or result, or a degenerate
- * body) asks the caller to run EPA instead.
+ * Status SD_CYLC_FALLBACK (a kind pair it does not handle, or no finite
+ * result) asks the caller to run EPA instead.
  */
 #ifndef SD_GEOM_CYLINDER_CONTACT_H
 #define SD_GEOM_CYLINDER_CONTACT_H

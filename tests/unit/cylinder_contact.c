@@ -243,8 +243,9 @@ static void report(const char *name, const stats *st)
         SD_CYLC_FEATURES(SD_X_NAME)
 #undef SD_X_NAME
     };
-    printf("%s: %ld pairs, %ld fell back to EPA, %.1f f evaluations per pair\n", name, st->pairs, st->fallback,
-           st->pairs ? (double)st->cand / (double)st->pairs : 0.0);
+    printf("%s: %ld pairs, %ld fell back to EPA, %.1f candidate directions tried per pair (samples of the 1D searches "
+           "not counted)\n",
+           name, st->pairs, st->fallback, st->pairs ? (double)st->cand / (double)st->pairs : 0.0);
     for (int k = 0; k < SD_CYLC_FEATURE_COUNT; ++k)
         if (st->feature[k])
             printf("    %-40s %6ld\n", fnames[k], st->feature[k]);
