@@ -75,8 +75,8 @@ typedef struct sd_v3d {
 
 /* The contact laws: X(enum, scene name, doc, needs, traits). The one list
  * behind the enum, the scene names, the help text, the parameter checks and
- * the law switch of contact/law.h (a law without a case there does not
- * compile). */
+ * the law switch of contact/law.h (a law without a case there is a -Wswitch
+ * warning, an error in -Werror builds such as CI's). */
 #define SD_CONTACT_LAWS(X)                                                                       \
     X(SD_LAW_HERTZ_MINDLIN, "hertz_mindlin", "Hertz normal, Mindlin tangential with history (LIGGGHTS form)", \
       SD_LAW_NEEDS_MODULUS, SD_LAW_IS_HERTZ)                                                     \
