@@ -61,10 +61,29 @@ SD_PRAGMA(omp critical(sd_narrow_tally))
                 s->narrow[a][b][c] += y->t[a][b][c];
 }
 
-/* A 3D narrow-phase kind segment [e0, e1): the convex narrow phase, or the
- * volume law with one overlap workspace per thread (a few KB to tens of
- * KB, on that thread's stack: never one per pair). */
-static void sd_cpu_convex3d(sd_stage *s, size_t e0, size_t e1, int volume)
+/* The 3D convex narrow phase over [e0, e1). */
+static void sd_cpu_convex(sd_stage *s, size_t e0, size_t e1)
+{
+    const sd_step_view *v = &s->v;
+    sd_pair_out *o = &s->pairs;
+SD_CPU_REGION(s->exec)
+    {
+    sd_tally3 y;
+    memset(&y, 0, sizeof y);
+SD_PRAGMA(omp for schedule(dynamic, 64))
+    for (size_t e = e0; e < e1; ++e) {
+        sd_item_convex(v, o, e);
+        sd_tally3_add(&y, v, o, e);
+    }
+    sd_tally3_flush(s, &y);
+    }
+}
+
+/* The volume law over [e0, e1), with one overlap workspace per thread (a
+ * few KB to tens of KB, on that thread's stack: never one per pair). A
+ * function of its own, so that the convex loop above keeps its narrow
+ * phase inlined. */
+static void sd_cpu_poly_volume(sd_stage *s, size_t e0, size_t e1)
 {
     const sd_step_view *v = &s->v;
     sd_pair_out *o = &s->pairs;
@@ -73,18 +92,10 @@ SD_CPU_REGION(s->exec)
     sd_overlap_workspace ws;
     sd_tally3 y;
     memset(&y, 0, sizeof y);
-    if (volume) {
 SD_PRAGMA(omp for schedule(dynamic, 64))
-        for (size_t e = e0; e < e1; ++e) {
-            sd_item_poly_volume(v, o, e, &ws);
-            sd_tally3_add(&y, v, o, e);
-        }
-    } else {
-SD_PRAGMA(omp for schedule(dynamic, 64))
-        for (size_t e = e0; e < e1; ++e) {
-            sd_item_convex(v, o, e);
-            sd_tally3_add(&y, v, o, e);
-        }
+    for (size_t e = e0; e < e1; ++e) {
+        sd_item_poly_volume(v, o, e, &ws);
+        sd_tally3_add(&y, v, o, e);
     }
     sd_tally3_flush(s, &y);
     }
@@ -143,10 +154,10 @@ void sd_cpu_forces(sd_stage *s, sd_pair_kind kind)
         sd_cpu_spheres(s, e0, e1);
         break;
     case SD_PAIR_CONVEX:
-        sd_cpu_convex3d(s, e0, e1, 0);
+        sd_cpu_convex(s, e0, e1);
         break;
     case SD_PAIR_POLY_VOLUME:
-        sd_cpu_convex3d(s, e0, e1, 1);
+        sd_cpu_poly_volume(s, e0, e1);
         break;
     case SD_PAIR_CONVEX2D:
         sd_cpu_convex2d(s, e0, e1);
