@@ -11,7 +11,7 @@
  *
  * Invariant: this header is the only place where box faces are enumerated
  * and turned into planes, lines and sphere-face call data; the broad phase
- * (broad/cells.c), the item functions (backend/) and the grid solver's
+ * (broad/bins.c), the item functions (backend/) and the grid solver's
  * kernel (grid/stencil.h) all call it, so they see the same wall. Plain
  * structs and reals in and out, no allocation, compiles as C and C++.
  */
