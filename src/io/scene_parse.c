@@ -22,6 +22,7 @@
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -197,6 +198,21 @@ static sd_status sd_check_periodic_walls(sd_parse *p)
     return SD_OK;
 }
 
+/* The plain material keys, placed in sd_material_def by the table (their
+ * defaults are the table's); the rest are read by name below. */
+static const sd_yaml_place sd_material_place[] = {
+    {"density", offsetof(sd_material_def, density)},
+    {"poisson_ratio", offsetof(sd_material_def, poisson_ratio)},
+    {"restitution", offsetof(sd_material_def, restitution)},
+    {"friction", offsetof(sd_material_def, friction)},
+    {"rolling_friction", offsetof(sd_material_def, rolling_friction)},
+    {"stiffness", offsetof(sd_material_def, stiffness)},
+    {"tangential_stiffness_ratio", offsetof(sd_material_def, tangential_stiffness_ratio)},
+    {"damping", offsetof(sd_material_def, damping)},
+    {"volume_stiffness", offsetof(sd_material_def, volume_stiffness)},
+};
+static const char *const sd_material_rules[] = {"name", "youngs_modulus", NULL};
+
 static sd_status sd_parse_materials(sd_parse *p, yaml_node_t *list, int line)
 {
     sd_scene *s = p->s;
@@ -233,26 +249,12 @@ static sd_status sd_parse_materials(sd_parse *p, yaml_node_t *list, int line)
 
         sd_material_def *d = &sm->def;
         *d = sd_material_def_default();
-        sd_yaml_get(&p->y, m, SD_SEC_MATERIAL, "density", path, &v);
-        d->density = v.num;
+        if ((st = sd_yaml_place_numbers(&p->y, m, SD_SEC_MATERIAL, path, sd_material_place,
+                                        sizeof sd_material_place / sizeof sd_material_place[0],
+                                        sd_material_rules, d)))
+            return st;
         /* Absent means unset (0); the law checks below decide if it is needed. */
         d->youngs_modulus = sd_yaml_get(&p->y, m, SD_SEC_MATERIAL, "youngs_modulus", path, &v) ? v.num : 0.0;
-        sd_yaml_get(&p->y, m, SD_SEC_MATERIAL, "poisson_ratio", path, &v);
-        d->poisson_ratio = v.num;
-        sd_yaml_get(&p->y, m, SD_SEC_MATERIAL, "restitution", path, &v);
-        d->restitution = v.num;
-        sd_yaml_get(&p->y, m, SD_SEC_MATERIAL, "friction", path, &v);
-        d->friction = v.num;
-        sd_yaml_get(&p->y, m, SD_SEC_MATERIAL, "rolling_friction", path, &v);
-        d->rolling_friction = v.num;
-        sd_yaml_get(&p->y, m, SD_SEC_MATERIAL, "stiffness", path, &v);
-        d->stiffness = v.num;
-        sd_yaml_get(&p->y, m, SD_SEC_MATERIAL, "tangential_stiffness_ratio", path, &v);
-        d->tangential_stiffness_ratio = v.num;
-        sd_yaml_get(&p->y, m, SD_SEC_MATERIAL, "damping", path, &v);
-        d->damping = v.num;
-        sd_yaml_get(&p->y, m, SD_SEC_MATERIAL, "volume_stiffness", path, &v);
-        d->volume_stiffness = v.num;
     }
     /* Names point into the array only now that it will not move. */
     for (size_t i = 0; i < n; ++i)
