@@ -44,10 +44,12 @@ for case in fast slower hopper; do
             "$tmp/$case.stderr" && echo 1 || echo 0)"
     sum="$out/summary.txt"
     check "$case: summary.txt written" "$([[ -s "$sum" ]] && echo 1 || echo 0)"
-    # complete: the last section (the walls) is there, and the failure is named
+    # complete: the wall lines and the last section (the profile) are there,
+    # and the failure is named
     check "$case: summary.txt names the failed step" "$(grep -qx 'grid_failed_at_step: 1' "$sum" && echo 1 || echo 0)"
-    check "$case: summary.txt is complete (ends with the wall lines)" \
-        "$(tail -1 "$sum" | grep -q '^wall 0 ([a-z]*) torque_N_m: ' && echo 1 || echo 0)"
+    check "$case: summary.txt is complete (the wall lines, then the profile to the end)" \
+        "$(grep -q '^wall 0 ([a-z]*) torque_N_m: ' "$sum" && tail -1 "$sum" | grep -q '^profile [a-z_0-9]*: seconds ' &&
+            echo 1 || echo 0)"
     left=$(find "$out" -name '*.tmp' | wc -l)
     check "$case: no .tmp left ($left)" "$([[ $left == 0 ]] && echo 1 || echo 0)"
     np=$(awk '/^particles:/ {print $2}' "$sum")
