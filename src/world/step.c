@@ -149,6 +149,8 @@ sd_status sd_cells_step(sd_world *w, long nsteps, sd_error *err)
     }
     const sd_backend *be = sd_backend_of(w);
     sd_stage *s = &w->stage;
+    sd_world_views_params(w);
+    be->upload_walls(s);
     double t = sd_profile_now();
     if (nsteps > 0) {
         be->kick_drift(s);                                  /* v(t + dt/2), x(t + dt) */

@@ -119,6 +119,15 @@ sd_status sd_world_views(sd_world *w)
     return SD_OK;
 }
 
+void sd_world_views_params(sd_world *w)
+{
+    sd_step_view *v = &w->stage.v;
+    v->dt = w->dt;
+    v->gravity = w->gravity;
+    v->damping = w->local_damping;
+    sd_world_views_walls(w);
+}
+
 void sd_world_views_walls(sd_world *w)
 {
     sd_stage *s = &w->stage;

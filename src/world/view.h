@@ -9,6 +9,10 @@
 /* Refills every view (after prepare and after each rebuild). SD_ERR_MEMORY
  * when the wall copies cannot grow. */
 sd_status sd_world_views(sd_world *w);
+/* The world's step parameters (dt, gravity, damping) and walls into the
+ * views again: at each sd_world_step call, so that a change made between
+ * calls takes effect without a prepare. */
+void sd_world_views_params(sd_world *w);
 /* Copies the walls' geometry and velocity into their views (each step). */
 void sd_world_views_walls(sd_world *w);
 /* Copies the wall totals of the backend back into the world's walls. */
