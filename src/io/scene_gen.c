@@ -22,16 +22,16 @@
 
 /* ---- hashed cell grid --------------------------------------------------- */
 
-#define SD_GRID_NONE ((size_t)-1)
+#define SD_GEN_HASH_NONE ((size_t)-1)
 
-typedef struct sd_grid {
+typedef struct sd_gen_hash {
     double cell;     /* m, cell edge >= the largest diameter */
     size_t mask;     /* bucket count - 1 (a power of two) */
-    size_t *head;    /* bucket -> last sphere inserted, or SD_GRID_NONE */
+    size_t *head;    /* bucket -> last sphere inserted, or SD_GEN_HASH_NONE */
     size_t *next;    /* sphere -> previous sphere in its bucket */
-} sd_grid;
+} sd_gen_hash;
 
-static int sd_grid_init(sd_grid *g, size_t capacity, double cell)
+static int sd_gen_hash_init(sd_gen_hash *g, size_t capacity, double cell)
 {
     size_t nb = 1024;
     while (nb < 2 * capacity)
@@ -46,18 +46,18 @@ static int sd_grid_init(sd_grid *g, size_t capacity, double cell)
         return 0;
     }
     for (size_t i = 0; i < nb; ++i)
-        g->head[i] = SD_GRID_NONE;
+        g->head[i] = SD_GEN_HASH_NONE;
     return 1;
 }
 
-static void sd_grid_free(sd_grid *g)
+static void sd_gen_hash_free(sd_gen_hash *g)
 {
     sd_free(g->head);
     sd_free(g->next);
 }
 
 /* Cell coordinate of x, clamped so far-away spheres cannot overflow. */
-static int64_t sd_grid_coord(const sd_grid *g, double x)
+static int64_t sd_gen_hash_coord(const sd_gen_hash *g, double x)
 {
     double c = floor(x / g->cell);
     if (!(c > -4.0e18))
@@ -69,7 +69,7 @@ static int64_t sd_grid_coord(const sd_grid *g, double x)
 
 /* Distinct cells may share a bucket: queries check true distances, so a
  * collision only costs time. */
-static size_t sd_grid_bucket(const sd_grid *g, int64_t ix, int64_t iy, int64_t iz)
+static size_t sd_gen_hash_bucket(const sd_gen_hash *g, int64_t ix, int64_t iy, int64_t iz)
 {
     uint64_t h = (uint64_t)ix * 0x9E3779B97F4A7C15ull;
     h ^= (uint64_t)iy * 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2);
@@ -78,26 +78,26 @@ static size_t sd_grid_bucket(const sd_grid *g, int64_t ix, int64_t iy, int64_t i
     return (size_t)(h & g->mask);
 }
 
-static void sd_grid_insert(sd_grid *g, size_t i, sd_v3d p)
+static void sd_gen_hash_insert(sd_gen_hash *g, size_t i, sd_v3d p)
 {
-    size_t b = sd_grid_bucket(g, sd_grid_coord(g, p.x), sd_grid_coord(g, p.y), sd_grid_coord(g, p.z));
+    size_t b = sd_gen_hash_bucket(g, sd_gen_hash_coord(g, p.x), sd_gen_hash_coord(g, p.y), sd_gen_hash_coord(g, p.z));
     g->next[i] = g->head[b];
     g->head[b] = i;
 }
 
 /* Smallest index of an inserted sphere that overlaps sphere q = (p, r) by
  * more than tol x the smaller radius and that accept (if any) keeps, or
- * SD_GRID_NONE. */
-static size_t sd_grid_first_overlap(const sd_grid *g, const sd_sphere_def *defs, sd_v3d p, double r,
+ * SD_GEN_HASH_NONE. */
+static size_t sd_gen_hash_first_overlap(const sd_gen_hash *g, const sd_sphere_def *defs, sd_v3d p, double r,
                                     double tol, int (*accept)(void *, size_t, size_t), void *ctx, size_t q)
 {
-    int64_t cx = sd_grid_coord(g, p.x), cy = sd_grid_coord(g, p.y), cz = sd_grid_coord(g, p.z);
-    size_t best = SD_GRID_NONE;
+    int64_t cx = sd_gen_hash_coord(g, p.x), cy = sd_gen_hash_coord(g, p.y), cz = sd_gen_hash_coord(g, p.z);
+    size_t best = SD_GEN_HASH_NONE;
     for (int dz = -1; dz <= 1; ++dz)
         for (int dy = -1; dy <= 1; ++dy)
             for (int dx = -1; dx <= 1; ++dx) {
-                size_t b = sd_grid_bucket(g, cx + dx, cy + dy, cz + dz);
-                for (size_t k = g->head[b]; k != SD_GRID_NONE; k = g->next[k]) {
+                size_t b = sd_gen_hash_bucket(g, cx + dx, cy + dy, cz + dz);
+                for (size_t k = g->head[b]; k != SD_GEN_HASH_NONE; k = g->next[k]) {
                     if (k >= best)
                         continue;
                     double ex = defs[k].position.x - p.x, ey = defs[k].position.y - p.y,
@@ -128,20 +128,20 @@ int sd_scene_find_overlap_if(size_t n, const sd_sphere_def *defs, double tol,
             rmax = defs[k].radius;
     if (n < 2 || !(rmax > 0.0))
         return 0;
-    sd_grid g;
-    if (!sd_grid_init(&g, n, 2.0 * rmax))
+    sd_gen_hash g;
+    if (!sd_gen_hash_init(&g, n, 2.0 * rmax))
         return -1;
     int found = 0;
     for (size_t j = 0; j < n && !found; ++j) {
-        size_t i = sd_grid_first_overlap(&g, defs, defs[j].position, defs[j].radius, tol, accept, ctx, j);
-        if (i != SD_GRID_NONE) {
+        size_t i = sd_gen_hash_first_overlap(&g, defs, defs[j].position, defs[j].radius, tol, accept, ctx, j);
+        if (i != SD_GEN_HASH_NONE) {
             *oi = i;
             *oj = j;
             found = 1;
         }
-        sd_grid_insert(&g, j, defs[j].position);
+        sd_gen_hash_insert(&g, j, defs[j].position);
     }
-    sd_grid_free(&g);
+    sd_gen_hash_free(&g);
     return found;
 }
 
@@ -221,9 +221,9 @@ static sd_status sd_gen_random(const sd_scene *s, size_t gi, double bound, sd_rn
     const sd_scene_generator *g = &s->generators[gi];
     size_t n = (size_t)g->number;
     double rmax = g->shape >= 0 ? bound : g->radius_max;
-    sd_grid grid;
+    sd_gen_hash grid;
     /* Hashed cells one largest diameter wide: memory follows n, not the box. */
-    if (!sd_grid_init(&grid, n, 2.0 * rmax))
+    if (!sd_gen_hash_init(&grid, n, 2.0 * rmax))
         return sd_error_set(err, SD_ERR_MEMORY, s->path, g->line, "", "out of memory");
     const double budget = 100.0 * (double)n + 100000.0;
     double attempts = 0.0;
@@ -242,7 +242,7 @@ static sd_status sd_gen_random(const sd_scene *s, size_t gi, double bound, sd_rn
             if (s->world.dimension == 2)
                 p.z = 0.0; /* the planar mode: z range ignored (one draw kept for the stream) */
             /* Zero tolerance: generated spheres may touch, never overlap. */
-            if (sd_grid_first_overlap(&grid, defs, p, r, 0.0, NULL, NULL, 0) == SD_GRID_NONE) {
+            if (sd_gen_hash_first_overlap(&grid, defs, p, r, 0.0, NULL, NULL, 0) == SD_GEN_HASH_NONE) {
                 memset(d, 0, sizeof *d);
                 d->position = p;
                 d->radius = r;
@@ -257,10 +257,10 @@ static sd_status sd_gen_random(const sd_scene *s, size_t gi, double bound, sd_rn
         if (g->shape >= 0)
             sd_gen_orient(rng, g->orient, g->quat, quat[placed], s->world.dimension == 2);
         sd_gen_jitter(rng, g, d, s->world.dimension == 2);
-        sd_grid_insert(&grid, placed, d->position);
+        sd_gen_hash_insert(&grid, placed, d->position);
         ++placed;
     }
-    sd_grid_free(&grid);
+    sd_gen_hash_free(&grid);
     if (placed < n) {
         double vol = 0.0;
         for (size_t k = 0; k < placed; ++k)
