@@ -53,11 +53,9 @@ typedef struct sd_bins_input {
     const sd_wall_geom *walls;     /* the walls as they are at this rebuild */
     const int32_t *wall_material;
     sd_real skin;                  /* m */
-    /* the periodic domain (bit a of periodic: axis a is periodic between
-     * lo and hi); the world wraps positions and makes the images, the bins
-     * only need the ghosts they are given */
-    sd_vec3 lo, hi;
-    unsigned periodic;
+    /* no domain: the world wraps positions into its periodic box and makes
+     * the images (world/rebuild.c), so the bins need only the ghosts they
+     * are given, and an MPI rank's ghosts will come the same way */
     int threads, parallel;         /* the threading policy, decided by the world */
 } sd_bins_input;
 

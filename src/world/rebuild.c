@@ -315,9 +315,6 @@ static sd_status sd_rebuild_input_of(const sd_world *w, sd_bins_input *in, sd_re
     in->walls = t->walls;
     in->wall_material = t->wall_material;
     in->skin = w->skin;
-    in->lo = sd_domain_lo(w);
-    in->hi = sd_domain_hi(w);
-    in->periodic = w->def.periodic;
     in->threads = w->threads;
     in->parallel = w->parallel;
     return SD_OK;
