@@ -148,6 +148,13 @@ typedef enum sd_solver {
     SD_SOLVER_GRID       /* one particle per grid cell, fixed stencil (seed 001) */
 } sd_solver;
 
+/* How the contacts of one composite pair (several touching element pairs,
+ * seed 004 §2.6) combine, sd_world_def.multi_contact. */
+typedef enum sd_multi_contact {
+    SD_MULTI_CONTACT_AVERAGE = 0, /* model B (default, seed 004 eq. 21) */
+    SD_MULTI_CONTACT_SUM = 1      /* model A (seed 004 eq. 18) */
+} sd_multi_contact;
+
 /* Periodic axes of sd_world_def.periodic. */
 enum { SD_PERIODIC_X = 1 << 0, SD_PERIODIC_Y = 1 << 1, SD_PERIODIC_Z = 1 << 2 };
 
@@ -167,6 +174,8 @@ typedef struct sd_world_def {
     unsigned periodic;      /* SD_PERIODIC_X | _Y | _Z: the axes that are periodic, with
                                period domain_hi - domain_lo (cells solver; not z in 2D) */
     sd_v3d domain_lo, domain_hi; /* m, the periodic box; read on the periodic axes only */
+    int multi_contact;      /* SD_MULTI_CONTACT_AVERAGE (model B, default, seed 004 eq. 21) or
+                               SD_MULTI_CONTACT_SUM (model A, eq. 18): composite pairs */
     int cookie;
 } sd_world_def;
 
@@ -247,6 +256,32 @@ typedef struct sd_shape_info {
 } sd_shape_info;
 
 sd_status sd_world_get_shape(const sd_world *w, size_t index, sd_shape_info *out);
+
+/* A composite template (seed 004): a non-convex particle glued from convex
+ * elements that never move relative to each other. Each element is a
+ * convex template (from sd_world_add_shape, never a composite) placed in
+ * the composite's given frame. The composite is moved to its principal
+ * frame like any template (centre of mass at the origin, principal axes
+ * along x, y, z); its mass properties are exact sums (parallel-axis
+ * theorem) when no two elements overlap, else integrated on the voxel
+ * lattice of seed 004 §2.3 (eqs. 7-8) with `lattice` points per direction. */
+typedef struct sd_composite_element {
+    int shape;               /* convex template index from sd_world_add_shape */
+    sd_v3d position;         /* m, the element's centre of mass in the composite's given frame */
+    double orientation[4];   /* (w,x,y,z) element principal frame -> composite given frame; zero = identity */
+} sd_composite_element;
+
+typedef struct sd_composite_desc {
+    const sd_composite_element *elements;
+    size_t element_count;
+    int lattice;             /* points per direction of the voxel lattice for overlapping
+                                elements (seed 004 §2.3); 0 = default */
+    int cookie;
+} sd_composite_desc;
+
+sd_composite_desc sd_composite_desc_default(void);
+/* Returns a shape index usable in sd_body_def.shape, or -1 with err filled. */
+int sd_world_add_composite(sd_world *w, const char *name, const sd_composite_desc *desc, sd_error *err);
 
 /* A planar shape template (dimension 2 only; its index is used by
  * sd_body_def.shape like a 3D template's). Kinds (seed 002):

@@ -57,6 +57,7 @@ typedef struct sd_step_view {
     const sd_vec3 *verts;
     const sd_plane *planes;
     const sd_dtri *dtris;
+    const sd_element *elements;    /* composite elements (sd_shape estart/ecount) */
     const sd_real *shape_req;      /* m, radius of the sphere of equal volume, per template */
     /* planar mode: 2D templates and their pool */
     const sd_shape2d *shapes2d;

@@ -184,7 +184,7 @@ void sd_mat3_sym_eigen(sd_mat3 a, sd_vec3 *w, sd_mat3 *v)
 
 /* Unit quaternion of a rotation matrix (Shepperd: the largest of the four
  * squared components is taken first, so no division by a small number). */
-static sd_quat sd_quat_from_mat3(const sd_mat3 *m)
+sd_quat sd_quat_from_mat3(const sd_mat3 *m)
 {
     sd_real tr = m->m[0][0] + m->m[1][1] + m->m[2][2];
     sd_quat q;
@@ -1130,6 +1130,8 @@ sd_status sd_shape_make(const sd_shape_def *def, sd_shape *out, sd_vec3 *verts_o
         return SD_FAIL("margin", "give rounding (a core swept by a sphere) or margin (the outer size kept), not both");
     const sd_real rounding = L * def->rounding, margin = L * def->margin;
     out->kind = def->kind;
+    if (def->kind == SD_SHAPE_COMPOSITE)
+        return SD_FAIL("type", "a composite is built from its elements (sd_world_add_composite), not from a size");
     if (def->kind == SD_SHAPE_POLYHEDRON) {
         if (!verts_out)
             return sd_error_set(err, SD_ERR_INTERNAL, "", 0, "", "sd_shape_make: a polyhedron needs verts_out");

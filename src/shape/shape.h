@@ -24,7 +24,8 @@
     X(SD_SHAPE_CYLINDER, "cylinder", "a = (core radius, core radius, core half length), axis z") \
     X(SD_SHAPE_CONE, "cone", "a = (core base radius, core base radius, core height), axis z, apex up") \
     X(SD_SHAPE_ELLIPSOID, "ellipsoid", "a = core semi-axes")                                 \
-    X(SD_SHAPE_POLYHEDRON, "polyhedron", "core = convex hull of vertices [vstart, vstart + vcount)")
+    X(SD_SHAPE_POLYHEDRON, "polyhedron", "core = convex hull of vertices [vstart, vstart + vcount)") \
+    X(SD_SHAPE_COMPOSITE, "composite", "elements [estart, estart + ecount) of the element pool")
 
 typedef enum sd_shape_kind {
 #define SD_X_ENUM(e, name, doc) e,
@@ -78,6 +79,11 @@ typedef struct sd_shape {
     uint32_t vstart, vcount; /* polyhedron: vertices (principal frame) in the pool */
     uint32_t fstart, fcount; /* polyhedron: welded face planes in the plane pool (core) */
     uint32_t tstart, tcount; /* polyhedron: dual triangles (vertex/face adjacency) in their pool */
+    /* composite (seed 004): its convex elements in the element pool. A
+     * composite is never a convex body: no support function, no GJK, no
+     * plane contact of its own; the broad phase expands it into elements
+     * (sd_element), each a convex template. radius, a and offset are 0. */
+    uint32_t estart, ecount;
     sd_real bound;       /* m, bounding radius about the centre of mass, radius included */
     sd_real volume;      /* m^3, of the swept shape */
     sd_vec3 inertia;     /* m^5, principal second moments of the swept shape per
@@ -88,8 +94,27 @@ typedef struct sd_shape {
      * cone: base centre at the origin, apex up; other kinds: centred), so
      * x_given = given_com + rotate(given_q, x_principal). */
     sd_vec3 given_com;   /* m, centre of mass in the given frame */
-    sd_quat given_q;     /* principal frame to the given frame (identity but for polyhedra) */
+    sd_quat given_q;     /* principal frame to the given frame (identity but for polyhedra
+                            and composites) */
+    /* Cold, host-side, composites: how the mass properties were found
+     * (shape/composite.h): 0 = exact sums (no two elements overlap), else
+     * the points per direction of the voxel lattice, with its estimated
+     * relative error of the volume. */
+    int mass_lattice;
+    sd_real mass_error;
 } sd_shape;
+
+/* One convex element of a composite template (seed 004 §2.1): a convex
+ * template (never a composite) rigidly placed in the composite's principal
+ * frame. Its world pose for a composite at (x, q) is x_e = x + R(q) e.x,
+ * q_e = q * e.q (seed 004 eqs. 5-6), derived when needed, never stored per
+ * particle. */
+typedef struct sd_element {
+    int shape;     /* index of the element's convex template */
+    sd_vec3 x;     /* m, element centre of mass in the composite's principal frame */
+    sd_quat q;     /* element principal frame -> composite principal frame */
+    sd_real bound; /* m, the element template's bounding radius (copy) */
+} sd_element;
 
 /* A convex body in the world: a shape with its pose. */
 typedef struct sd_convex {

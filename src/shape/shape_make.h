@@ -112,6 +112,9 @@ sd_status sd_mass_swept_hull(const sd_vec3 *pts, const sd_hull *h, sd_real r, sd
  * a = v diag(w) v^T, v a rotation (det +1), columns the eigenvectors. */
 void sd_mat3_sym_eigen(sd_mat3 a, sd_vec3 *w, sd_mat3 *v);
 
+/* Unit quaternion (w >= 0) of a rotation matrix. */
+sd_quat sd_quat_from_mat3(const sd_mat3 *m);
+
 /* Minimum width of the hull (m): the least distance between two parallel
  * supporting planes, over face normals and antipodal edge pairs. */
 sd_real sd_hull_min_width(const sd_vec3 *pts, const sd_hull *h);

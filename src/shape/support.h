@@ -117,6 +117,11 @@ SD_HD static SD_INLINE sd_vec3 sd_shape_support_core(const sd_shape *s, const sd
         }
         break;
     }
+    case SD_SHAPE_COMPOSITE:
+        /* never reached: a composite is not convex; the broad phase expands
+         * it into its elements (sd_element, shape.h), each a convex template
+         * asked here in its own frame. Its point answer keeps a stray call
+         * finite. */
     case SD_SHAPE_SPHERE:
     default:
         p = sd_v3_zero(); /* a point core */

@@ -83,6 +83,7 @@ sd_status sd_world_views(sd_world *w)
     v->verts = w->verts;
     v->planes = w->planes;
     v->dtris = w->dtris;
+    v->elements = w->elements;
     v->shape_req = w->shape_req;
     v->shapes2d = w->shapes2d;
     v->pool2d = w->pool2d;

@@ -186,6 +186,9 @@ sd_status sd_world_create(const sd_world_def *def, sd_world **out, sd_error *err
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.contact_law", "unknown contact law %d", (int)def->law);
     if (def->skin < 0)
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.skin", "expected a skin >= 0, got %g", def->skin);
+    if (def->multi_contact != SD_MULTI_CONTACT_AVERAGE && def->multi_contact != SD_MULTI_CONTACT_SUM)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.multi_contact",
+                            "expected average or sum, got %d", def->multi_contact);
     sd_status periodic_st = sd_world_check_periodic_def(def, err); /* world/rebuild.c */
     if (periodic_st != SD_OK)
         return periodic_st;
@@ -223,6 +226,7 @@ void sd_world_destroy(sd_world *w)
     sd_free(w->verts);
     sd_free(w->planes);
     sd_free(w->dtris);
+    sd_free(w->elements);
     sd_free(w->shapes2d);
     sd_free(w->shape2d_names);
     sd_free(w->pool2d);

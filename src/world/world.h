@@ -131,6 +131,8 @@ struct sd_world {
     sd_plane *planes;
     size_t dtri_count;        /* polyhedron dual triangles (sd_shape tstart/tcount) */
     sd_dtri *dtris;
+    size_t element_count;     /* composite elements (sd_shape estart/ecount, seed 004) */
+    sd_element *elements;
     int has_shapes;           /* some particle is not a plain sphere */
     /* narrow-phase totals per pair of shape kinds (sorted), since creation */
     long long narrow[SD_SHAPE_KIND_COUNT][SD_SHAPE_KIND_COUNT][3];
