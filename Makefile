@@ -4,7 +4,15 @@ TYPE  ?= RelWithDebInfo
 JOBS  ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_FLAGS ?=
 
-.PHONY: all deps configure build test demo bench clean docs format
+# `make fuzz`: the libFuzzer targets of tests/fuzz, FUZZ_SECONDS each (clang).
+# `make test-sanitize`: the whole suite built with ASan + UBSan.
+FUZZ_BUILD   ?= build-fuzz
+FUZZ_SECONDS ?= 60
+FUZZ_TARGETS ?=
+SAN_BUILD    ?= build-asan
+CTEST_FLAGS  ?=
+
+.PHONY: all deps configure build test demo bench clean docs format fuzz test-sanitize
 
 all: build
 
@@ -19,6 +27,20 @@ build: configure
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+fuzz: deps
+	cmake -S . -B $(FUZZ_BUILD) -DCMAKE_C_COMPILER=clang -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  -DSHAPEDEM_FUZZ=ON -DSHAPEDEM_OPENMP=OFF $(CMAKE_FLAGS)
+	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_programs
+	bash tests/fuzz/run.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_TARGETS)
+
+# Halts at the first report (-fno-sanitize-recover); leaks are reports too.
+test-sanitize: deps
+	cmake -S . -B $(SAN_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSHAPEDEM_SANITIZE=ON $(CMAKE_FLAGS)
+	cmake --build $(SAN_BUILD) -j $(JOBS)
+	cd $(SAN_BUILD) && ASAN_OPTIONS=$${ASAN_OPTIONS:-detect_leaks=1} \
+	  UBSAN_OPTIONS=$${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
+	  ctest --output-on-failure -j $(JOBS) $(CTEST_FLAGS)
 
 demo: build
 	$(BUILD)/shapedem run examples/settle-spheres.yaml -o out/settle-spheres

@@ -16,9 +16,11 @@ set -euo pipefail
 # matplotlib (numpy comes with it): the analysis and plotting scripts (examples/,
 # docs/validation/, scripts/), which tests run; Debian's interpreter is the
 # one these modules install into (/usr/bin/python3). git: the suite lists the
-# tracked files it checks.
+# tracked files it checks. clang with libclang-rt-dev (which brings
+# libclang-rt-14-dev, the libFuzzer and sanitizer runtimes): `make fuzz`
+# (tests/fuzz). valgrind: the memcheck.run_short test (skipped without it).
 need_pkgs=(build-essential cmake pkg-config libyaml-dev libccd-dev libqhull-dev
-  python3 python3-matplotlib git)
+  python3 python3-matplotlib git clang libclang-rt-dev valgrind)
 if [[ "${SHAPEDEM_WITH_BENCH:-0}" == 1 ]]; then
   need_pkgs+=(liggghts)
 fi
