@@ -11,7 +11,7 @@
 # imports: a package used by hand and missing here fails the suite.
 set -euo pipefail
 
-# build: compiler, CMake, YAML parser. tests: independent libraries used as
+# build: compiler, CMake, YAML parser, HDF5 (checkpoints, io/checkpoint.c). tests: independent libraries used as
 # oracles (libccd for GJK/EPA, qhull for overlap volumes). Python 3 with
 # matplotlib (numpy comes with it): the analysis and plotting scripts (examples/,
 # docs/validation/, scripts/), which tests run; Debian's interpreter is the
@@ -19,7 +19,7 @@ set -euo pipefail
 # tracked files it checks. clang with libclang-rt-dev (which brings
 # libclang-rt-14-dev, the libFuzzer and sanitizer runtimes): `make fuzz`
 # (tests/fuzz). valgrind: the memcheck.run_short test (skipped without it).
-need_pkgs=(build-essential cmake pkg-config libyaml-dev libccd-dev libqhull-dev
+need_pkgs=(build-essential cmake pkg-config libyaml-dev libhdf5-dev libccd-dev libqhull-dev
   python3 python3-matplotlib git clang libclang-rt-dev valgrind)
 if [[ "${SHAPEDEM_WITH_BENCH:-0}" == 1 ]]; then
   need_pkgs+=(liggghts)

@@ -147,6 +147,25 @@ const char *sd_run_directory(const sd_run *r);
  * NULL when the caller has an error to report already. */
 sd_status sd_run_close(sd_run *r, sd_error *err);
 
+/* ---- checkpoints (docs/checkpoints.md) ------------------------------------- */
+
+/* Writes the world's complete state (particles, contact history, walls and
+ * their motion, the solver's state, step and time) to path, an HDF5 file,
+ * atomically: a temporary beside it, flushed, renamed. Between steps only. */
+sd_status sd_checkpoint_write(const sd_world *w, const char *path, sd_error *err);
+
+/* Puts a checkpoint's state into w, a world freshly built from the scene
+ * that wrote it (sd_scene_build, not stepped): the next sd_world_step
+ * continues that run bit for bit, with any thread count. Refuses (err says
+ * why, nothing changed that matters: destroy w) a file that is not a
+ * checkpoint, is truncated or damaged (checksum), of another format
+ * version, or of another scene (its hash). */
+sd_status sd_checkpoint_restore(sd_world *w, const char *path, sd_error *err);
+
+/* Prints what a checkpoint holds (`shapedem info FILE.h5`), after the
+ * same checks as a restore but for the scene's. */
+sd_status sd_checkpoint_print(FILE *f, const char *path, sd_error *err);
+
 #ifdef __cplusplus
 }
 #endif

@@ -221,6 +221,12 @@ void sd_grid_mark_rows(sd_grid_state *g, size_t n);
  * before, so the solver takes no further step (sd_grid_step refuses). */
 void sd_grid_fail(sd_world *w, long step);
 
+/* grid_snapshot.c: the solver's checkpoint state (sd_solver_ops.state and
+ * .resumed, world/snapshot.h). */
+struct sd_state_table;
+sd_status sd_grid_state_list(sd_world *w, struct sd_state_table *t, sd_error *err);
+sd_status sd_grid_state_resumed(sd_world *w, sd_error *err);
+
 /* outlet.c: opens a scheduled outlet when its time has come (each step). */
 void sd_grid_outlet_step(sd_world *w);
 

@@ -128,4 +128,6 @@ const sd_solver_ops sd_solver_grid = {
     .set_outlet = sd_grid_solver_set_outlet,
     .get_pour = sd_grid_solver_get_pour,
     .destroy = sd_grid_solver_destroy,
+    .state = sd_grid_state_list,
+    .resumed = sd_grid_state_resumed,
 };

@@ -25,6 +25,8 @@
 
 #include <shapedem/shapedem.h>
 
+struct sd_state_table; /* world/snapshot.h */
+
 /* Sums of sd_world_stats (analysis/stats.c): the world's own particle
  * arrays are summed first, then the solver adds what it holds. */
 typedef struct sd_stat_sums {
@@ -84,6 +86,13 @@ typedef struct sd_solver_ops {
     int (*get_pour)(const sd_world *w, sd_pour_def *out);
     /* frees the solver's own state (the world frees its own arrays) */
     void (*destroy)(sd_world *w);
+    /* checkpoints (world/snapshot.h): lists the solver's state into t; on
+     * a restore (t->saved set) first gives its arrays the saved sizes (a
+     * grid world prepares first, taking over the scene's particles) */
+    sd_status (*state)(sd_world *w, struct sd_state_table *t, sd_error *err);
+    /* after a restore copied the state: the world as it was when listed,
+     * prepared, its forces those saved (nothing is recomputed) */
+    sd_status (*resumed)(sd_world *w, sd_error *err);
 } sd_solver_ops;
 
 /* The two implementations. */
@@ -92,6 +101,9 @@ extern const sd_solver_ops sd_solver_grid;  /* grid/grid_solver.c */
 
 /* The cells engine (world/step.c). */
 sd_status sd_cells_prepare(sd_world *w, sd_error *err);
+/* Its checkpoint state and resumption (world/snapshot.c). */
+sd_status sd_cells_state(sd_world *w, struct sd_state_table *t, sd_error *err);
+sd_status sd_cells_resumed(sd_world *w, sd_error *err);
 sd_status sd_cells_step(sd_world *w, long nsteps, sd_error *err);
 
 /* The world's own particle arrays (world.c): what the cells solver reads,

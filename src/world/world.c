@@ -553,6 +553,8 @@ const sd_solver_ops sd_solver_cells = {
     .set_outlet = sd_cells_set_outlet,
     .get_pour = sd_cells_get_pour,
     .destroy = sd_cells_destroy,
+    .state = sd_cells_state,
+    .resumed = sd_cells_resumed,
 };
 
 size_t sd_cells_count(const sd_world *w) { return w->p.n; }

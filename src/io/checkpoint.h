@@ -1,0 +1,40 @@
+/* checkpoint.h — HDF5 checkpoints of a world's state (issue 17; the layout
+ * is docs/checkpoints.md, readable from h5py).
+ *
+ * A checkpoint is an HDF5 file (Debian's libhdf5) made in memory, then
+ * written under a temporary name, flushed, fsync'ed and renamed into place
+ * (io/fsutil.h): a kill at any moment leaves the previous checkpoint whole.
+ * Each state array of world/snapshot.h is one dataset "/group/name"
+ * ((rows,) or (rows, values per row)); the root's attributes hold the
+ * format name and version, the scene's hash, the step, the time and a
+ * checksum of every dataset's bytes. The file uses HDF5's newer object
+ * formats, whose metadata carry their own checksums; ours covers the data.
+ *
+ * The reader is context-free: bytes (a file or a buffer) in, a snapshot or
+ * a message out, no world needed (the fuzz target calls
+ * sd_checkpoint_decode). Whatever the bytes, it either refuses them with a
+ * reason (not HDF5, truncated, another format or version, a dataset of an
+ * unknown type or shape, sizes beyond the file, a checksum that does not
+ * match) or returns the snapshot that was written.
+ */
+#ifndef SD_IO_CHECKPOINT_H
+#define SD_IO_CHECKPOINT_H
+
+#include <shapedem/shapedem.h>
+
+#include "world/snapshot.h"
+
+/* The HDF5 image of a snapshot, in *buf (sd_malloc'd, *size bytes). */
+sd_status sd_checkpoint_encode(const sd_snapshot *s, void **buf, size_t *size, sd_error *err);
+
+/* Reads an image into out (initialised here; free with sd_snapshot_free,
+ * also after an error). The checksum is verified. */
+sd_status sd_checkpoint_decode(const void *buf, size_t size, sd_snapshot *out, sd_error *err);
+
+/* The same for a file; err names the path. */
+sd_status sd_checkpoint_read_file(const char *path, sd_snapshot *out, sd_error *err);
+
+/* Writes a snapshot to path atomically (temporary name, fsync, rename). */
+sd_status sd_checkpoint_write_file(const sd_snapshot *s, const char *path, sd_error *err);
+
+#endif
