@@ -10,6 +10,14 @@
  * and numbers out of a double's range are refused by name, so a mesh in
  * the wrong units says so instead of reading as flat.
  *
+ * What a file must be (each refusal names the file and its line or
+ * facet): not empty; a binary STL (NUL bytes) exactly 84 + 50 n bytes for
+ * the n facets its header counts (shorter: truncated, naming the facet cut
+ * off; longer: the count is wrong); an ASCII STL with 3 vertices in every
+ * outer loop and a whole number of facets. Degenerate, duplicated and
+ * wrongly wound facets are the mesh preparation's business
+ * (geom/trimesh.c), which repairs them with a warning.
+ *
  * Invariant: see mesh.h — all or nothing; every message names the file
  * and its line or facet; file bytes quoted in a message are escaped.
  */
@@ -208,6 +216,7 @@ static sd_status sd_mesh_text(const char *path, int obj, char *text, sd_mesh_bui
     const char *tag = obj ? "v" : "vertex";
     size_t tl = strlen(tag);
     int ln = 1;
+    size_t loop_start = 0; /* STL: vertices before the current "outer loop" */
     for (char *c = text; *c; ++ln) {
         char *eol = strchr(c, '\n');
         if (eol)
@@ -230,10 +239,22 @@ static sd_status sd_mesh_text(const char *path, int obj, char *text, sd_mesh_bui
         } else if (obj && t[0] == 'f' && (t[1] == ' ' || t[1] == '\t')) {
             if ((st = sd_mesh_obj_face(path, ln, t + 1, b, err)) != SD_OK)
                 return st;
+        } else if (!obj && !strncasecmp(t, "outer", 5) && (t[5] == ' ' || t[5] == '\t')) {
+            loop_start = b->v.n;
+        } else if (!obj && !strncasecmp(t, "endloop", 7) && (!t[7] || strchr(" \t\r", t[7]))) {
+            /* a loop of other than 3 vertices would shift every later facet */
+            if (b->v.n - loop_start != 3 || b->v.n % 3 != 0)
+                return sd_error_set(err, SD_ERR_INPUT, path, ln, "",
+                                    "%s line %d: facet %zu has %zu vertices in its loop, expected 3 (a triangle)",
+                                    path, ln, b->v.n / 3 + (b->v.n % 3 != 0), b->v.n - loop_start);
         }
         c = eol ? eol + 1 : c + strlen(c);
     }
-    /* STL vertices after the last whole facet belong to no face */
+    /* STL vertices after the last whole facet: the file ends inside a facet */
+    if (!obj && b->v.n % 3 != 0)
+        return sd_error_set(err, SD_ERR_INPUT, path, ln - 1, "",
+                            "%s ends inside facet %zu: it has %zu vertex lines, not a multiple of 3 (truncated?)",
+                            path, b->v.n / 3 + 1, b->v.n);
     b->corner.n = ((size_t *)b->start.p)[b->start.n - 1];
     return SD_OK;
 }
@@ -280,9 +301,28 @@ sd_status sd_mesh_read(const char *path, sd_mesh *out, sd_error *err)
         st = SD_MESH_OOM(err, path, 0);
     } else {
         ((size_t *)b.start.p)[b.start.n++] = 0;
-        if (stl && size >= 84 && 84 + 50 * (long)sd_mesh_le32(buf + 80) == size)
+        /* 64-bit: 84 + 50 * (2^32 - 1) does not overflow */
+        unsigned long long expect = size >= 84 ? 84ull + 50ull * sd_mesh_le32(buf + 80) : 0;
+        int binary = memchr(buf, '\0', (size_t)size) != NULL;
+        if (size == 0)
+            st = sd_error_set(err, SD_ERR_INPUT, path, 0, "", "the mesh file '%s' is empty (0 bytes)", path);
+        else if (stl && size >= 84 && expect == (unsigned long long)size)
             st = sd_mesh_binary_stl(path, buf, &b, err);
-        else if (memchr(buf, '\0', (size_t)size))
+        else if (stl && binary && size < 84)
+            st = sd_error_set(err, SD_ERR_INPUT, path, 0, "",
+                              "'%s' is a binary STL file of %ld bytes, shorter than its 84-byte header (truncated)",
+                              path, size);
+        else if (stl && binary && expect > (unsigned long long)size)
+            st = sd_error_set(err, SD_ERR_INPUT, path, 0, "",
+                              "'%s' is a truncated binary STL file: its header counts %llu facets (%llu bytes), the "
+                              "file has %ld bytes, so facet %llu is cut off",
+                              path, (expect - 84) / 50, expect, size, ((unsigned long long)size - 84) / 50 + 1);
+        else if (stl && binary)
+            st = sd_error_set(err, SD_ERR_INPUT, path, 0, "",
+                              "'%s': the binary STL header counts %llu facets (%llu bytes), but the file has %ld "
+                              "bytes, %llu more; the facet count or the file is wrong",
+                              path, (expect - 84) / 50, expect, size, (unsigned long long)size - expect);
+        else if (binary)
             st = sd_error_set(err, SD_ERR_INPUT, path, 0, "",
                               "'%s' is neither a binary STL file (its size does not match its triangle count) "
                               "nor a text file",

@@ -166,13 +166,46 @@ int main(void)
     snprintf(missing, sizeof missing, "%s/none.obj", sd_dir);
     sd_expect_bad("missing file", missing, 0, "cannot open the mesh file", NULL);
 
+    /* the file checks of mesh walls (issue 14): size against the facet count, loops, empty files */
+    sd_expect_bad("empty file", sd_write("empty.stl", "", 0), 0, "is empty (0 bytes)", NULL);
+    {
+        unsigned char b[84 + 4 * 50 + 7];
+        FILE *f = fopen(sd_binary_tet("whole.stl", -1), "rb");
+        sd_test_require(f && fread(b, 1, 84 + 4 * 50, f) == 84 + 4 * 50, "read whole.stl", NULL);
+        fclose(f);
+        sd_expect_bad("binary stl, truncated", sd_write("cut.stl", b, 84 + 4 * 50 - 10), 0,
+                      "truncated binary STL file: its header counts 4 facets (284 bytes), the file has 274 bytes",
+                      "facet 4 is cut off");
+        memset(b + 84 + 4 * 50, 0, 7);
+        sd_expect_bad("binary stl, extra bytes", sd_write("long.stl", b, sizeof b), 0, "header counts 4 facets",
+                      "7 more; the facet count or the file is wrong");
+        sd_le32(b + 80, 5);
+        sd_expect_bad("binary stl, count too high", sd_write("count.stl", b, 84 + 4 * 50), 0, "counts 5 facets",
+                      "facet 5 is cut off");
+        sd_expect_bad("binary stl, no header", sd_write("tiny.stl", b, 40), 0, "shorter than its 84-byte header",
+                      NULL);
+    }
+    sd_expect_bad("stl, four-vertex loop",
+                  sd_write_text("quad.stl", "solid q\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+                                            "vertex 1 1 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid q\n"),
+                  8, "line 8: facet 2 has 4 vertices in its loop, expected 3", NULL);
+    sd_expect_bad("stl, ends inside a facet",
+                  sd_write_text("cutascii.stl", "solid q\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+                                                "vertex 1 1 0\nendloop\nendfacet\nfacet normal 0 0 1\nouter loop\n"
+                                                "vertex 0 0 0\n"),
+                  11, "ends inside facet 2: it has 4 vertex lines", NULL);
+    sd_expect_bad("stl, infinite", sd_write_text("infa.stl", "solid q\nfacet\nvertex inf 0 0\n"), 3,
+                  "line 3: coordinate inf is not finite", NULL);
+
     /* an empty OBJ reads as an empty mesh: the callers decide what they need */
     CHECK(sd_mesh_read(sd_write_text("empty.obj", "# nothing\n"), &m, &err) == SD_OK);
     CHECK(m.vertex_count == 0 && m.face_count == 0 && m.triangle_count == 0);
     sd_mesh_free(&m);
 
     const char *names[] = {"tet.stl", "bin.stl", "poly.obj", "inf.stl", "short.stl", "big.stl", "hex.obj",
-                           "nan.obj", "idx.obj", "zero.obj", "neg.obj", "two.obj", "nul.obj", "mesh.ply", "empty.obj"};
+                           "nan.obj", "idx.obj", "zero.obj", "neg.obj", "two.obj", "nul.obj", "mesh.ply", "empty.obj",
+                           "empty.stl", "whole.stl", "cut.stl", "long.stl", "count.stl", "tiny.stl", "quad.stl",
+                           "cutascii.stl", "infa.stl"};
     for (size_t k = 0; k < sizeof names / sizeof names[0]; ++k) {
         char p[512];
         snprintf(p, sizeof p, "%s/%s", sd_dir, names[k]);
