@@ -1,0 +1,212 @@
+#!/usr/bin/python3
+"""make_meshes.py - the triangle meshes of the mesh-wall examples and the
+benchmark, written as binary STL (in metres), so that no large mesh file is
+committed.
+
+Every mesh is wound so that the right-hand normals of its facets point to
+the side the particles are on (inside a drum, a box, a hopper or a silo;
+above a plane). shapedem re-orients inconsistent windings anyway (with a
+warning), and a closed mesh is taken as holding particles inside unless the
+wall says side: outside.
+
+Usage:
+  scripts/make_meshes.py drum OUT.stl [--radius R --length L --segments N]
+  scripts/make_meshes.py hopper OUT.stl [--radius R --height H --orifice D --segments N --rings K --layers M]
+  scripts/make_meshes.py silo OUT.stl [--radius R --height H --corrugations C --amplitude A
+                                       --segments N --layers K]
+  scripts/make_meshes.py plane OUT.stl [--size LX LY --cells NX NY --random SEED]
+  scripts/make_meshes.py box OUT.stl [--min X Y Z --max X Y Z --cells N]
+  scripts/make_meshes.py examples DIR    (the meshes the examples/mesh-*.yaml scenes read)
+Each prints the facet count. Standard library only.
+"""
+import argparse
+import math
+import os
+import random
+import struct
+import sys
+
+
+def write_stl(path, tris, title):
+    """tris: list of ((x, y, z), (x, y, z), (x, y, z)); binary STL, normals computed."""
+    with open(path, "wb") as f:
+        head = ("shapedem make_meshes.py " + title).encode("ascii")[:80]
+        f.write(head + b" " * (80 - len(head)))
+        f.write(struct.pack("<I", len(tris)))
+        for a, b, c in tris:
+            u = [b[i] - a[i] for i in range(3)]
+            v = [c[i] - a[i] for i in range(3)]
+            n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
+            ln = math.sqrt(sum(x * x for x in n)) or 1.0
+            f.write(struct.pack("<3f", *(x / ln for x in n)))
+            for p in (a, b, c):
+                f.write(struct.pack("<3f", *p))
+            f.write(b"\0\0")
+    print("%s: %d facets" % (path, len(tris)))
+
+
+def quad(tris, a, b, c, d):
+    """a b c d counter-clockwise seen from the particle side."""
+    tris.append((a, b, c))
+    tris.append((a, c, d))
+
+
+def drum(radius, length, segments):
+    """A closed cylinder about the y axis, y in [-length/2, length/2]: the
+    rotating drum. Normals inward."""
+    tris = []
+    h = 0.5 * length
+    ring = [(radius * math.cos(2 * math.pi * k / segments), radius * math.sin(2 * math.pi * k / segments))
+            for k in range(segments)]
+    for k in range(segments):
+        (x0, z0), (x1, z1) = ring[k], ring[(k + 1) % segments]
+        quad(tris, (x0, -h, z0), (x0, h, z0), (x1, h, z1), (x1, -h, z1))  # the mantle
+        tris.append(((0.0, -h, 0.0), (x1, -h, z1), (x0, -h, z0)))  # the caps, fans from the centre
+        tris.append(((0.0, h, 0.0), (x0, h, z0), (x1, h, z1)))
+    # convex: inward is towards the centre for every facet
+    return fix_winding(tris, lambda m, n: -(n[0] * m[0] + n[1] * m[1] + n[2] * m[2]) > 0)
+
+
+def fix_winding(tris, inside):
+    """Turns each facet whose normal points away from inside(p, n) == True."""
+    out = []
+    for a, b, c in tris:
+        u = [b[i] - a[i] for i in range(3)]
+        v = [c[i] - a[i] for i in range(3)]
+        n = (u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0])
+        m = tuple((a[i] + b[i] + c[i]) / 3.0 for i in range(3))
+        out.append((a, b, c) if inside(m, n) else (a, c, b))
+    return out
+
+
+def hopper(radius, height, orifice, segments, rings, layers=4):
+    """A flat-bottomed cylindrical bin (axis z, floor at z = 0, open top)
+    with a circular orifice of diameter `orifice` in the middle of the
+    floor. Normals into the bin (up on the floor, towards the axis on the
+    wall)."""
+    tris = []
+    r0 = 0.5 * orifice
+    radii = [r0 + (radius - r0) * j / rings for j in range(rings + 1)]
+    for k in range(segments):
+        t0, t1 = 2 * math.pi * k / segments, 2 * math.pi * (k + 1) / segments
+        c0, s0, c1, s1 = math.cos(t0), math.sin(t0), math.cos(t1), math.sin(t1)
+        for j in range(rings):
+            ra, rb = radii[j], radii[j + 1]
+            quad(tris, (ra * c0, ra * s0, 0.0), (rb * c0, rb * s0, 0.0), (rb * c1, rb * s1, 0.0),
+                 (ra * c1, ra * s1, 0.0))
+        for j in range(layers):
+            za, zb = height * j / layers, height * (j + 1) / layers
+            quad(tris, (radius * c0, radius * s0, za), (radius * c1, radius * s1, za),
+                 (radius * c1, radius * s1, zb), (radius * c0, radius * s0, zb))
+    return fix_winding(tris, lambda m, n: (n[2] > 0) if abs(m[2]) < 1e-12 else (n[0] * m[0] + n[1] * m[1] < 0))
+
+
+def silo(radius, height, corrugations, amplitude, segments, layers):
+    """A silo: a cylinder (axis z, z in [0, height]) whose radius is
+    radius + amplitude cos(corrugations theta) (vertical corrugations, as
+    the corrugated-sheet silo of seed 000 §4.1 scaled down), a flat closed
+    floor at z = 0 and an open top. Normals inward."""
+    tris = []
+    pts = []
+    for k in range(segments):
+        t = 2 * math.pi * k / segments
+        r = radius + amplitude * math.cos(corrugations * t)
+        pts.append((r * math.cos(t), r * math.sin(t)))
+    for k in range(segments):
+        (x0, y0), (x1, y1) = pts[k], pts[(k + 1) % segments]
+        tris.append(((0.0, 0.0, 0.0), (x0, y0, 0.0), (x1, y1, 0.0)))
+        for j in range(layers):
+            za, zb = height * j / layers, height * (j + 1) / layers
+            quad(tris, (x0, y0, za), (x1, y1, za), (x1, y1, zb), (x0, y0, zb))
+    return fix_winding(tris, lambda m, n: (n[2] > 0) if abs(m[2]) < 1e-12 else (n[0] * m[0] + n[1] * m[1] < 0))
+
+
+def plane(lx, ly, nx, ny, seed):
+    """The rectangle [0, lx] x [0, ly] at z = 0 in nx x ny cells, two
+    triangles each, normal +z. seed >= 0: interior points jittered by up to
+    a third of a cell and each cell's diagonal chosen at random (an
+    irregular triangulation of the same plane)."""
+    rng = random.Random(seed) if seed >= 0 else None
+    p = {}
+    for i in range(nx + 1):
+        for j in range(ny + 1):
+            x, y = lx * i / nx, ly * j / ny
+            if rng and 0 < i < nx and 0 < j < ny:
+                x += (rng.random() - 0.5) * 0.66 * lx / nx
+                y += (rng.random() - 0.5) * 0.66 * ly / ny
+            p[i, j] = (x, y, 0.0)
+    tris = []
+    for i in range(nx):
+        for j in range(ny):
+            a, b, c, d = p[i, j], p[i + 1, j], p[i + 1, j + 1], p[i, j + 1]
+            if rng and rng.random() < 0.5:
+                tris += [(a, b, d), (b, c, d)]
+            else:
+                tris += [(a, b, c), (a, c, d)]
+    return tris
+
+
+def box(lo, hi, cells):
+    """A closed box, each face in cells x cells squares; normals inward."""
+    tris = []
+    for a in range(3):
+        b, c = (a + 1) % 3, (a + 2) % 3
+        for side in (0, 1):
+            for i in range(cells):
+                for j in range(cells):
+                    def pt(u, v):
+                        x = [0.0, 0.0, 0.0]
+                        x[a] = hi[a] if side else lo[a]
+                        x[b] = lo[b] + (hi[b] - lo[b]) * u / cells
+                        x[c] = lo[c] + (hi[c] - lo[c]) * v / cells
+                        return tuple(x)
+                    q = [pt(i, j), pt(i + 1, j), pt(i + 1, j + 1), pt(i, j + 1)]
+                    tris += [(q[0], q[1], q[2]), (q[0], q[2], q[3])]
+    centre = tuple(0.5 * (lo[k] + hi[k]) for k in range(3))
+    return fix_winding(tris, lambda m, n: sum(n[k] * (centre[k] - m[k]) for k in range(3)) > 0)
+
+
+def main(argv):
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("kind", choices=["drum", "hopper", "silo", "plane", "box", "examples"])
+    ap.add_argument("out")
+    ap.add_argument("--radius", type=float)
+    ap.add_argument("--length", type=float, default=0.1)
+    ap.add_argument("--height", type=float)
+    ap.add_argument("--orifice", type=float, default=0.03)
+    ap.add_argument("--segments", type=int, default=48)
+    ap.add_argument("--rings", type=int, default=4)
+    ap.add_argument("--layers", type=int, default=12)
+    ap.add_argument("--corrugations", type=int, default=24)
+    ap.add_argument("--amplitude", type=float, default=0.004)
+    ap.add_argument("--size", type=float, nargs=2, default=[0.2, 0.2])
+    ap.add_argument("--cells", type=int, nargs="+", default=None)
+    ap.add_argument("--random", type=int, default=-1, help="plane: seed of the irregular triangulation")
+    ap.add_argument("--min", type=float, nargs=3, default=[0.0, 0.0, 0.0])
+    ap.add_argument("--max", type=float, nargs=3, default=[0.1, 0.1, 0.1])
+    a = ap.parse_args(argv)
+    if a.kind == "drum":
+        write_stl(a.out, drum(a.radius or 0.1, a.length, a.segments), "drum")
+    elif a.kind == "hopper":
+        write_stl(a.out, hopper(a.radius or 0.1, a.height or 0.3, a.orifice, a.segments, a.rings, a.layers), "hopper")
+    elif a.kind == "silo":
+        write_stl(a.out, silo(a.radius or 0.06, a.height or 0.25, a.corrugations, a.amplitude, a.segments, a.layers),
+                  "silo")
+    elif a.kind == "plane":
+        cells = a.cells or [8, 8]
+        if len(cells) != 2:
+            ap.error("plane: --cells NX NY")
+        write_stl(a.out, plane(a.size[0], a.size[1], cells[0], cells[1], a.random), "plane")
+    elif a.kind == "box":
+        cells = a.cells or [1]
+        write_stl(a.out, box(a.min, a.max, cells[0]), "box")
+    else:
+        os.makedirs(a.out, exist_ok=True)
+        write_stl(os.path.join(a.out, "drum.stl"), drum(0.08, 0.06, 64), "drum")
+        write_stl(os.path.join(a.out, "hopper.stl"), hopper(0.06, 0.2, 0.024, 64, 4), "hopper")
+        write_stl(os.path.join(a.out, "silo.stl"), silo(0.05, 0.2, 16, 0.004, 128, 16), "silo")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
