@@ -117,6 +117,9 @@ typedef struct sd_material_def {
     double damping;           /* N s/m, linear law: viscous coefficient eta used instead of the
                                  restitution (seed 001 eqs. 6, 8); 0 = from restitution */
     double volume_stiffness;  /* N/m^3, k_V of the volume_linear law (0: unset) */
+    double volume_face_omega_dt; /* -, volume law: caps a face contact's stiffness at zero overlap
+                                    to omega dt = this (in (0, 1]; 0: seed 000's law unchanged);
+                                    contact/law_volume.h, docs/physics.md */
     int cookie;               /* set by sd_material_def_default */
 } sd_material_def;
 
@@ -250,6 +253,12 @@ typedef struct sd_shape_info {
     size_t vertex_count;       /* polyhedron hull vertices */
     size_t face_count;         /* polyhedron welded faces (coplanar triangles merged, seed 000 §2.1) */
     size_t overlap_face_limit; /* most faces the exact overlap volume takes (SD_OVERLAP_MAX_PLANES) */
+    sd_v3d axes[3];            /* principal axes (unit, the moments' order) in the frame the shape
+                                  was given in */
+    size_t element_count;      /* composite: its convex elements, else 0 */
+    int lattice;               /* composite: 0 = exact mass sums (no two elements overlap), else the
+                                  voxel lattice's points per direction (seed 004 §2.3) */
+    double lattice_error;      /* composite with a lattice: estimated relative error of the volume */
     /* dimension 2: volume is the area (m^2, times the 1 m thickness),
      * inertia the polar moment about z (m^4, in all three components),
      * vertex_count the pool values (vertices, control points, coefficients) */
@@ -362,6 +371,77 @@ typedef struct sd_wall_motion_def {
 
 sd_wall_motion_def sd_wall_motion_def_default(void);
 sd_status sd_world_set_wall_motion(sd_world *w, int wall, const sd_wall_motion_def *def, sd_error *err);
+
+/* ---- triangle-mesh walls (seed 000 §2.4) ----------------------------------
+ * A mesh wall is a rigid triangle mesh (a hopper, a drum, a blade). At add
+ * time it is welded, cleaned, oriented, grouped into plane groups (connected
+ * coplanar facets) and its edges and corners marked active or inactive
+ * (src/geom/trimesh.h says the rule); its facets go into spatial bins of
+ * their own in the mesh's frame. A particle makes one contact per plane
+ * group it touches (history keyed by the group, so sliding across the
+ * triangles of one plane keeps the tangential spring); the force is the
+ * plane contact weighted by the area of the body's overlap region clipped
+ * to the group's triangles (Sutherland-Hodgman), see docs/physics.md.
+ * Members may be added before the cookie; existing ones keep their meaning. */
+typedef struct sd_mesh_def {
+    const sd_v3d *vertices;         /* m, world frame at t = 0 (file scale and placement applied) */
+    size_t vertex_count;
+    const uint32_t (*triangles)[3]; /* vertex index triples */
+    size_t triangle_count;
+    int material;
+    double weld_tolerance;          /* m; 0 = 1e-9 of the bounding-box diagonal */
+    double coplanar_tolerance;      /* rad; facets join a plane group when normals agree within it; 0 = 1e-6 */
+    int outside;                    /* closed parts: 0 = particles inside (a drum, a box), 1 = outside (an obstacle) */
+    int cookie;
+} sd_mesh_def;
+sd_mesh_def sd_mesh_def_default(void);
+/* Returns the wall index (>= 0) or -1 with err filled. Prepares the mesh
+ * (geom/trimesh.h); its reference point (for torques, and the centre of a
+ * motion's rotation unless the motion names one) is the centre of its
+ * vertices' bounding box. */
+int sd_world_add_mesh(sd_world *w, const char *name, const sd_mesh_def *def, sd_error *err);
+
+enum { SD_MESH_FIXED = 0, SD_MESH_TRANSLATE, SD_MESH_ROTATE, SD_MESH_TABLE };
+/* The motion of a mesh wall as a rigid body, from its pose at t = 0:
+ *   FIXED      rests;
+ *   TRANSLATE  moves at `velocity` from `start`, the speed ramping linearly from 0 over `ramp`;
+ *   ROTATE     turns about the line (axis_point, axis), right-handed, at `rpm` from `start`,
+ *              ramping linearly over `ramp`;
+ *   TABLE      rows (t, dx, dy, dz, angle_deg), t increasing: the displacement of the mesh and
+ *              its angle about the axis (through axis_point, moving with the displacement),
+ *              linear between rows, held before the first and after the last row.
+ * Velocities (and the angular velocity about the axis) enter the contact law's relative
+ * velocity at each contact point. */
+typedef struct sd_mesh_motion_def {
+    int kind;                       /* SD_MESH_* */
+    sd_v3d velocity;                /* m/s, TRANSLATE */
+    sd_v3d axis_point, axis;        /* m, -: ROTATE and TABLE, the axis (right-handed) */
+    double rpm;                     /* rev/min, ROTATE */
+    double start, ramp;             /* s: the motion starts at `start`, its speed ramps linearly over `ramp` */
+    const double *table;            /* TABLE: rows of (t, dx, dy, dz, angle_deg): displacement and angle about the axis */
+    size_t table_rows;              /* copied by sd_world_set_mesh_motion */
+    int cookie;
+} sd_mesh_motion_def;
+sd_mesh_motion_def sd_mesh_motion_def_default(void);
+sd_status sd_world_set_mesh_motion(sd_world *w, int wall, const sd_mesh_motion_def *def, sd_error *err);
+/* The point (m, world frame) about which sd_world_get_wall's torque of wall
+ * `wall` is taken (any wall kind; default: the wall's reference point, for
+ * a rotating mesh its axis point). The point moves with a mesh's
+ * translation. */
+sd_status sd_world_set_wall_torque_point(sd_world *w, int wall, sd_v3d point, sd_error *err);
+/* Facets, plane groups and the mesh's current pose (world = R x_mesh + t,
+ * R from the quaternion (w, x, y, z)); triangle data for output
+ * (io/vtk.c). Returns SD_ERR_INPUT when wall is not a mesh. */
+typedef struct sd_mesh_info {
+    size_t vertex_count, triangle_count, group_count;
+    const double *vertices;         /* m, 3 per vertex, mesh frame (= world frame at t = 0) */
+    const uint32_t (*triangles)[3];
+    const uint32_t *group;          /* plane group per triangle */
+    double translation[3];          /* m */
+    double rotation[4];             /* (w, x, y, z) */
+    sd_v3d velocity, angular_velocity; /* m/s of the reference point, rad/s */
+} sd_mesh_info;
+sd_status sd_world_get_mesh(const sd_world *w, int wall, sd_mesh_info *out);
 
 /* Biaxial (2D) or box state from the four plane walls with normals +-x and
  * +-y (seed 002 §3.2). Stresses are compression positive; strains are
@@ -496,6 +576,7 @@ size_t sd_world_narrow_stats(const sd_world *w, sd_narrow_stats *out, size_t max
     X(CONVEX, convex, "pairs with a 3D shape: GJK/EPA")                                             \
     X(POLY_VOLUME, poly_volume, "sharp polyhedron pairs under a volume law: exact overlap volume") \
     X(CONVEX2D, convex2d, "pairs with a 2D shape: 2D GJK/EPA")                                     \
+    X(ELEMENTS, elements, "composite element pairs (seed 004), their multi-contact combination")    \
     X(WALLS, walls, "particle-wall pairs of every kind, and the wall totals")                       \
     X(INTEGRATION, integration, "gather, kicks and drifts, wall motion, finite check")              \
     X(OUTPUT, output, "frames, statistics and summary (timed by the caller)")

@@ -19,6 +19,20 @@
  * dynamics/walls.h. Which item a pair takes is decided once, at the
  * rebuild (broad/bins.h, sd_bins_pair_kind): the kind segment says it.
  *
+ * Composites (seed 004 §2.5-2.6): the item of the element kinds is one
+ * composite pair (or one particle and one wall feature), the run of its
+ * element pairs in the segment. Each element pair is one contact with its
+ * own history, evaluated like the pair of convex bodies it is (two sphere
+ * elements by the analytic sphere contact, a clump as cheap as its
+ * spheres; otherwise the convex narrow phase on the posed elements; two
+ * sharp polyhedra under a volume law by the overlap volume), with the
+ * lever arms from each composite's centre of mass, and the run is then
+ * combined: model B (average, the default) divides every force, torque and
+ * energy of the run by its number of touching element pairs N_c (eq. 21);
+ * model A (sum) keeps the sum and divides the damping by sqrt(N_c)
+ * (eq. 18), N_c found by a geometry-only probe of the run first. The run
+ * is one item, so the combination needs no second pass and no atomics.
+ *
  * Single source (SD_HD): compiles as C17 and as CUDA C++
  * (tests/cuda/items.cu).
  */
@@ -33,6 +47,7 @@
 #include "contact/pair_convex.h"
 #include "contact/pair_poly.h"
 #include "dynamics/walls.h"
+#include "geom/mesh_contact.h"
 
 /* ---- views of one particle ----------------------------------------------- */
 
@@ -256,6 +271,266 @@ SD_HD static SD_INLINE void sd_item_convex2d(const sd_step_view *v, sd_pair_out 
     o->supports[e] = supports;
 }
 
+/* ---- composite elements (seed 004 §2.5-2.6) ------------------------------ */
+
+/* Element sub of particle k as a posed convex body: for a composite,
+ * element estart + sub of its template, at x_e = x + R(q) e.x with
+ * orientation q_e = q e.q (seed 004 eqs. 5-6, derived here, never stored);
+ * any other particle is its own element 0 (a plain sphere a point core
+ * written into *tmp). *req: the element's radius of equal volume, m (the
+ * R* of Hertz and the E/R of the volume laws). */
+SD_HD static SD_INLINE sd_convex sd_item_element_of(const sd_step_view *v, size_t k, uint32_t sub, sd_shape *tmp,
+                                                    sd_real *req)
+{
+    int s = v->shape[k];
+    if (s >= 0 && v->shapes[s].kind == SD_SHAPE_COMPOSITE) {
+        const sd_element *el = &v->elements[v->shapes[s].estart + sub];
+        sd_convex c;
+        c.shape = &v->shapes[el->shape];
+        c.verts = v->verts;
+        c.planes = v->planes;
+        c.dtris = v->dtris;
+        c.x = sd_v3_add(v->x[k], sd_quat_rotate(v->q[k], el->x));
+        c.q = sd_quat_mul(v->q[k], el->q);
+        *req = v->shape_req[el->shape];
+        return c;
+    }
+    *req = sd_item_equivalent_radius(v, k);
+    return sd_item_convex_of(v, k, tmp);
+}
+
+/* The element sub-indices of pair e on i and on j (the key holds them in
+ * stable-id order). */
+SD_HD static SD_INLINE void sd_item_element_subs(const sd_pair_out *o, size_t e, uint32_t *si, uint32_t *sj)
+{
+    int flip = o->flip[e];
+    *si = flip ? o->key[e].sub_hi : o->key[e].sub_lo;
+    *sj = flip ? o->key[e].sub_lo : o->key[e].sub_hi;
+}
+
+/* 1 for a sphere element (a point core swept by its radius: the analytic
+ * contact applies). */
+SD_HD static SD_INLINE int sd_item_is_sphere(const sd_convex *c)
+{
+    return c->shape->kind == SD_SHAPE_SPHERE;
+}
+
+/* A contact of known geometry applied to the two particles (lever arms
+ * from their centres of mass, seed 004 §2.6), as sd_pair_apply, except
+ * that the dashpot's effective mass is the one seen at the point cm (m,
+ * world): the centroid of the run's contact points. N_c contacts along a
+ * line or over a face then damp like one contact at their centre (the
+ * single-contact dynamics that model B's eq. 20 reproduces), and one
+ * contact (cm its own point) is exactly sd_pair_apply's. */
+SD_HD static SD_INLINE sd_pair_result sd_item_apply_at(const sd_pair_params *prm, const sd_body *a, const sd_body *b,
+                                                       const sd_contact_geom *g, sd_real r_star, sd_vec3 *ds,
+                                                       sd_real dt, sd_vec3 cm)
+{
+    sd_pair_result r;
+    sd_vec3 arm_i = sd_v3_sub(g->point, a->x);
+    sd_vec3 arm_j = sd_v3_sub(g->point, b->x);
+    sd_vec3 vi = sd_v3_add(a->v, sd_v3_cross(a->w, arm_i));
+    sd_vec3 vj = sd_v3_add(b->v, sd_v3_cross(b->w, arm_j));
+    sd_real inv = sd_body_inv_mass_at(a, sd_v3_sub(cm, a->x), g->n) + sd_body_inv_mass_at(b, sd_v3_sub(cm, b->x), g->n);
+    sd_real m_star = inv > SD_R(0.0) ? SD_R(1.0) / inv : SD_R(0.0);
+    sd_contact_out o = sd_law_eval(prm, g->n, g->delta, r_star, m_star, sd_v3_sub(vi, vj), sd_v3_sub(a->w, b->w), ds, dt);
+    r.f = o.force;
+    r.ti = sd_v3_add(sd_v3_cross(arm_i, o.force), o.roll_torque);
+    r.tj = sd_v3_sub(sd_v3_cross(arm_j, sd_v3_neg(o.force)), o.roll_torque);
+    r.delta = g->delta;
+    r.energy = o.energy;
+    return r;
+}
+
+/* The contact geometry of element pair e: 1 touching (*g, *r_star the
+ * pair's effective radius, m), 0 apart, -1 two sphere elements apart now
+ * and at the last evaluation (nothing to write: the sphere loop's
+ * shortcut, so a clump is as cheap as its spheres). Any other pair is the
+ * convex narrow phase on the posed elements (shrink / GJK / swell, EPA
+ * when the cores overlap; seed 004 §2.5), after their bounding spheres. */
+SD_HD static SD_INLINE int sd_item_element_geom(const sd_step_view *v, sd_pair_out *o, size_t e, sd_contact_geom *g,
+                                                sd_real *r_star, sd_narrow_count *ns)
+{
+    uint32_t si, sj;
+    sd_item_element_subs(o, e, &si, &sj);
+    sd_shape ti, tj;
+    sd_real ri, rj;
+    sd_convex ci = sd_item_element_of(v, o->i[e], si, &ti, &ri), cj = sd_item_element_of(v, o->j[e], sj, &tj, &rj);
+    ns->iterations = 0;
+    ns->supports = 0;
+    if (sd_item_is_sphere(&ci) && sd_item_is_sphere(&cj)) {
+        sd_real ra = ci.shape->radius, rb = cj.shape->radius, rs = ra + rb;
+        if (o->delta[e] <= 0 && sd_v3_norm2(sd_v3_sub(ci.x, cj.x)) >= rs * rs)
+            return -1;
+        *r_star = ra * rb / (ra + rb);
+        return sd_sphere_sphere(ci.x, ra, cj.x, rb, g);
+    }
+    sd_real reach = ci.shape->bound + cj.shape->bound;
+    if (sd_v3_norm2(sd_v3_sub(ci.x, cj.x)) >= reach * reach)
+        return 0;
+    sd_convex_contact c = sd_convex_collide(&ci, &cj, &o->warm[e]);
+    ns->iterations = c.iterations;
+    ns->supports = c.support_calls;
+    if (!c.touching)
+        return 0;
+    g->n = c.n;
+    g->point = c.point;
+    g->delta = c.delta;
+    *r_star = ri * rj / (ri + rj);
+    return 1;
+}
+
+/* Element pair e of two sharp polyhedra under a volume law: the exact
+ * overlap volume of the posed elements (seed 000 eqs. 12-22), lever arms
+ * from the particles' centres. */
+SD_HD static SD_INLINE void sd_item_element_volume(const sd_step_view *v, sd_pair_out *o, size_t e,
+                                                   const sd_pair_params *prm, sd_body a, sd_body b,
+                                                   sd_overlap_workspace *ws)
+{
+    uint32_t si, sj;
+    sd_item_element_subs(o, e, &si, &sj);
+    sd_shape ti, tj;
+    sd_real ri, rj;
+    sd_convex ci = sd_item_element_of(v, o->i[e], si, &ti, &ri), cj = sd_item_element_of(v, o->j[e], sj, &tj, &rj);
+    int flip = o->flip[e];
+    sd_vec3 ds = flip ? sd_v3_neg(o->ds[e]) : o->ds[e];
+    sd_narrow_count ns = {0, 0};
+    sd_pair_result r;
+    /* the onset area reads the bodies' radii: the elements' */
+    a.radius = ci.shape->bound;
+    b.radius = cj.shape->bound;
+    if (sd_shape_is_sharp_polyhedron(ci.shape) && sd_shape_is_sharp_polyhedron(cj.shape))
+        r = sd_pair_poly(prm, &a, &b, &ci, &cj, ri, rj, &ds, &o->x0[e], &o->x0_ok[e], ws, v->dt, &ns);
+    else
+        r = sd_pair_none(&ds); /* refused at prepare time (world/material.c) */
+    sd_item_store(o, e, flip, ds, &r);
+    o->iters[e] = ns.iterations;
+    o->supports[e] = ns.supports;
+}
+
+/* Model A's damping for N_c contact points (seed 004 eq. 18): gamma_n of
+ * one contact over sqrt(N_c), so that N_c summed contacts of equal
+ * overlap restitute e_n (the viscous coefficient eta alike: N_c dashpots
+ * against N_c springs). */
+SD_HD static SD_INLINE sd_pair_params sd_item_params_sum(const sd_pair_params *prm, int nc)
+{
+    sd_pair_params p = *prm;
+    sd_real s = SD_R(1.0) / sd_sqrt((sd_real)nc);
+    p.log_e_factor *= s;
+    p.eta *= s;
+    return p;
+}
+
+/* Most touching element pairs of one run whose geometry is kept between
+ * the two passes (a fixed workspace, 56 bytes each); beyond it the
+ * geometry is computed again in the second pass (the same bits: the
+ * narrow phase is deterministic, its warm start only a start). */
+#define SD_ITEM_RUN_CAP 64
+
+/* Model B (eq. 21): the mean over the run's contact points, forces,
+ * torques and elastic energies (pairs apart hold zeros). */
+SD_HD static SD_INLINE void sd_item_elements_average(sd_pair_out *o, size_t e0, size_t e1, int nc)
+{
+    if (nc <= 1)
+        return;
+    sd_real s = SD_R(1.0) / (sd_real)nc;
+    for (size_t e = e0; e < e1; ++e) {
+        o->f[e] = sd_v3_scale(o->f[e], s);
+        o->t[2 * e] = sd_v3_scale(o->t[2 * e], s);
+        o->t[2 * e + 1] = sd_v3_scale(o->t[2 * e + 1], s);
+        o->energy[e] *= s;
+    }
+}
+
+/* SD_PAIR_ELEMENTS: the run [e0, e1) of element pairs of one composite
+ * pair (same i and j), each one contact with its own history, combined by
+ * v->multi_contact (seed 004 §2.6). First pass: the geometry of every
+ * pair, N_c and the centroid of the contact points; second pass: the law
+ * on the touching pairs (model A with eq. 18's damping); model B then
+ * divides the run by N_c. Returns N_c. ws: the thread's overlap workspace
+ * (volume laws). */
+SD_HD static SD_INLINE int sd_item_elements(const sd_step_view *v, sd_pair_out *o, size_t e0, size_t e1,
+                                            sd_overlap_workspace *ws)
+{
+    uint32_t i = o->i[e0], j = o->j[e0];
+    const sd_pair_params *prm = sd_item_params(v, v->material[i], v->material[j]);
+    sd_body a = sd_item_body(v, i), b = sd_item_body(v, j);
+    int nc = 0;
+    if (sd_law_is_volume(prm->law)) {
+        /* the overlap volume is the geometry and the law in one: one pass;
+         * model A's damping correction is for the depth laws only */
+        for (size_t e = e0; e < e1; ++e) {
+            sd_item_element_volume(v, o, e, prm, a, b, ws);
+            nc += o->delta[e] > SD_R(0.0);
+        }
+        if (v->multi_contact == SD_MULTI_CONTACT_AVERAGE)
+            sd_item_elements_average(o, e0, e1, nc);
+        return nc;
+    }
+    sd_contact_geom keep[SD_ITEM_RUN_CAP];
+    sd_real keep_r[SD_ITEM_RUN_CAP];
+    sd_vec3 cm = sd_v3_zero();
+    for (size_t e = e0; e < e1; ++e) {
+        sd_contact_geom g;
+        sd_real rs = SD_R(0.0);
+        sd_narrow_count ns;
+        int t = sd_item_element_geom(v, o, e, &g, &rs, &ns);
+        o->iters[e] = ns.iterations;
+        o->supports[e] = ns.supports;
+        if (t > 0) {
+            if (nc < SD_ITEM_RUN_CAP) {
+                keep[nc] = g;
+                keep_r[nc] = rs;
+            }
+            cm = sd_v3_add(cm, g.point);
+            ++nc;
+            o->delta[e] = g.delta; /* marks the touching pairs for the second pass */
+        } else if (t == 0) {
+            int flip = o->flip[e];
+            sd_vec3 ds = o->ds[e];
+            sd_pair_result r = sd_pair_none(&ds);
+            sd_item_store(o, e, flip, ds, &r);
+        }
+    }
+    if (nc == 0)
+        return 0;
+    cm = sd_v3_scale(cm, SD_R(1.0) / (sd_real)nc);
+    sd_pair_params sum;
+    if (v->multi_contact == SD_MULTI_CONTACT_SUM && nc > 1) {
+        sum = sd_item_params_sum(prm, nc);
+        prm = &sum;
+    }
+    int k = 0;
+    for (size_t e = e0; e < e1 && k < nc; ++e) {
+        if (!(o->delta[e] > SD_R(0.0)))
+            continue;
+        sd_contact_geom g;
+        sd_real rs;
+        if (k < SD_ITEM_RUN_CAP) {
+            g = keep[k];
+            rs = keep_r[k];
+        } else {
+            sd_narrow_count ns;
+            (void)sd_item_element_geom(v, o, e, &g, &rs, &ns);
+        }
+        ++k;
+        int flip = o->flip[e];
+        sd_vec3 ds = flip ? sd_v3_neg(o->ds[e]) : o->ds[e];
+        sd_pair_result r = sd_item_apply_at(prm, &a, &b, &g, rs, &ds, v->dt, cm);
+        sd_item_store(o, e, flip, ds, &r);
+    }
+    if (v->multi_contact == SD_MULTI_CONTACT_AVERAGE)
+        sd_item_elements_average(o, e0, e1, nc);
+    return nc;
+}
+
+/* 1 when pair e begins a run of the element segment starting at e0 (a new
+ * composite pair). */
+SD_HD static SD_INLINE int sd_item_elements_starts(const sd_pair_out *o, size_t e0, size_t e)
+{
+    return e == e0 || o->i[e] != o->i[e - 1] || o->j[e] != o->j[e - 1];
+}
+
 /* ---- particle-wall kinds ------------------------------------------------- */
 
 /* The particle of wall pair e, its velocity taken relative to the wall (a
@@ -325,6 +600,137 @@ SD_HD static SD_INLINE void sd_item_wall_poly_volume(const sd_step_view *v, sd_w
     sd_item_wall_store(o, e, point, &r);
 }
 
+/* The contact geometry of the element of wall pair e (SD_WALL_PAIR_ELEMENTS)
+ * with its wall feature: a sphere element by the sphere's contact with the
+ * plane or box face, any other by its support point against the feature's
+ * plane. *c: the posed element; *req: its equivalent radius, m; *p0, *nw:
+ * the feature's plane when *has_plane is set. */
+SD_HD static SD_INLINE int sd_item_wall_element_geom(const sd_step_view *v, const sd_wall_pair_out *o, size_t e,
+                                                     sd_convex *c, sd_shape *tmp, sd_real *req, sd_contact_geom *g,
+                                                     sd_vec3 *p0, sd_vec3 *nw, int *has_plane)
+{
+    const sd_wall_view *wl = &v->walls[o->wall[e]];
+    *c = sd_item_element_of(v, o->i[e], o->elem[e], tmp, req);
+    *has_plane = 0;
+    if (sd_item_is_sphere(c)) {
+        sd_real r = c->shape->radius;
+        *req = r;
+        if (wl->g.kind == SD_WALL_PLANE)
+            return sd_sphere_plane(c->x, r, wl->g.point, wl->g.normal, g);
+        sd_wall_face f = sd_wall_box_face_of(wl->g.lo, wl->g.hi, (int)o->sub[e]);
+        return sd_sphere_box_face(c->x, r, f.axis, f.value, f.dir, wl->g.lo, wl->g.hi, g);
+    }
+    if (!sd_wall_feature_plane(&wl->g, (int)o->sub[e], c->x, p0, nw))
+        return 0;
+    *has_plane = 1;
+    sd_narrow_count ns;
+    return sd_convex_wall_geom(c, *p0, *nw, g, &ns);
+}
+
+/* SD_WALL_PAIR_ELEMENTS: the run [e0, e1) of the elements of one particle
+ * against one wall feature, evaluated and combined as the particle pairs
+ * are (two passes, the dashpot's mass at the contacts' centroid, seed 004
+ * §2.6). Returns N_c. Meshes: not yet (the broad phase makes no element
+ * pairs with mesh walls; a mesh's plane group would be this run's
+ * feature). */
+SD_HD static SD_INLINE int sd_item_wall_elements(const sd_step_view *v, sd_wall_pair_out *o, size_t e0, size_t e1)
+{
+    uint32_t i = o->i[e0];
+    const sd_wall_view *wl = &v->walls[o->wall[e0]];
+    const sd_pair_params *prm = sd_item_params(v, v->material[i], wl->material);
+    sd_body a = sd_item_wall_body(v, wl, i);
+    int volume = sd_law_is_volume(prm->law);
+    sd_contact_geom keep[SD_ITEM_RUN_CAP];
+    sd_real keep_r[SD_ITEM_RUN_CAP];
+    sd_vec3 cm = sd_v3_zero();
+    int nc = 0;
+    for (size_t e = e0; e < e1; ++e) {
+        sd_convex c;
+        sd_shape tmp;
+        sd_real req;
+        sd_contact_geom g;
+        sd_vec3 p0, nw;
+        int has_plane;
+        int t = sd_item_wall_element_geom(v, o, e, &c, &tmp, &req, &g, &p0, &nw, &has_plane);
+        if (volume) {
+            /* the half-space overlap is geometry and law in one (seed 000) */
+            sd_body ae = a;
+            ae.radius = c.shape->bound;
+            sd_vec3 point = c.x;
+            sd_pair_result r = has_plane && sd_shape_is_sharp_polyhedron(c.shape)
+                                   ? sd_pair_poly_wall(prm, &ae, &c, p0, nw, req, &o->ds[e], v->dt, &point)
+                                   : sd_pair_none(&o->ds[e]);
+            sd_item_wall_store(o, e, point, &r);
+            nc += r.delta > SD_R(0.0);
+            continue;
+        }
+        if (t) {
+            if (nc < SD_ITEM_RUN_CAP) {
+                keep[nc] = g;
+                keep_r[nc] = req;
+            }
+            cm = sd_v3_add(cm, g.point);
+            ++nc;
+            o->delta[e] = g.delta;
+        } else {
+            sd_pair_result r = sd_pair_none(&o->ds[e]);
+            sd_item_wall_store(o, e, c.x, &r);
+        }
+    }
+    if (nc > 0 && !volume) {
+        cm = sd_v3_scale(cm, SD_R(1.0) / (sd_real)nc);
+        sd_pair_params sum;
+        if (v->multi_contact == SD_MULTI_CONTACT_SUM && nc > 1) {
+            sum = sd_item_params_sum(prm, nc);
+            prm = &sum;
+        }
+        sd_body wall;
+        wall.v = sd_v3_zero();
+        wall.w = sd_v3_zero();
+        wall.radius = SD_R(0.0);
+        wall.inv_mass = SD_R(0.0);
+        wall.inv_inertia = sd_v3_zero();
+        wall.q = sd_quat_identity();
+        int k = 0;
+        for (size_t e = e0; e < e1 && k < nc; ++e) {
+            if (!(o->delta[e] > SD_R(0.0)))
+                continue;
+            sd_contact_geom g;
+            sd_real rs;
+            if (k < SD_ITEM_RUN_CAP) {
+                g = keep[k];
+                rs = keep_r[k];
+            } else {
+                sd_convex c;
+                sd_shape tmp;
+                sd_vec3 p0, nw;
+                int has_plane;
+                (void)sd_item_wall_element_geom(v, o, e, &c, &tmp, &rs, &g, &p0, &nw, &has_plane);
+            }
+            ++k;
+            wall.x = g.point; /* the wall: infinite mass at rest (a's velocity is relative to it) */
+            sd_pair_result r = sd_item_apply_at(prm, &a, &wall, &g, rs, &o->ds[e], v->dt, cm);
+            sd_item_wall_store(o, e, g.point, &r);
+        }
+    }
+    if (v->multi_contact == SD_MULTI_CONTACT_AVERAGE && nc > 1) {
+        sd_real s = SD_R(1.0) / (sd_real)nc;
+        for (size_t e = e0; e < e1; ++e) {
+            o->f[e] = sd_v3_scale(o->f[e], s);
+            o->t[e] = sd_v3_scale(o->t[e], s);
+            o->energy[e] *= s;
+        }
+    }
+    return nc;
+}
+
+/* 1 when wall pair e begins a run of the element segment starting at e0
+ * (a new particle, wall or feature). */
+SD_HD static SD_INLINE int sd_item_wall_elements_starts(const sd_wall_pair_out *o, size_t e0, size_t e)
+{
+    return e == e0 || o->i[e] != o->i[e - 1] || o->wall[e] != o->wall[e - 1] || o->sub[e] != o->sub[e - 1];
+}
+
 /* SD_WALL_PAIR_CONVEX2D: a 2D shape against a wall line. */
 SD_HD static SD_INLINE void sd_item_wall_convex2d(const sd_step_view *v, sd_wall_pair_out *o, size_t e)
 {
@@ -339,6 +745,145 @@ SD_HD static SD_INLINE void sd_item_wall_convex2d(const sd_step_view *v, sd_wall
     const sd_pair_params *prm = sd_item_params(v, v->material[i], wl->material);
     sd_pair_result r = sd_pair_wall(prm, &a, &g, touching, c.shape->eq_radius, &o->ds[e], v->dt);
     sd_item_wall_store(o, e, touching ? g.point : a.x, &r);
+}
+
+/* ---- mesh-wall kinds (seed 000 §2.4; geom/mesh_contact.h) ---------------- */
+
+/* The velocity of wall wl at point c (m/s): a mesh translates and turns. */
+SD_HD static SD_INLINE sd_vec3 sd_item_wall_velocity_at(const sd_wall_view *wl, sd_vec3 c)
+{
+    return sd_v3_add(wl->velocity, sd_v3_cross(wl->omega, sd_v3_sub(c, wl->g.centre)));
+}
+
+/* SD_WALL_PAIR_MESH_SPHERE: a plain sphere (or disc) against a plane
+ * group: the closest active feature of its near triangles. */
+SD_HD static SD_HOT void sd_item_mesh_sphere(const sd_step_view *v, sd_wall_pair_out *o, size_t e)
+{
+    uint32_t i = o->i[e];
+    const sd_wall_view *wl = &v->walls[o->wall[e]];
+    const sd_mesh_view *m = &v->meshes[wl->g.mesh];
+    sd_body a = sd_item_body(v, i);
+    sd_contact_geom g;
+    int touching = sd_mesh_sphere_geom(m, &wl->g, o->sub[e], o->tri + o->tstart[e], o->tcount[e], a.x, a.radius, &g);
+    if (touching)
+        a.v = sd_v3_sub(a.v, sd_item_wall_velocity_at(wl, g.point)); /* the law sees the relative velocity */
+    const sd_pair_params *prm = sd_item_params(v, v->material[i], wl->material);
+    sd_pair_result r = sd_pair_wall(prm, &a, &g, touching, a.radius, &o->ds[e], v->dt);
+    sd_item_wall_store(o, e, touching ? g.point : a.x, &r);
+}
+
+/* The area weight of a shape's contact with the plane group of wall pair
+ * e at world point pw with overlap delta: the section (exact for
+ * polyhedra, of the core with the plane moved out by the rounding; else
+ * the disc of radius sqrt(2 req delta)) clipped by the group's near
+ * triangles. */
+SD_HD static SD_INLINE sd_real sd_item_mesh_weight(const sd_wall_pair_out *o, size_t e, const sd_wall_view *wl,
+                                                   const sd_mesh_view *m, const sd_convex *c, sd_vec3 pw,
+                                                   sd_real delta, sd_real req, sd_vec3 *shift)
+{
+    uint32_t gr = o->sub[e];
+    sd_vec3 n = m->group_normal[gr];
+    sd_real off = m->group_offset[gr];
+    sd_vec3 e1, e2;
+    sd_clip_basis(n, &e1, &e2);
+    sd_vec2 sec[SD_CLIP_MAX + 3];
+    int ns = 0;
+    sd_vec3 pm = sd_mesh_to_frame(wl->g.q, wl->g.trans, pw);
+    pm = sd_v3_sub(pm, sd_v3_scale(n, sd_v3_dot(n, pm) - off)); /* onto the plane */
+    if (c->shape->kind == SD_SHAPE_POLYHEDRON)
+        ns = sd_mesh_poly_section(c, &wl->g, n, off + c->shape->radius, e1, e2, sec);
+    if (ns < 3 || !(sd_clip_area(sec, ns, NULL) > 0))
+        ns = sd_mesh_disc(pm, sd_sqrt(SD_R(2.0) * req * (delta > 0 ? delta : SD_R(0.0))), e1, e2, sec);
+    sd_vec2 q = sd_v2(sd_v3_dot(pm, e1), sd_v3_dot(pm, e2));
+    return sd_mesh_clip_weight(m, &wl->g, o->tri + o->tstart[e], o->tcount[e], e1, e2, sec, ns, q, shift);
+}
+
+/* A plane contact's result weighted by w, its point moved by shift (m):
+ * force, torques and energy scale with w; the lever arm gains the shift. */
+SD_HD static SD_INLINE void sd_item_mesh_scale(sd_pair_result *r, sd_real w, sd_vec3 shift)
+{
+    r->f = sd_v3_scale(r->f, w);
+    r->ti = sd_v3_add(sd_v3_scale(r->ti, w), sd_v3_cross(shift, r->f));
+    r->tj = sd_v3_scale(r->tj, w);
+    r->energy *= w;
+}
+
+/* SD_WALL_PAIR_MESH_CONVEX: a 3D shape against a plane group: the plane
+ * contact (support point), weighted by the clipped area. */
+SD_HD static SD_INLINE void sd_item_mesh_convex(const sd_step_view *v, sd_wall_pair_out *o, size_t e)
+{
+    uint32_t i = o->i[e];
+    const sd_wall_view *wl = &v->walls[o->wall[e]];
+    const sd_mesh_view *m = &v->meshes[wl->g.mesh];
+    sd_body a = sd_item_body(v, i);
+    sd_convex c = sd_item_shape_of(v, i);
+    sd_vec3 p0, nw;
+    sd_mesh_group_plane(m, &wl->g, o->sub[e], &p0, &nw);
+    sd_contact_geom g;
+    sd_narrow_count ns;
+    sd_real req = v->shape_req[v->shape[i]];
+    int touching = sd_convex_wall_geom(&c, p0, nw, &g, &ns);
+    sd_real wgt = SD_R(0.0);
+    sd_vec3 shift = sd_v3_zero();
+    if (touching) {
+        wgt = sd_item_mesh_weight(o, e, wl, m, &c, g.point, g.delta, req, &shift);
+        touching = wgt > 0;
+    }
+    if (touching)
+        a.v = sd_v3_sub(a.v, sd_item_wall_velocity_at(wl, g.point));
+    const sd_pair_params *prm = sd_item_params(v, v->material[i], wl->material);
+    sd_pair_result r = sd_pair_wall(prm, &a, &g, touching, req, &o->ds[e], v->dt);
+    if (touching)
+        sd_item_mesh_scale(&r, wgt, shift);
+    sd_item_wall_store(o, e, touching ? sd_v3_add(g.point, shift) : a.x, &r);
+}
+
+/* SD_WALL_PAIR_MESH_POLY_VOLUME: a sharp polyhedron under a volume law
+ * against a plane group: the exact half-space overlap, weighted by the
+ * clipped area of the section. */
+SD_HD static SD_INLINE void sd_item_mesh_poly_volume(const sd_step_view *v, sd_wall_pair_out *o, size_t e)
+{
+    uint32_t i = o->i[e];
+    const sd_wall_view *wl = &v->walls[o->wall[e]];
+    const sd_mesh_view *m = &v->meshes[wl->g.mesh];
+    sd_body a = sd_item_body(v, i);
+    const sd_pair_params *prm = sd_item_params(v, v->material[i], wl->material);
+    int s = v->shape[i];
+    sd_vec3 point = a.x;
+    sd_pair_result r;
+    if (s < 0 || !sd_shape_is_sharp_polyhedron(&v->shapes[s])) {
+        r = sd_pair_none(&o->ds[e]);
+    } else {
+        sd_vec3 p0, nw;
+        sd_mesh_group_plane(m, &wl->g, o->sub[e], &p0, &nw);
+        sd_convex c = sd_item_shape_of(v, i);
+        /* the wall's velocity at the centre's foot on the plane (the overlap's
+         * centroid is not known before the law runs) */
+        sd_vec3 foot = sd_v3_sub(a.x, sd_v3_scale(nw, sd_v3_dot(sd_v3_sub(a.x, p0), nw)));
+        a.v = sd_v3_sub(a.v, sd_item_wall_velocity_at(wl, foot));
+        r = sd_pair_poly_wall(prm, &a, &c, p0, nw, v->shape_req[s], &o->ds[e], v->dt, &point);
+        if (r.delta > 0) {
+            sd_vec3 shift;
+            sd_real wgt = sd_item_mesh_weight(o, e, wl, m, &c, point, r.delta, v->shape_req[s], &shift);
+            if (wgt > 0) {
+                sd_item_mesh_scale(&r, wgt, shift);
+                point = sd_v3_add(point, shift);
+            } else {
+                r = sd_pair_none(&o->ds[e]);
+                point = a.x;
+            }
+        }
+    }
+    sd_item_wall_store(o, e, point, &r);
+}
+
+/* SD_WALL_PAIR_MESH_CONVEX2D: a 2D shape against a mesh cut by z = 0: not
+ * yet; never a force (the scene refuses 2D shapes with meshes). */
+SD_HD static SD_INLINE void sd_item_mesh_convex2d(const sd_step_view *v, sd_wall_pair_out *o, size_t e)
+{
+    (void)v;
+    sd_pair_result r = sd_pair_none(&o->ds[e]);
+    sd_item_wall_store(o, e, v->x[o->i[e]], &r);
 }
 
 #endif

@@ -18,9 +18,11 @@
 #ifndef SD_BACKEND_VIEW_H
 #define SD_BACKEND_VIEW_H
 
+#include "broad/pairs.h"
 #include "contact/kinds.h"
 #include "contact/params.h"
 #include "core/quat.h"
+#include "dynamics/meshwall.h"
 #include "dynamics/walls.h"
 #include "shape/shape.h"
 #include "shape/shape2d.h"
@@ -32,6 +34,7 @@ typedef struct sd_wall_view {
     sd_wall_geom g;
     int material;
     sd_vec3 velocity;
+    sd_vec3 omega;                 /* rad/s: a mesh's velocity at c is velocity + omega x (c - g.centre) */
 } sd_wall_view;
 
 /* The state one step reads (and the kick and drift write: x, v, w, q). */
@@ -67,12 +70,15 @@ typedef struct sd_step_view {
     size_t material_count;
     const sd_wall_view *walls;
     size_t wall_count;
+    const sd_mesh_view *meshes;    /* mesh walls' facets (dynamics/meshwall.h), by sd_wall_geom.mesh */
+    size_t mesh_count;
     sd_real dt;                    /* s */
     sd_vec3 gravity;               /* m/s^2 */
     sd_real damping;               /* -, seed 002 local damping alpha (0: none) */
     sd_real skin;                  /* m, the Verlet skin in use */
     int dim2;                      /* the planar mode */
     int has_shapes;                /* some particle is not a plain sphere */
+    int multi_contact;             /* sd_multi_contact: how element contacts combine (seed 004 §2.6) */
 } sd_step_view;
 
 /* The particle-particle pair list as the items read and write it
@@ -82,6 +88,7 @@ typedef struct sd_pair_out {
     size_t kind_start[SD_PAIR_KIND_COUNT + 1];
     const uint32_t *i, *j;
     const uint8_t *flip;
+    const sd_pair_key *key;        /* history keys: the element sub-indices of ELEMENTS pairs */
     sd_vec3 *ds, *f, *t;           /* t[2e] on i, t[2e + 1] on j */
     sd_real *delta, *energy;
     sd_vec3 *warm;
@@ -96,7 +103,10 @@ typedef struct sd_wall_pair_out {
     size_t n;
     size_t kind_start[SD_WALL_PAIR_KIND_COUNT + 1];
     const uint32_t *i;
-    const uint16_t *wall, *sub;    /* wall index; its feature (box face 0..5, 0 for planes) */
+    const uint16_t *wall;          /* wall index */
+    const uint32_t *sub;           /* its feature (box face 0..5, 0 for planes, a mesh's plane group) */
+    const uint32_t *tstart, *tcount, *tri; /* mesh pairs: triangles tri[tstart[e] ..] of the group near the particle */
+    const uint32_t *elem;          /* the particle's composite element (ELEMENTS pairs; 0 otherwise) */
     sd_vec3 *ds, *f, *t, *c;       /* spring, force and torque on the particle, contact point */
     sd_real *delta, *energy;
     const uint32_t *gstart, *gidx; /* owned particle k owns pairs gidx[gstart[k] .. gstart[k+1]-1] */

@@ -25,6 +25,12 @@
 #endif
 
 #include "core/alloc.h"
+#include "geom/clip.h"
+#include "shape/shape.h"
+
+/* Kinds per particle in the count scratch: the larger of the two lists'. */
+#define SD_BINS_COUNT_KINDS \
+    ((int)SD_PAIR_KIND_COUNT > (int)SD_WALL_PAIR_KIND_COUNT ? (int)SD_PAIR_KIND_COUNT : (int)SD_WALL_PAIR_KIND_COUNT)
 
 /* Candidate slots per particle in the first search; the bins' scratch holds
  * them (and, before that, one field of the world's permutation). */
@@ -187,7 +193,7 @@ static SD_INLINE sd_pair_key sd_wall_key_as_pair(sd_wall_pair_key k)
     p.id_lo = k.id;
     p.id_hi = k.wall;
     p.sub_lo = k.sub;
-    p.sub_hi = 0;
+    p.sub_hi = k.elem;
     return p;
 }
 
@@ -291,7 +297,7 @@ static sd_status sd_bins_setup(sd_bins *b, const sd_bins_input *in, size_t n, si
         size_t cap = np + np / 4 + 16;
         if (sd_bins_grow((void **)&b->cell, cap, sizeof *b->cell) || sd_bins_grow((void **)&b->perm, cap, sizeof *b->perm) ||
             sd_bins_grow((void **)&b->item, cap, sizeof *b->item) || sd_bins_grow((void **)&b->pos, cap, sizeof *b->pos) ||
-            sd_bins_grow((void **)&b->count, SD_PAIR_KIND_COUNT * cap + 1, sizeof *b->count) ||
+            sd_bins_grow((void **)&b->count, SD_BINS_COUNT_KINDS * cap + 1, sizeof *b->count) ||
             sd_bins_grow((void **)&b->slot_kind, cap, SD_PAIR_SLOTS) || sd_bins_grow(&b->scratch, cap, SD_BINS_SCRATCH))
             return SD_ERR_MEMORY;
         b->pcap = cap;
@@ -367,6 +373,70 @@ static SD_INLINE size_t sd_bins_owner(const sd_bins_input *in, size_t k)
     return k < in->n_owned ? k : in->ghost_owner[k - in->n_owned];
 }
 
+/* ---- composite elements (seed 004 §2.5) ---------------------------------- */
+
+/* The template of composite particle k, or NULL when k is not a composite. */
+static SD_INLINE const sd_shape *sd_bins_composite(const sd_bins_input *in, size_t k)
+{
+    int32_t s = in->shape ? in->shape[k] : -1;
+    return (s >= 0 && in->shape_class[s] == SD_CLASS_COMPOSITE) ? &in->shapes[s] : NULL;
+}
+
+/* The bounding sphere of element t of particle k: its centre (returned)
+ * and radius *r (m). A particle that is not a composite is its own only
+ * element, its bounding sphere. x_e = x + R(q) e.x (seed 004 eq. 6). */
+static SD_INLINE sd_vec3 sd_bins_element_sphere(const sd_bins_input *in, size_t k, const sd_shape *c, uint32_t t,
+                                                sd_real *r)
+{
+    if (!c) {
+        *r = in->radius[k];
+        return in->x[k];
+    }
+    const sd_element *e = &in->elements[c->estart + t];
+    *r = e->bound;
+    return sd_v3_add(in->x[k], sd_quat_rotate(in->q[k], e->x));
+}
+
+/* The element pairs of the candidate pair (i, j), i < j: those whose
+ * element bounding spheres are closer than the sum of their radii plus
+ * the skin, elements of i outer, of j inner. Returns their count; with l
+ * set, writes them at l's cursor *cur (i, j, and the elements of i and j
+ * in key.sub_lo / key.sub_hi, put in id order by the key pass). */
+static uint32_t sd_bins_element_pairs(const sd_bins_input *in, size_t i, size_t j, sd_pair_list *l, size_t *cur)
+{
+    const sd_shape *ci = sd_bins_composite(in, i), *cj = sd_bins_composite(in, j);
+    uint32_t ni = ci ? ci->ecount : 1, nj = cj ? cj->ecount : 1;
+    uint32_t m = 0;
+    enum { CACHE = 64 }; /* element spheres of j, computed once for all of i's */
+    sd_vec3 xj[CACHE];
+    sd_real rj[CACHE];
+    for (uint32_t b = 0; b < nj && b < CACHE; ++b)
+        xj[b] = sd_bins_element_sphere(in, j, cj, b, &rj[b]);
+    for (uint32_t a = 0; a < ni; ++a) {
+        sd_real ra;
+        sd_vec3 xa = sd_bins_element_sphere(in, i, ci, a, &ra);
+        ra += in->skin;
+        for (uint32_t b = 0; b < nj; ++b) {
+            sd_real rb;
+            sd_vec3 xb = b < CACHE ? xj[b] : sd_bins_element_sphere(in, j, cj, b, &rb);
+            if (b < CACHE)
+                rb = rj[b];
+            sd_real rs = ra + rb;
+            if (!(sd_v3_norm2(sd_v3_sub(xa, xb)) < rs * rs))
+                continue;
+            if (l) {
+                size_t e = (*cur)++;
+                l->i[e] = (uint32_t)i;
+                l->j[e] = (uint32_t)j;
+                l->key[e].sub_lo = a;
+                l->key[e].sub_hi = b;
+            }
+            ++m;
+        }
+    }
+    return m;
+}
+
 /* Where the candidates of one particle go: the first cap of them (other
  * particle and kind) into out_j / out_k, or, with direct set, straight into
  * the list at the kind cursors (those of kind only_kind, or all if < 0). */
@@ -430,12 +500,22 @@ static uint32_t sd_bins_candidates(const sd_bins *b, const sd_bins_input *in, si
                             continue;
                     }
                     int kind = sd_bins_pair_kind(ca, sd_bins_class(in, bb), sd_bins_volume(in, ma, in->material[bb]));
+                    uint32_t np = 1;
+                    if (kind == SD_PAIR_ELEMENTS) {
+                        /* the second level: element bounding spheres */
+                        np = sd_bins_element_pairs(in, a < bb ? a : bb, a < bb ? bb : a, sink->direct,
+                                                   sink->direct ? &sink->cursor[kind] : NULL);
+                        if (np == 0)
+                            continue;
+                    }
                     if (sink->kind_count)
-                        sink->kind_count[kind]++;
+                        sink->kind_count[kind] += np;
                     if (sink->direct) {
-                        size_t e = sink->cursor[kind]++;
-                        sink->direct->i[e] = (uint32_t)(a < bb ? a : bb);
-                        sink->direct->j[e] = (uint32_t)(a < bb ? bb : a);
+                        if (kind != SD_PAIR_ELEMENTS) {
+                            size_t e = sink->cursor[kind]++;
+                            sink->direct->i[e] = (uint32_t)(a < bb ? a : bb);
+                            sink->direct->j[e] = (uint32_t)(a < bb ? bb : a);
+                        }
                     } else if (m < sink->cap) {
                         sink->out_j[m] = (uint32_t)bb;
                         sink->out_k[m] = (uint8_t)kind;
@@ -600,7 +680,12 @@ static sd_status sd_bins_pairs(sd_bins *b, const sd_bins_input *in, sd_pair_list
         }
         if (m == 0)
             continue;
-        if (m <= SD_PAIR_SLOTS) {
+        /* element pairs are many pairs per candidate: such a particle is
+         * searched again, its element pairs written in place */
+        int elem = (present & (1u << SD_PAIR_ELEMENTS)) &&
+                   (a + 1 < n ? cnt[(size_t)SD_PAIR_ELEMENTS * n + a + 1] : l->kind_start[SD_PAIR_ELEMENTS + 1]) >
+                       cnt[(size_t)SD_PAIR_ELEMENTS * n + a];
+        if (m <= SD_PAIR_SLOTS && !elem) {
             for (size_t t = 0; t < m; ++t) {
                 size_t bb = slots[a * SD_PAIR_SLOTS + t];
                 size_t e = cur[kinds[a * SD_PAIR_SLOTS + t]]++;
@@ -623,6 +708,12 @@ static sd_status sd_bins_pairs(sd_bins *b, const sd_bins_input *in, sd_pair_list
         key.id_hi = a < c ? c : a;
         key.sub_lo = 0;
         key.sub_hi = 0;
+        if (e >= l->kind_start[SD_PAIR_ELEMENTS] && e < l->kind_start[SD_PAIR_ELEMENTS + 1]) {
+            /* the fill left the elements of i and j here: in id order now */
+            uint32_t si = l->key[e].sub_lo, sj = l->key[e].sub_hi;
+            key.sub_lo = a < c ? si : sj;
+            key.sub_hi = a < c ? sj : si;
+        }
         l->key[e] = key;
 #define SD_X_ZERO(type, name, per, role, doc) \
     if ((role) == SD_PF_ZERO)                 \
@@ -676,33 +767,196 @@ static sd_status sd_bins_pairs(sd_bins *b, const sd_bins_input *in, sd_pair_list
 
 /* ---- wall pairs ------------------------------------------------------------ */
 
+/* ---- mesh walls (dynamics/meshwall.h) ----------------------------------------- */
+
+/* Most triangles of one mesh within reach of one particle (a fixed
+ * workspace; beyond it the farthest cells' facets are left out). */
+enum { SD_BINS_MESH_MAXT = 2048 };
+
+static void sd_bins_sort_u64(uint64_t *a, uint32_t n)
+{
+    /* Shell sort (Ciura's gaps): small lists, no allocation, a total order */
+    static const uint32_t gaps[] = {701, 301, 132, 57, 23, 10, 4, 1};
+    for (int g = 0; g < 8; ++g) {
+        uint32_t h = gaps[g];
+        for (uint32_t i = h; i < n; ++i) {
+            uint64_t v = a[i];
+            uint32_t j = i;
+            while (j >= h && a[j - h] > v) {
+                a[j] = a[j - h];
+                j -= h;
+            }
+            a[j] = v;
+        }
+    }
+}
+
+/* The triangles of mesh wall wg within distance r of x (the particle
+ * mapped into the mesh frame: the facet bins never move), as (group << 32
+ * | triangle), sorted and unique, in buf (room for SD_BINS_MESH_MAXT);
+ * returns how many. Cells of edge h >= 2 r: at most 2 x 2 x 2 cells. */
+static uint32_t sd_bins_mesh_query(const sd_bins_input *in, const sd_wall_geom *wg, sd_vec3 x, sd_real r,
+                                   uint64_t *buf)
+{
+    if (!in->meshes || (size_t)wg->mesh >= in->mesh_count)
+        return 0;
+    const sd_mesh_view *mv = &in->meshes[wg->mesh];
+    if (!(mv->h > 0) || mv->entry_count == 0)
+        return 0;
+    sd_vec3 xm = sd_mesh_to_frame(wg->q, wg->trans, x);
+    sd_real h = mv->h;
+    long i0 = sd_mesh_cell_of(xm.x - r, mv->origin.x, h), i1 = sd_mesh_cell_of(xm.x + r, mv->origin.x, h);
+    long j0 = sd_mesh_cell_of(xm.y - r, mv->origin.y, h), j1 = sd_mesh_cell_of(xm.y + r, mv->origin.y, h);
+    long k0 = sd_mesh_cell_of(xm.z - r, mv->origin.z, h), k1 = sd_mesh_cell_of(xm.z + r, mv->origin.z, h);
+    uint32_t n = 0;
+    sd_real r2 = r * r;
+    for (long i = i0; i <= i1; ++i)
+        for (long j = j0; j <= j1; ++j)
+            for (long k = k0; k <= k1; ++k) {
+                uint64_t key = sd_mesh_key(i, j, k);
+                for (size_t e = sd_mesh_lower(mv, key); e < mv->entry_count && mv->entry_key[e] == key; ++e) {
+                    uint32_t t = mv->entry_tri[e];
+                    const uint32_t *tv = mv->tris[t];
+                    int feature;
+                    sd_vec3 c = sd_clip_closest(xm, mv->verts[tv[0]], mv->verts[tv[1]], mv->verts[tv[2]], &feature);
+                    if (sd_v3_norm2(sd_v3_sub(xm, c)) >= r2 || n >= SD_BINS_MESH_MAXT)
+                        continue;
+                    buf[n++] = ((uint64_t)mv->group[t] << 32) | t;
+                }
+            }
+    sd_bins_sort_u64(buf, n);
+    uint32_t u = 0;
+    for (uint32_t q = 0; q < n; ++q)
+        if (u == 0 || buf[q] != buf[u - 1])
+            buf[u++] = buf[q];
+    return u;
+}
+
+/* The near triangles of every mesh pair (tstart, tcount into l->tri), in
+ * particle order, then each particle's pairs in gather order (wall by
+ * wall, groups ascending: the order of sd_bins_mesh_query's runs). */
+static sd_status sd_bins_mesh_tris(sd_bins *b, const sd_bins_input *in, sd_wall_pair_list *l)
+{
+    size_t n = in->n_owned;
+    uint32_t *ptot = b->count; /* free again after the pair placement: n + 1 entries */
+    for (int pass = 0; pass < 2; ++pass) {
+        SD_BINS_FOR(in)
+        for (size_t a = 0; a < n; ++a) {
+            uint32_t g0 = l->gstart[a], g1 = l->gstart[a + 1];
+            uint32_t off = pass ? ptot[a] : 0, tot = 0;
+            uint64_t buf[SD_BINS_MESH_MAXT];
+            uint32_t nt = 0, q = 0;
+            int cur = -1;
+            for (uint32_t g = g0; g < g1; ++g) {
+                uint32_t e = l->gidx[g];
+                const sd_wall_geom *wg = &in->walls[l->wall[e]];
+                if (wg->kind != SD_WALL_MESH)
+                    continue;
+                if ((int)l->wall[e] != cur) {
+                    cur = (int)l->wall[e];
+                    nt = sd_bins_mesh_query(in, wg, in->x[a], in->radius[a] + in->skin, buf);
+                    q = 0;
+                }
+                while (q < nt && (uint32_t)(buf[q] >> 32) < l->sub[e])
+                    ++q;
+                uint32_t q0 = q;
+                while (q < nt && (uint32_t)(buf[q] >> 32) == l->sub[e]) {
+                    if (pass)
+                        l->tri[off + tot + (q - q0)] = (uint32_t)(buf[q] & 0xffffffffu);
+                    ++q;
+                }
+                if (pass) {
+                    l->tstart[e] = off + tot;
+                    l->tcount[e] = q - q0;
+                }
+                tot += q - q0;
+            }
+            if (!pass)
+                ptot[a] = tot;
+        }
+        if (!pass) {
+            size_t sum = 0;
+            for (size_t a = 0; a < n; ++a) {
+                uint32_t v = ptot[a];
+                ptot[a] = (uint32_t)sum;
+                sum += v;
+            }
+            if (sum > l->tri_cap) {
+                if (sd_bins_grow((void **)&l->tri, sum, sizeof *l->tri))
+                    return SD_ERR_MEMORY;
+                l->tri_cap = sum;
+            }
+            l->tri_n = sum;
+        }
+    }
+    return SD_OK;
+}
+
 /* Visits the wall candidates of owned particle a: the features within its
  * reach (bounding radius plus skin), wall by wall, feature by feature
- * (dynamics/walls.h). With out set, writes the first of them (wall,
- * feature, kind) there; counts them per kind into kind_count. */
-static uint32_t sd_bins_wall_candidates(const sd_bins_input *in, size_t a, uint16_t *out_w, uint16_t *out_f,
-                                        uint8_t *out_k, uint32_t *kind_count)
+ * (dynamics/walls.h), and for a composite, within such a feature, each
+ * element whose bounding sphere is within the skin of it (seed 004 §2.5).
+ * With out_w set, writes candidates skip .. skip + cap - 1 (wall, feature,
+ * element, kind) there; counts them all per kind into kind_count. */
+static uint32_t sd_bins_wall_candidates(const sd_bins_input *in, size_t a, uint32_t skip, uint32_t cap,
+                                        uint16_t *out_w, uint32_t *out_f, uint32_t *out_e, uint8_t *out_k,
+                                        uint32_t *kind_count)
 {
     sd_vec3 x = in->x[a];
     sd_real reach = in->radius[a] + in->skin;
     int ca = sd_bins_class(in, a);
     int32_t ma = in->material[a];
+    const sd_shape *comp = ca == SD_CLASS_COMPOSITE ? sd_bins_composite(in, a) : NULL;
+    uint32_t ne = comp ? comp->ecount : 1;
     uint32_t m = 0;
     for (size_t wi = 0; wi < in->wall_count; ++wi) {
         const sd_wall_geom *wg = &in->walls[wi];
+        if (wg->kind == SD_WALL_MESH) {
+            /* one candidate per plane group with a triangle within reach,
+             * groups ascending (seed 000 §2.4) */
+            int kind = sd_bins_mesh_pair_kind(ca, sd_bins_volume(in, ma, in->wall_material[wi]));
+            if (kind < 0)
+                continue; /* composites against meshes: not yet */
+            uint64_t buf[SD_BINS_MESH_MAXT];
+            uint32_t nt = sd_bins_mesh_query(in, wg, x, reach, buf);
+            for (uint32_t q = 0; q < nt; ++q) {
+                uint32_t g = (uint32_t)(buf[q] >> 32);
+                if (q > 0 && (uint32_t)(buf[q - 1] >> 32) == g)
+                    continue;
+                if (kind_count)
+                    kind_count[kind]++;
+                if (out_w && m >= skip && m - skip < cap) {
+                    out_w[m - skip] = (uint16_t)wi;
+                    out_f[m - skip] = g;
+                    out_e[m - skip] = 0;
+                    out_k[m - skip] = (uint8_t)kind;
+                }
+                ++m;
+            }
+            continue;
+        }
         int nf = sd_wall_feature_count(wg);
         for (int f = 0; f < nf; ++f) {
             if (!sd_wall_feature_exists(wg, f) || !sd_wall_feature_near(wg, f, x, reach))
                 continue;
             int kind = sd_bins_wall_pair_kind(ca, sd_bins_volume(in, ma, in->wall_material[wi]));
-            if (kind_count)
-                kind_count[kind]++;
-            if (out_w) {
-                out_w[m] = (uint16_t)wi;
-                out_f[m] = (uint16_t)f;
-                out_k[m] = (uint8_t)kind;
+            for (uint32_t t = 0; t < ne; ++t) {
+                if (comp) {
+                    sd_real re;
+                    sd_vec3 xe = sd_bins_element_sphere(in, a, comp, t, &re);
+                    if (!sd_wall_feature_near(wg, f, xe, re + in->skin))
+                        continue;
+                }
+                if (kind_count)
+                    kind_count[kind]++;
+                if (out_w && m >= skip && m - skip < cap) {
+                    out_w[m - skip] = (uint16_t)wi;
+                    out_f[m - skip] = (uint16_t)f;
+                    out_e[m - skip] = t;
+                    out_k[m - skip] = (uint8_t)kind;
+                }
+                ++m;
             }
-            ++m;
         }
     }
     return m;
@@ -727,7 +981,7 @@ static sd_status sd_bins_wall_pairs(sd_bins *b, const sd_bins_input *in, sd_wall
     SD_PRAGMA(omp parallel for schedule(static) num_threads(in->threads) if (in->parallel) reduction(| : present))
     for (size_t a = 0; a < n; ++a) {
         uint32_t ck[K] = {0};
-        l->gstart[a + 1] = sd_bins_wall_candidates(in, a, NULL, NULL, NULL, ck);
+        l->gstart[a + 1] = sd_bins_wall_candidates(in, a, 0, 0, NULL, NULL, NULL, NULL, ck);
         for (int k = 0; k < K; ++k) {
             cnt[(size_t)k * n + a] = ck[k];
             present |= (unsigned)(ck[k] != 0) << k;
@@ -760,47 +1014,25 @@ static sd_status sd_bins_wall_pairs(sd_bins *b, const sd_bins_input *in, sd_wall
         if (m == 0)
             continue;
         enum { MAXF = 64 };
-        uint16_t ow[MAXF], of[MAXF];
+        uint16_t ow[MAXF];
+        uint32_t of[MAXF], oe[MAXF];
         uint8_t ok[MAXF];
         size_t cur[K];
         for (int k = 0; k < K; ++k)
             cur[k] = (present & (1u << k)) ? cnt[(size_t)k * n + a] : 0;
-        if (m <= MAXF) {
-            (void)sd_bins_wall_candidates(in, a, ow, of, ok, NULL);
-        }
-        for (uint32_t t = 0; t < m; ++t) {
-            uint16_t wi, f;
-            uint8_t k;
-            if (m <= MAXF) {
-                wi = ow[t];
-                f = of[t];
-                k = ok[t];
-            } else {
-                /* a particle near more than MAXF features (many walls):
-                 * find its t-th candidate by walking them again */
-                uint32_t seen = 0;
-                wi = f = 0;
-                k = 0;
-                for (size_t w2 = 0; w2 < in->wall_count && seen <= t; ++w2) {
-                    const sd_wall_geom *wg = &in->walls[w2];
-                    for (int f2 = 0; f2 < sd_wall_feature_count(wg) && seen <= t; ++f2)
-                        if (sd_wall_feature_exists(wg, f2) &&
-                            sd_wall_feature_near(wg, f2, in->x[a], in->radius[a] + in->skin)) {
-                            if (seen == t) {
-                                wi = (uint16_t)w2;
-                                f = (uint16_t)f2;
-                                k = (uint8_t)sd_bins_wall_pair_kind(
-                                    sd_bins_class(in, a), sd_bins_volume(in, in->material[a], in->wall_material[w2]));
-                            }
-                            ++seen;
-                        }
-                }
+        /* MAXF candidates at a time (a particle near many features, or a
+         * composite with many elements near one, walks them again) */
+        for (uint32_t t0 = 0; t0 < m; t0 += MAXF) {
+            (void)sd_bins_wall_candidates(in, a, t0, MAXF, ow, of, oe, ok, NULL);
+            uint32_t got = m - t0 < MAXF ? m - t0 : MAXF;
+            for (uint32_t t = 0; t < got; ++t) {
+                size_t e = cur[ok[t]]++;
+                l->i[e] = (uint32_t)a;
+                l->wall[e] = ow[t];
+                l->sub[e] = of[t];
+                l->elem[e] = oe[t];
+                l->gidx[g0 + t0 + t] = (uint32_t)e;
             }
-            size_t e = cur[k]++;
-            l->i[e] = (uint32_t)a;
-            l->wall[e] = wi;
-            l->sub[e] = f;
-            l->gidx[g0 + t] = (uint32_t)e;
         }
     }
     SD_BINS_FOR(in)
@@ -810,7 +1042,10 @@ static sd_status sd_bins_wall_pairs(sd_bins *b, const sd_bins_input *in, sd_wall
         key.id = in->id[a];
         key.wall = l->wall[e];
         key.sub = l->sub[e];
+        key.elem = l->elem[e];
         l->key[e] = key;
+        l->tstart[e] = 0;
+        l->tcount[e] = 0;
 #define SD_X_ZERO(type, name, per, role, doc) \
     if ((role) == SD_PF_ZERO)                 \
         memset(&l->name[(size_t)(per) * e], 0, (size_t)(per) * sizeof *l->name);
@@ -821,7 +1056,7 @@ static sd_status sd_bins_wall_pairs(sd_bins *b, const sd_bins_input *in, sd_wall
         l->c[e] = in->x[a];
     }
     sd_free(hist);
-    return SD_OK;
+    return in->mesh_count > 0 ? sd_bins_mesh_tris(b, in, l) : SD_OK;
 }
 
 sd_status sd_bins_build(sd_bins *b, const sd_bins_input *in, sd_pair_list *l, sd_wall_pair_list *wl)

@@ -17,19 +17,32 @@
  * gather lists cover owned particles only, and a ghost's side of a pair is
  * gathered by its owner. With no ghosts the lists are those of the plain
  * half-stencil search, bit for bit.
+ *
+ * Composites (seed 004 §2.5, two levels of bounding spheres): a candidate
+ * pair with a composite on one side at least, found by the particles'
+ * bounding spheres, is expanded into its element pairs whose element
+ * bounding spheres are within the skin (a non-composite side is one
+ * element, itself), all of kind ELEMENTS and next to each other in the
+ * list, elements of i outer, of j inner; their keys carry the element
+ * sub-indices. Wall pairs of a composite are expanded the same way, one
+ * per element near the feature. The skin test bounds the motion of every
+ * surface point, so of every element centre, by half the skin.
  */
 #ifndef SD_BROAD_BINS_H
 #define SD_BROAD_BINS_H
 
 #include "broad/pairs.h"
+#include "dynamics/meshwall.h"
 #include "dynamics/walls.h"
+#include "shape/shape.h"
 
 /* What a particle is, for the kind of its pairs (contact/kinds.h). */
 #define SD_PARTICLE_CLASSES(X)                                           \
     X(SPHERE, "a plain sphere (a disc in the planar mode)")               \
     X(SHAPE, "a 3D shape template (convex narrow phase)")                 \
     X(SHARP_POLY, "a sharp convex polyhedron (a volume law may apply)")   \
-    X(SHAPE2D, "a 2D shape template (planar mode)")
+    X(SHAPE2D, "a 2D shape template (planar mode)")                        \
+    X(COMPOSITE, "a composite of convex elements (seed 004): element pairs")
 
 enum sd_particle_class {
 #define SD_X_CLASS(NAME, doc) SD_CLASS_##NAME,
@@ -45,6 +58,12 @@ typedef struct sd_bins_input {
     const uint64_t *id;            /* stable ids; a ghost carries its owner's */
     const int32_t *shape;          /* template index, -1 for a plain sphere */
     const uint8_t *shape_class;    /* per template: enum sd_particle_class */
+    /* composites (SD_CLASS_COMPOSITE, seed 004 §2.5): the templates, the
+     * element pool and the orientations, for the element bounding spheres
+     * of the second level of the search (NULL without composites) */
+    const sd_shape *shapes;
+    const sd_element *elements;
+    const sd_quat *q;
     const int32_t *material;
     const uint32_t *ghost_owner;   /* n_total - n_owned entries */
     size_t material_count;
@@ -52,6 +71,8 @@ typedef struct sd_bins_input {
     size_t wall_count;
     const sd_wall_geom *walls;     /* the walls as they are at this rebuild */
     const int32_t *wall_material;
+    const sd_mesh_view *meshes;    /* mesh walls' facets and bins (sd_wall_geom.mesh indexes them) */
+    size_t mesh_count;
     sd_real skin;                  /* m */
     /* no domain: the world wraps positions into its periodic box and makes
      * the images (world/rebuild.c), so the bins need only the ghosts they
@@ -98,6 +119,10 @@ SD_HD static SD_INLINE int sd_bins_pair_kind(int ci, int cj, int volume)
         return SD_PAIR_SPHERES;
     if (ci == SD_CLASS_SHAPE2D || cj == SD_CLASS_SHAPE2D)
         return SD_PAIR_CONVEX2D;
+    /* a composite against anything: its element pairs (the volume law, if
+     * any, is decided per element pair by the item) */
+    if (ci == SD_CLASS_COMPOSITE || cj == SD_CLASS_COMPOSITE)
+        return SD_PAIR_ELEMENTS;
     return volume ? SD_PAIR_POLY_VOLUME : SD_PAIR_CONVEX;
 }
 
@@ -107,7 +132,22 @@ SD_HD static SD_INLINE int sd_bins_wall_pair_kind(int c, int volume)
         return SD_WALL_PAIR_SPHERE;
     if (c == SD_CLASS_SHAPE2D)
         return SD_WALL_PAIR_CONVEX2D;
+    if (c == SD_CLASS_COMPOSITE)
+        return SD_WALL_PAIR_ELEMENTS;
     return volume ? SD_WALL_PAIR_POLY_VOLUME : SD_WALL_PAIR_CONVEX;
+}
+
+/* The kind of a pair of a particle and a mesh plane group (composites:
+ * not yet, -1). */
+SD_HD static SD_INLINE int sd_bins_mesh_pair_kind(int c, int volume)
+{
+    if (c == SD_CLASS_SPHERE)
+        return SD_WALL_PAIR_MESH_SPHERE;
+    if (c == SD_CLASS_SHAPE2D)
+        return SD_WALL_PAIR_MESH_CONVEX2D;
+    if (c == SD_CLASS_COMPOSITE)
+        return -1;
+    return volume ? SD_WALL_PAIR_MESH_POLY_VOLUME : SD_WALL_PAIR_MESH_CONVEX;
 }
 
 #endif

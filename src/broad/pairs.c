@@ -63,5 +63,6 @@ void sd_pairs_free(sd_pair_list *l, sd_wall_pair_list *wl)
 #undef SD_X_FREE
     sd_free(wl->gstart);
     sd_free(wl->gidx);
+    sd_free(wl->tri);
     memset(wl, 0, sizeof *wl);
 }

@@ -26,19 +26,22 @@
 #include "core/vec.h"
 
 /* The history key of a particle pair: the two stable ids (lower first) and
- * a sub-index on each side (a composite's element, later; 0 today). 64-bit
+ * a sub-index on each side (sub_lo on the lower id's side: its composite
+ * element in an ELEMENTS pair, 0 otherwise). 64-bit
  * ids, so ids from many ranks or long runs with insertion never alias. */
 typedef struct sd_pair_key {
     uint64_t id_lo, id_hi;
     uint32_t sub_lo, sub_hi;
 } sd_pair_key;
 
-/* The history key of a particle-wall pair: the particle's stable id (and
- * its sub-index, a composite element later), the wall index and the wall
- * feature (box face 0..5, 0 for a plane, a mesh plane group later). */
+/* The history key of a particle-wall pair: the particle's stable id, the
+ * wall index, the wall feature (box face 0..5, 0 for a plane, a mesh plane
+ * group later) and the particle's composite element (0 for other
+ * particles). */
 typedef struct sd_wall_pair_key {
     uint64_t id;
     uint32_t wall, sub;
+    uint32_t elem;
 } sd_wall_pair_key;
 
 /* Roles of a field at a rebuild: BUILT fields are written by the builder
@@ -69,7 +72,10 @@ enum { SD_PF_BUILT, SD_PF_HISTORY, SD_PF_ZERO };
 #define SD_WALL_PAIR_FIELDS(X)                                                                             \
     X(uint32_t, i, 1, SD_PF_BUILT, "storage index of the particle (owned: ghosts get no wall pairs)")      \
     X(uint16_t, wall, 1, SD_PF_BUILT, "wall index")                                                        \
-    X(uint16_t, sub, 1, SD_PF_BUILT, "wall feature (dynamics/walls.h): box face 0..5, 0 for a plane")      \
+    X(uint32_t, sub, 1, SD_PF_BUILT, "wall feature (dynamics/walls.h): box face 0..5, 0 for a plane, a mesh's plane group") \
+    X(uint32_t, tstart, 1, SD_PF_BUILT, "mesh pairs: first of the group's near triangles in the list's tri array") \
+    X(uint32_t, tcount, 1, SD_PF_BUILT, "mesh pairs: how many (0 for other walls)")                         \
+    X(uint32_t, elem, 1, SD_PF_BUILT, "composite element of the particle (ELEMENTS pairs), 0 otherwise")    \
     X(sd_wall_pair_key, key, 1, SD_PF_BUILT, "history key")                                                \
     X(sd_vec3, ds, 1, SD_PF_HISTORY, "m, tangential spring, global frame")                                 \
     X(sd_vec3, f, 1, SD_PF_ZERO, "N, force on the particle")                                               \
@@ -102,6 +108,9 @@ typedef struct sd_wall_pair_list {
      * whatever the kinds */
     uint32_t *gstart, *gidx;
     size_t gstart_cap;
+    /* mesh pairs: the near triangles of each pair's plane group (tstart, tcount) */
+    uint32_t *tri;
+    size_t tri_n, tri_cap;
 } sd_wall_pair_list;
 
 #undef SD_X_PAIR_MEMBER

@@ -30,6 +30,18 @@ static void sd_print_shape(const sd_world *w, size_t k, double density)
            si.inertia.z);
     printf("  at %g kg/m^3     mass %.10g kg, moments (%.10g, %.10g, %.10g) kg m^2\n", density, m,
            density * si.inertia.x, density * si.inertia.y, density * si.inertia.z);
+    printf("principal axes     (%.6g, %.6g, %.6g), (%.6g, %.6g, %.6g), (%.6g, %.6g, %.6g) in the given frame\n",
+           si.axes[0].x, si.axes[0].y, si.axes[0].z, si.axes[1].x, si.axes[1].y, si.axes[1].z, si.axes[2].x,
+           si.axes[2].y, si.axes[2].z);
+    if (!strcmp(si.kind, "composite")) {
+        printf("elements           %zu convex (seed 004 glued convex)\n", si.element_count);
+        if (si.lattice)
+            printf("mass properties    exact sums minus the overlaps integrated on a voxel lattice of %d points "
+                   "per direction, estimated relative error %.2g\n",
+                   si.lattice, si.lattice_error);
+        else
+            printf("mass properties    exact (no two elements overlap: parallel-axis sums)\n");
+    }
     if (si.rounding > 0)
         printf("rounding           %.10g m swept over the core\n", si.rounding);
     if (si.vertex_count)
@@ -132,7 +144,7 @@ static int sd_ends_with(const char *s, const char *tail)
 /* `shape info mesh.obj|mesh.stl`: a polyhedron from a mesh file, read and
  * checked as a scene's `file:` is, with the options of such a shape
  * (--scale, --rounding, --margin, --nonconvex reject|hull) and --density. */
-static int sd_mesh_info(const char *path, int argc, char **argv)
+static int sd_shape_mesh_info(const char *path, int argc, char **argv)
 {
     sd_shape_desc d = sd_shape_desc_default();
     d.kind = "polyhedron";
@@ -244,7 +256,7 @@ int sd_cmd_shape(int argc, char **argv)
         return 0;
     }
     if (sd_ends_with(what, ".obj") || sd_ends_with(what, ".stl"))
-        return sd_mesh_info(what, argc, argv);
+        return sd_shape_mesh_info(what, argc, argv);
     sd_shape_desc d = sd_shape_desc_default();
     d.kind = what;
     double density = 1000.0;

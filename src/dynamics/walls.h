@@ -6,8 +6,11 @@
  * history key, broad/pairs.h). A plane has one feature (0); a box has its
  * six faces, face f lying on axis f / 2, at lo (f even, inward normal +e) or
  * hi (f odd, inward normal -e), the bit (1 << f) of open_faces set when the
- * face is left open (the SD_BOX_* flags of shapedem.h). Mesh facet groups
- * will be a third kind with one feature per plane group (seed 000 §2.5).
+ * face is left open (the SD_BOX_* flags of shapedem.h). A mesh (seed 000
+ * §2.4) has one feature per plane group: too many to enumerate here, so
+ * its features are found by its facet bins (dynamics/meshwall.h,
+ * broad/bins.c) and its geometry carries its pose (q, trans: world =
+ * R(q) x_mesh + trans) and the index of its mesh view.
  *
  * Invariant: this header is the only place where box faces are enumerated
  * and turned into planes, lines and sphere-face call data; the broad phase
@@ -18,13 +21,15 @@
 #ifndef SD_DYNAMICS_WALLS_H
 #define SD_DYNAMICS_WALLS_H
 
+#include "core/quat.h"
 #include "core/vec.h"
 #include "core/vec2.h"
 
 /* X(NAME, name, feature count, meaning) */
 #define SD_WALL_KINDS(X)                                                                   \
     X(PLANE, plane, 1, "an infinite plane: the half-space its normal points away from")     \
-    X(BOX, box, 6, "a box container: its closed faces, seen from inside")
+    X(BOX, box, 6, "a box container: its closed faces, seen from inside")                  \
+    X(MESH, mesh, 0, "a triangle mesh: one feature per plane group (dynamics/meshwall.h)")
 
 enum sd_wall_kind {
 #define SD_X_WALL(NAME, name, nf, doc) SD_WALL_##NAME,
@@ -44,6 +49,11 @@ typedef struct sd_wall_geom {
     sd_vec3 point, normal;  /* m, -: plane (a box's point is its centre, for wall torques) */
     sd_vec3 lo, hi;         /* m: box corners */
     unsigned open_faces;    /* box: bit f set when face f is open */
+    /* mesh: pose, centre of its velocity field (v(c) = velocity + omega x
+     * (c - centre), sd_wall_view), mesh view index */
+    sd_quat q;
+    sd_vec3 trans, centre;
+    int mesh;
 } sd_wall_geom;
 
 /* The call data of one box face: the plane axis = value with inward
@@ -86,6 +96,8 @@ SD_HD static SD_INLINE sd_wall_face sd_wall_box_face_of(sd_vec3 lo, sd_vec3 hi, 
  * slot numbers, so they do not change when a face opens). */
 SD_HD static SD_INLINE int sd_wall_feature_count(const sd_wall_geom *w)
 {
+    if (w->kind == SD_WALL_MESH)
+        return 0; /* plane groups come from the facet bins */
     return w->kind == SD_WALL_BOX ? SD_WALL_BOX_FACES : 1;
 }
 
@@ -168,6 +180,8 @@ SD_HD static SD_INLINE int sd_wall_feature_line(const sd_wall_geom *w, int f, sd
  * the axis: its faces are planes normal to a). Used to refuse the scene. */
 SD_HD static SD_INLINE int sd_wall_crosses_axis(const sd_wall_geom *w, int a)
 {
+    if (w->kind == SD_WALL_MESH)
+        return 0; /* a mesh is a body inside the domain; its facets are not wrapped */
     if (w->kind == SD_WALL_PLANE)
         return sd_wall_comp(w->normal, a) != SD_R(0.0);
     return sd_wall_box_face_closed(w->open_faces, 2 * a) || sd_wall_box_face_closed(w->open_faces, 2 * a + 1);

@@ -30,6 +30,7 @@
 #include "core/alloc.h"
 #include "contact/pair_poly.h"
 #include "core/error.h"
+#include "world/mesh.h"
 #include "world/world.h"
 
 void sd_world_broad_free(sd_world *w)
@@ -290,8 +291,10 @@ static sd_status sd_rebuild_input_of(const sd_world *w, sd_bins_input *in, sd_re
     }
     for (size_t s = 0; s < ns; ++s)
         t->shape_class[s] = (uint8_t)(w->dim2 ? SD_CLASS_SHAPE2D
-                                              : (sd_shape_is_sharp_polyhedron(&w->shapes[s]) ? SD_CLASS_SHARP_POLY
-                                                                                            : SD_CLASS_SHAPE));
+                                      : w->shapes[s].kind == SD_SHAPE_COMPOSITE
+                                          ? SD_CLASS_COMPOSITE
+                                          : (sd_shape_is_sharp_polyhedron(&w->shapes[s]) ? SD_CLASS_SHARP_POLY
+                                                                                        : SD_CLASS_SHAPE));
     if (t->volume_law)
         for (size_t m = 0; m < nm * nm; ++m)
             t->volume_law[m] = (uint8_t)sd_law_is_volume(w->mix[m].law);
@@ -307,6 +310,9 @@ static sd_status sd_rebuild_input_of(const sd_world *w, sd_bins_input *in, sd_re
     /* a world of plain spheres passes no shapes: every pair is a sphere pair */
     in->shape = w->has_shapes ? p->shape : NULL;
     in->shape_class = t->shape_class;
+    in->shapes = w->dim2 ? NULL : w->shapes;
+    in->elements = w->elements;
+    in->q = p->q;
     in->material = p->material;
     in->ghost_owner = w->ghost_owner;
     in->material_count = nm;
@@ -314,6 +320,8 @@ static sd_status sd_rebuild_input_of(const sd_world *w, sd_bins_input *in, sd_re
     in->wall_count = nw;
     in->walls = t->walls;
     in->wall_material = t->wall_material;
+    in->meshes = w->mesh_views;
+    in->mesh_count = w->mesh_count;
     in->skin = w->skin;
     in->threads = w->threads;
     in->parallel = w->parallel;
@@ -342,6 +350,15 @@ sd_status sd_world_rebuild(sd_world *w, sd_error *err)
             return pst;
         sd_periodic_wrap(w);
     }
+    if (w->mesh_count > 0) {
+        /* facet bins of at least twice the largest reach (world/mesh.c) */
+        sd_real reach = SD_R(0.0);
+        for (size_t k = 0; k < p->n; ++k)
+            reach = p->radius[k] > reach ? p->radius[k] : reach;
+        sd_status mst = sd_world_meshes_bins(w, SD_R(2.0) * (reach + w->skin));
+        if (mst != SD_OK)
+            return sd_error_set(err, mst, "", 0, "", "out of memory for the facet bins of %zu meshes", w->mesh_count);
+    }
     sd_bins_input in;
     sd_rebuild_tables tables;
     sd_status st = sd_rebuild_input_of(w, &in, &tables);
@@ -357,6 +374,7 @@ sd_status sd_world_rebuild(sd_world *w, sd_error *err)
                 st = sd_periodic_ghosts(w);
             /* the arrays may have grown for the ghosts */
             in.x = p->x;
+            in.q = p->q;
             in.radius = p->radius;
             in.id = p->id;
             in.shape = w->has_shapes ? p->shape : NULL;

@@ -15,6 +15,7 @@
 
 #include "core/error.h"
 #include "dynamics/servo.h"
+#include "world/mesh.h"
 #include "world/world.h"
 
 #define SD_COOKIE 0x5D5D
@@ -113,6 +114,8 @@ sd_status sd_world_walls_drift(sd_world *w, double t, sd_error *err)
 {
     if (!w->walls_moving)
         return SD_OK;
+    /* mesh walls: pose and velocity are functions of time (world/mesh.c) */
+    sd_world_meshes_pose(w, t + (double)w->dt);
     const sd_wall_pair_list *l = &w->wpairs;
     size_t nm = w->material_count;
     for (size_t k = 0; k < w->wall_count; ++k)
@@ -172,15 +175,16 @@ int sd_world_walls_moved(const sd_world *w)
         return 0;
     sd_real lim2 = sd_sq(SD_R(0.5) * w->skin);
     for (size_t k = 0; k < w->wall_count; ++k)
-        if (sd_v3_norm2(sd_v3_sub(w->walls[k].point, w->walls[k].point_ref)) > lim2)
+        if (w->walls[k].kind != SD_WALL_MESH && sd_v3_norm2(sd_v3_sub(w->walls[k].point, w->walls[k].point_ref)) > lim2)
             return 1;
-    return 0;
+    return sd_world_meshes_moved(w, SD_R(0.5) * w->skin);
 }
 
 void sd_world_walls_mark(sd_world *w)
 {
     for (size_t k = 0; k < w->wall_count; ++k)
         w->walls[k].point_ref = w->walls[k].point;
+    sd_world_meshes_mark(w);
 }
 
 /* ---- biaxial box -------------------------------------------------------------- */

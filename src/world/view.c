@@ -25,6 +25,7 @@ static void sd_view_pairs(sd_world *w)
     o->i = l->i;
     o->j = l->j;
     o->flip = l->flip;
+    o->key = l->key;
     o->ds = l->ds;
     o->f = l->f;
     o->t = l->t;
@@ -46,6 +47,10 @@ static void sd_view_pairs(sd_world *w)
     wo->i = wl->i;
     wo->wall = wl->wall;
     wo->sub = wl->sub;
+    wo->tstart = wl->tstart;
+    wo->tcount = wl->tcount;
+    wo->tri = wl->tri;
+    wo->elem = wl->elem;
     wo->ds = wl->ds;
     wo->f = wl->f;
     wo->t = wl->t;
@@ -95,6 +100,7 @@ sd_status sd_world_views(sd_world *w)
     v->skin = w->skin;
     v->dim2 = w->dim2;
     v->has_shapes = w->has_shapes;
+    v->multi_contact = w->def.multi_contact;
     s->exec.threads = w->threads;
     s->exec.parallel = w->parallel;
     s->narrow = w->narrow;
@@ -116,6 +122,8 @@ sd_status sd_world_views(sd_world *w)
     }
     v->walls = s->walls;
     v->wall_count = w->wall_count;
+    v->meshes = w->mesh_views;
+    v->mesh_count = w->mesh_count;
     sd_world_views_walls(w);
     return SD_OK;
 }
@@ -138,6 +146,7 @@ void sd_world_views_walls(sd_world *w)
         o->g = wl->geom;
         o->material = wl->material;
         o->velocity = wl->velocity;
+        o->omega = wl->omega;
     }
 }
 

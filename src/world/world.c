@@ -15,6 +15,8 @@
 
 #include "core/alloc.h"
 #include "core/error.h"
+#include "world/mesh.h"
+#include "world/process.h"
 #include "world/solver.h"
 #include "world/view.h"
 #include "world/world.h"
@@ -218,7 +220,9 @@ void sd_world_destroy(sd_world *w)
     sd_free(w->interactions);
     sd_free(w->mix);
     sd_free(w->walls);
+    sd_world_meshes_free(w);
     w->solver->destroy(w);
+    sd_world_process_free(w);
     sd_free(w->shapes);
     sd_free(w->shape_names);
     sd_free(w->shape_req);
@@ -387,6 +391,8 @@ static int sd_add_wall(sd_world *w, const sd_wall *proto, sd_error *err)
     return (int)w->wall_count++;
 }
 
+int sd_world_push_wall(sd_world *w, const sd_wall *proto, sd_error *err) { return sd_add_wall(w, proto, err); }
+
 int sd_world_add_plane(sd_world *w, const char *name, sd_v3d point, sd_v3d normal, int material, sd_error *err)
 {
     sd_wall wl;
@@ -507,21 +513,15 @@ static void sd_cells_dt_inputs(const sd_world *w, sd_v3d gdir, sd_dt_inputs *in)
     (void)in;
 }
 
-static size_t sd_cells_info(const sd_world *w, sd_solver_item *items, size_t max)
-{
-    (void)w;
-    (void)items;
-    (void)max;
-    return 0;
-}
-
-/* Insertion and outlets for the general engine come with issue 16. */
+/* The grid's layer pour and floor hole; the cells solver inserts and
+ * removes through shapedem/process.h (world/process.c). */
 static sd_status sd_cells_set_pour(sd_world *w, const sd_pour_def *d, sd_error *err)
 {
     (void)w;
     (void)d;
     return sd_error_set(err, SD_ERR_INPUT, "", 0, "pour",
-                        "pouring needs solver grid (simulation.solver: grid); the cells solver cannot pour yet");
+                        "the layer pour is the grid solver's (simulation.solver: grid); the cells solver inserts "
+                        "particles with an insert: section (sd_world_add_insertion)");
 }
 
 static sd_status sd_cells_set_outlet(sd_world *w, const sd_outlet_def *d, sd_error *err)
@@ -529,7 +529,8 @@ static sd_status sd_cells_set_outlet(sd_world *w, const sd_outlet_def *d, sd_err
     (void)w;
     (void)d;
     return sd_error_set(err, SD_ERR_INPUT, "", 0, "outlet",
-                        "an outlet needs solver grid (simulation.solver: grid); the cells solver has none yet");
+                        "the floor outlet is the grid solver's (simulation.solver: grid); the cells solver removes "
+                        "particles with an outlets: section (sd_world_add_outlet)");
 }
 
 static int sd_cells_get_pour(const sd_world *w, sd_pour_def *out)
@@ -542,13 +543,13 @@ static int sd_cells_get_pour(const sd_world *w, sd_pour_def *out)
 const sd_solver_ops sd_solver_cells = {
     .name = "cells",
     .prepare = sd_cells_prepare,
-    .step = sd_cells_step,
+    .step = sd_cells_process_step, /* sd_cells_step between the insertions and outlets (world/process.c) */
     .count = sd_cells_count,
     .read = sd_cells_read,
     .find = sd_cells_find,
     .stats = sd_cells_stats,
     .dt_inputs = sd_cells_dt_inputs,
-    .info = sd_cells_info,
+    .info = sd_cells_process_info,
     .set_pour = sd_cells_set_pour,
     .set_outlet = sd_cells_set_outlet,
     .get_pour = sd_cells_get_pour,
@@ -613,7 +614,7 @@ sd_status sd_world_get_wall(const sd_world *w, size_t k, sd_wall_info *out)
     out->name = wl->name;
     out->kind = wl->kind;
     out->force = sd_v3d_of(wl->force);
-    out->torque = sd_v3d_of(wl->torque);
+    out->torque = sd_v3d_of(sd_world_wall_torque_about(w, k));
     out->point = sd_v3d_of(wl->point);
     out->normal = sd_v3d_of(wl->normal);
     out->lo = sd_v3d_of(wl->lo);

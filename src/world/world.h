@@ -17,6 +17,7 @@
 #include "broad/pairs.h"
 #include "contact/params.h"
 #include "core/quat.h"
+#include "dynamics/meshwall.h"
 #include "dynamics/walls.h"
 #include "shape/shape.h"
 #include "shape/shape2d.h"
@@ -75,6 +76,9 @@ typedef struct sd_wall {
             sd_vec3 point, normal;  /* plane */
             sd_vec3 lo, hi;         /* box */
             unsigned open_faces;
+            sd_quat q;              /* mesh: pose (world = R(q) x_mesh + trans) */
+            sd_vec3 trans, centre;  /* m: translation; centre of the velocity field */
+            int mesh;               /* mesh: index into the world's meshes (world/mesh.h) */
         };
     };
     int material;
@@ -86,6 +90,9 @@ typedef struct sd_wall {
     sd_vec3 point_ref;      /* m, point at the last pair-list rebuild */
     sd_real stiffness;      /* N/m, sum of the normal stiffness of its contacts, last step */
     sd_real servo_i;        /* m/s, integral term of the servo (dynamics/servo.h) */
+    sd_vec3 omega;          /* rad/s, angular velocity (mesh walls; 0 otherwise) */
+    sd_vec3 torque_point;   /* m, the point sd_world_get_wall's torque is about (a mesh's: mesh frame) */
+    int has_torque_point;   /* set by sd_world_set_wall_torque_point (meshes always have one) */
 } sd_wall;
 
 /* Below this many particles the CPU loops run serially. */
@@ -118,6 +125,10 @@ struct sd_world {
 
     size_t wall_count;
     sd_wall *walls;
+    /* triangle-mesh walls (world/mesh.h): store and views, one per mesh wall */
+    size_t mesh_count;
+    struct sd_mesh_store *meshes;
+    sd_mesh_view *mesh_views;
 
     /* shape templates and the polyhedron vertex pool they index */
     size_t shape_count;
@@ -161,6 +172,7 @@ struct sd_world {
     sd_stage stage;           /* the backend's views of all the above (world/view.c) */
     sd_profile profile;       /* s per stage of the step (world/profile.c) */
     long rebuilds;
+    struct sd_process *process; /* insertions and outlets (world/process.h), NULL when none */
     int prepared;
     int dirty;                /* particles added since the last rebuild */
 };
@@ -182,6 +194,11 @@ void sd_particles_permute(sd_particles *p, const uint32_t *perm, void *scratch, 
 sd_status sd_world_walls_drift(sd_world *w, double t, sd_error *err);
 int sd_world_walls_moved(const sd_world *w);
 void sd_world_walls_mark(sd_world *w);
+
+/* world.c: appends a wall (checks its material); its index or -1. */
+int sd_world_push_wall(sd_world *w, const sd_wall *proto, sd_error *err);
+/* mesh.c: the torque of wall k about its torque point (N m). */
+sd_vec3 sd_world_wall_torque_about(const sd_world *w, size_t k);
 
 /* A new shape's name is valid and free (bodies.c). */
 sd_status sd_world_check_shape_name(const sd_world *w, const char *name, sd_error *err);

@@ -1,0 +1,228 @@
+/* mesh_contact.h — the geometry of a body against one plane group of a
+ * triangle-mesh wall (seed 000 §2.4), for the mesh items of
+ * backend/items.h.
+ *
+ *  - A sphere meets the group at the closest point of the group's near
+ *    triangles. On a face: the plane contact (normal = the group's normal,
+ *    the overlap from the plane). On an edge or a corner: a point contact
+ *    along the line from that point to the centre, made only when the
+ *    feature is active on that triangle (geom/trimesh.h's marks), so a
+ *    sphere rolling across an inactive (coplanar or concave) seam feels only
+ *    the faces beside it and a convex edge or corner contact appears once.
+ *    A centre right above an inactive seam (the point on the seam is its
+ *    projection) is a face contact: the plane continues across the seam.
+ *  - Any other body meets the group's plane as it would meet an infinite
+ *    plane (contact/), its force weighted by w = A_clip / A, where A is the
+ *    area of the body's section by the plane and A_clip the part of it
+ *    inside the group's triangles, each clipped by Sutherland-Hodgman
+ *    (geom/clip.h; seed 000 Algorithm VII); the contact point moves by the
+ *    shift of the clipped area's centroid from the section's. Inside a
+ *    group w = 1 to rounding, so a body crossing the seams of one plane
+ *    feels one flat facet; at the group's rim the force falls with the
+ *    supported area. A polyhedron's section is exact (the crossings of
+ *    every pair of its vertices on the two sides of the plane, hulled);
+ *    other shapes use the disc of radius sqrt(2 R_eq delta) about the
+ *    contact point (the Hertzian patch of the equivalent sphere).
+ *
+ * Everything is computed in the mesh frame (the particle mapped into it);
+ * normals and points go back to the world frame. Single source (SD_HD):
+ * plain structs, fixed workspaces, compiles as C17 and as C++.
+ */
+#ifndef SD_GEOM_MESH_CONTACT_H
+#define SD_GEOM_MESH_CONTACT_H
+
+#include "dynamics/meshwall.h"
+#include "dynamics/walls.h"
+#include "geom/clip.h"
+#include "geom/sphere.h"
+#include "shape/shape.h"
+
+/* Relative size below which a point's lateral offset from the plane
+ * normal counts as none (a centre above a seam). */
+#define SD_MESH_SEAM_TOL SD_R(1e-9)
+
+/* The plane of group gr in the world frame: point p0, unit normal nw. */
+SD_HD static SD_INLINE void sd_mesh_group_plane(const sd_mesh_view *m, const sd_wall_geom *wg, uint32_t gr,
+                                                sd_vec3 *p0, sd_vec3 *nw)
+{
+    sd_vec3 n = m->group_normal[gr];
+    *nw = sd_quat_rotate(wg->q, n);
+    *p0 = sd_mesh_to_world(wg->q, wg->trans, sd_v3_scale(n, m->group_offset[gr]));
+}
+
+/* A sphere (centre x, radius r, world frame) against group gr through its
+ * nt near triangles tl. 1 and *g filled when touching. */
+SD_HD static SD_INLINE int sd_mesh_sphere_geom(const sd_mesh_view *m, const sd_wall_geom *wg, uint32_t gr,
+                                               const uint32_t *tl, uint32_t nt, sd_vec3 x, sd_real r,
+                                               sd_contact_geom *g)
+{
+    sd_vec3 xm = sd_mesh_to_frame(wg->q, wg->trans, x);
+    sd_vec3 n = m->group_normal[gr];
+    sd_real s = sd_v3_dot(n, xm) - m->group_offset[gr];
+    if (s >= r || s <= -r || nt == 0)
+        return 0; /* apart, or behind the plane by a radius (it left through the back) */
+    sd_real best = SD_R(-1.0);
+    sd_vec3 bp = xm;
+    int bf = 0;
+    uint32_t bt = 0;
+    for (uint32_t k = 0; k < nt; ++k) {
+        uint32_t t = tl[k];
+        const uint32_t *tv = m->tris[t];
+        int f;
+        sd_vec3 p = sd_clip_closest(xm, m->verts[tv[0]], m->verts[tv[1]], m->verts[tv[2]], &f);
+        sd_real d2 = sd_v3_norm2(sd_v3_sub(xm, p));
+        if (best < 0 || d2 < best) {
+            best = d2;
+            bp = p;
+            bf = f;
+            bt = t;
+        }
+    }
+    if (!(best < r * r))
+        return 0;
+    sd_vec3 d = sd_v3_sub(xm, bp);
+    sd_vec3 lat = sd_v3_sub(d, sd_v3_scale(n, sd_v3_dot(d, n)));
+    int face = bf == SD_CLIP_FACE || sd_v3_norm2(lat) <= sd_sq(SD_MESH_SEAM_TOL * r);
+    sd_vec3 nm;
+    sd_real delta;
+    if (face) {
+        if (!(s > -r))
+            return 0;
+        nm = n;
+        delta = r - s;
+    } else {
+        unsigned bit = bf >= SD_CLIP_CORNER0 ? SD_MESH_CORNER_BIT(bf - SD_CLIP_CORNER0) : SD_MESH_EDGE_BIT(bf - SD_CLIP_EDGE0);
+        if (!(m->flags[bt] & bit) || !(s > SD_R(0.0)))
+            return 0; /* inactive: the faces beside it make the contact */
+        sd_real dist = sd_sqrt(best);
+        nm = sd_v3_scale(d, SD_R(1.0) / dist);
+        delta = r - dist;
+    }
+    g->n = sd_quat_rotate(wg->q, nm);
+    g->delta = delta;
+    g->point = sd_v3_madd(x, -(r - SD_R(0.5) * delta), g->n);
+    return 1;
+}
+
+/* 1 when q lies in triangle t projected on the plane basis (e1, e2). */
+SD_HD static SD_INLINE int sd_mesh_in_triangle(sd_vec2 q, const sd_vec2 t[3])
+{
+    int pos = 0, neg = 0;
+    for (int k = 0; k < 3; ++k) {
+        sd_vec2 a = t[k], b = t[(k + 1) % 3];
+        sd_real c = sd_clip_cross(sd_v2(b.x - a.x, b.y - a.y), sd_v2(q.x - a.x, q.y - a.y));
+        pos |= c > 0;
+        neg |= c < 0;
+    }
+    return !(pos && neg);
+}
+
+/* The section of posed polyhedron core c (vertices in the world frame
+ * through its pose) by the plane n . x = off of the mesh frame, in the
+ * plane basis (e1, e2), hulled into sec; returns its vertex count. */
+SD_HD static SD_INLINE int sd_mesh_poly_section(const sd_convex *c, const sd_wall_geom *wg, sd_vec3 n, sd_real off,
+                                                sd_vec3 e1, sd_vec3 e2, sd_vec2 *sec)
+{
+    enum { MAXV = 64, MAXP = 256 };
+    const sd_shape *sh = c->shape;
+    uint32_t nv = sh->vcount < (uint32_t)MAXV ? sh->vcount : (uint32_t)MAXV;
+    sd_vec3 vm[MAXV];
+    sd_real hv[MAXV];
+    for (uint32_t k = 0; k < nv; ++k) {
+        sd_vec3 vw = sd_v3_add(c->x, sd_quat_rotate(c->q, sd_v3_add(c->verts[sh->vstart + k], sh->offset)));
+        vm[k] = sd_mesh_to_frame(wg->q, wg->trans, vw);
+        hv[k] = sd_v3_dot(n, vm[k]) - off;
+    }
+    sd_vec2 pts[MAXP];
+    int np = 0;
+    for (uint32_t i = 0; i < nv && np < MAXP; ++i) {
+        if (hv[i] > 0)
+            continue;
+        if (hv[i] == 0) {
+            pts[np++] = sd_v2(sd_v3_dot(vm[i], e1), sd_v3_dot(vm[i], e2));
+            continue;
+        }
+        for (uint32_t j = 0; j < nv && np < MAXP; ++j) {
+            if (!(hv[j] > 0))
+                continue;
+            /* the segment between two points of a convex body lies in it:
+             * every crossing is in the section, and the section's corners
+             * (crossings of its edges) are among them */
+            sd_real u = hv[i] / (hv[i] - hv[j]);
+            sd_vec3 p = sd_v3_add(vm[i], sd_v3_scale(sd_v3_sub(vm[j], vm[i]), u));
+            pts[np++] = sd_v2(sd_v3_dot(p, e1), sd_v3_dot(p, e2));
+        }
+    }
+    if (np > SD_CLIP_MAX)
+        np = SD_CLIP_MAX; /* beyond the workspace: the section of the first crossings */
+    for (int k = 0; k < np; ++k)
+        sec[k] = pts[k];
+    return sd_clip_hull(sec, np);
+}
+
+/* The area weight of a body's contact with group gr (seed 000 §2.4): sec
+ * (ns vertices, counter-clockwise, plane basis e1, e2 of the group's mesh
+ * normal) clipped by the group's near triangles. Returns w in [0, 1] and
+ * in *shift the move of the centroid (world frame, m). When the section
+ * has no area (a corner or an edge just touching), w is 1 or 0 as the
+ * point q (plane basis) lies on a triangle or not. */
+SD_HD static SD_INLINE sd_real sd_mesh_clip_weight(const sd_mesh_view *m, const sd_wall_geom *wg, const uint32_t *tl,
+                                                   uint32_t nt, sd_vec3 e1, sd_vec3 e2, const sd_vec2 *sec, int ns,
+                                                   sd_vec2 q, sd_vec3 *shift)
+{
+    *shift = sd_v3_zero();
+    sd_vec2 c0;
+    sd_real a0 = ns >= 3 ? sd_clip_area(sec, ns, &c0) : SD_R(0.0);
+    sd_real asum = SD_R(0.0), cx = SD_R(0.0), cy = SD_R(0.0);
+    int inside = 0;
+    for (uint32_t k = 0; k < nt; ++k) {
+        const uint32_t *tv = m->tris[tl[k]];
+        sd_vec2 t[3];
+        for (int v = 0; v < 3; ++v)
+            t[v] = sd_v2(sd_v3_dot(m->verts[tv[v]], e1), sd_v3_dot(m->verts[tv[v]], e2));
+        if (sd_clip_cross(sd_v2(t[1].x - t[0].x, t[1].y - t[0].y), sd_v2(t[2].x - t[0].x, t[2].y - t[0].y)) < 0) {
+            sd_vec2 tmp = t[1];
+            t[1] = t[2];
+            t[2] = tmp;
+        }
+        if (!(a0 > 0)) {
+            inside |= sd_mesh_in_triangle(q, t);
+            continue;
+        }
+        sd_vec2 out[SD_CLIP_MAX + 3];
+        int no = sd_clip_triangle(sec, ns, t, out);
+        sd_vec2 cc;
+        sd_real a = sd_clip_area(out, no, &cc);
+        if (a > 0) {
+            asum += a;
+            cx += a * cc.x;
+            cy += a * cc.y;
+        }
+    }
+    if (!(a0 > 0))
+        return inside ? SD_R(1.0) : SD_R(0.0);
+    if (!(asum > 0))
+        return SD_R(0.0);
+    sd_real w = asum / a0;
+    w = w > SD_R(1.0) ? SD_R(1.0) : w;
+    sd_real dx = cx / asum - c0.x, dy = cy / asum - c0.y;
+    *shift = sd_quat_rotate(wg->q, sd_v3_add(sd_v3_scale(e1, dx), sd_v3_scale(e2, dy)));
+    return w;
+}
+
+/* A disc of radius a about point p (mesh frame) in the plane basis: a
+ * 16-gon, counter-clockwise. */
+SD_HD static SD_INLINE int sd_mesh_disc(sd_vec3 p, sd_real a, sd_vec3 e1, sd_vec3 e2, sd_vec2 *sec)
+{
+    /* cos and sin of k pi / 8 */
+    const sd_real c8[16] = {SD_R(1.0), SD_R(0.9238795325112867), SD_R(0.7071067811865476), SD_R(0.3826834323650898),
+                            SD_R(0.0), SD_R(-0.3826834323650898), SD_R(-0.7071067811865476), SD_R(-0.9238795325112867),
+                            SD_R(-1.0), SD_R(-0.9238795325112867), SD_R(-0.7071067811865476), SD_R(-0.3826834323650898),
+                            SD_R(0.0), SD_R(0.3826834323650898), SD_R(0.7071067811865476), SD_R(0.9238795325112867)};
+    sd_real px = sd_v3_dot(p, e1), py = sd_v3_dot(p, e2);
+    for (int k = 0; k < 16; ++k)
+        sec[k] = sd_v2(px + a * c8[k], py + a * c8[(k + 12) % 16]);
+    return 16;
+}
+
+#endif
