@@ -13,7 +13,8 @@
  * its height free) until it has left the wall. The wall is meshed at six
  * resolutions lambda = L_c / L_m = 0.5 .. 8 (seed eq. 29), every cell of
  * the grid split into two triangles (one plane group: the facets' seams
- * are inactive). The analytic plane (which has no rim) is the reference
+ * are inactive), and once more at lambda = 5 with its interior vertices
+ * jittered (a random triangulation). The analytic plane (which has no rim) is the reference
  * while the cube is fully supported.
  *
  * Printed: the normal and tangential forces at kappa = dx / L_c (eq. 30)
@@ -37,7 +38,7 @@ typedef struct run_out {
 
 static const double Lc = 0.025, rho = 1500, vpush = 0.2, dt = 1e-5;
 
-static void run(int cells_per_Lc_times2, run_out *out)
+static void run(int cells_per_Lc_times2, double jitter, run_out *out)
 {
     sd_error err;
     sd_world *w;
@@ -69,9 +70,19 @@ static void run(int cells_per_Lc_times2, run_out *out)
         double hx = 0.1 / nx, hy = 0.08 / ny;
         v = malloc((size_t)(nx + 1) * (size_t)(ny + 1) * sizeof *v);
         t = malloc((size_t)(2 * nx * ny) * sizeof *t);
+        unsigned seed = 11u;
         for (int j = 0; j <= ny; ++j)
-            for (int i = 0; i <= nx; ++i)
-                v[j * (nx + 1) + i] = sd_test_v(i * hx, -0.04 + j * hy, 0);
+            for (int i = 0; i <= nx; ++i) {
+                double x = i * hx, y = -0.04 + j * hy;
+                if (jitter > 0 && i > 0 && j > 0 && i < nx && j < ny) {
+                    /* a random (still valid) triangulation: interior vertices moved */
+                    seed = seed * 1103515245u + 12345u;
+                    x += jitter * hx * ((double)(seed >> 8 & 0xffff) / 65535.0 - 0.5);
+                    seed = seed * 1103515245u + 12345u;
+                    y += jitter * hy * ((double)(seed >> 8 & 0xffff) / 65535.0 - 0.5);
+                }
+                v[j * (nx + 1) + i] = sd_test_v(x, y, 0);
+            }
         size_t nt = 0;
         for (int j = 0; j < ny; ++j)
             for (int i = 0; i < nx; ++i) {
@@ -134,10 +145,11 @@ int main(void)
 {
     /* lambda = 0.5, 1, 2, 3, 5, 8: 2 lambda = 1, 2, 4, 6, 10, 16 */
     const int res[6] = {1, 2, 4, 6, 10, 16};
-    static run_out r[6], plane;
-    run(0, &plane);
+    static run_out r[6], plane, jit;
+    run(0, 0, &plane);
     for (int k = 0; k < 6; ++k)
-        run(res[k], &r[k]);
+        run(res[k], 0, &r[k]);
+    run(10, 0.6, &jit); /* lambda = 5, interior vertices jittered by up to 0.3 cell */
     const double mg = rho * Lc * Lc * Lc * 9.81;
     printf("seed 000 Table 2: normal force Fn / m g and tangential force Ft / m g against kappa = dx / L_c\n");
     printf(" kappa  plane Fn");
@@ -166,6 +178,14 @@ int main(void)
     CHECK_NEAR("max over kappa, lambda of |Fn - Fn(lambda=8)| / m g", dn, 0.0, 0.02);
     CHECK_NEAR("max over kappa, lambda of |Ft - Ft(lambda=8)| / m g", dtg, 0.0, 0.02);
     CHECK_NEAR("fully supported: max |Fn - Fn(plane)| / m g", dp, 0.0, 0.005);
+    double djn = 0, djt = 0;
+    for (int i = 0; i < NK; ++i) {
+        djn = fmax(djn, fabs(jit.fn[i] - r[5].fn[i]) / mg);
+        djt = fmax(djt, fabs(jit.ft[i] - r[5].ft[i]) / mg);
+    }
+    CHECK(!jit.unstable);
+    CHECK_NEAR("jittered lambda = 5: max |Fn - Fn(lambda=8)| / m g", djn, 0.0, 0.005);
+    CHECK_NEAR("jittered lambda = 5: max |Ft - Ft(lambda=8)| / m g", djt, 0.0, 0.005);
     CHECK_NEAR("fully supported, lambda = 8: Ft / Fn vs mu", r[5].ft[30] / r[5].fn[30], 0.8, 0.02);
     CHECK_NEAR("left the wall (kappa = 4): Fn / m g", r[5].fn[NK - 1] / mg, 0.0, 1e-12);
     /* the histories for docs/validation/mesh_resolution.py */
