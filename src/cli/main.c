@@ -15,6 +15,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <shapedem/process.h>
 #include <shapedem/shapedem.h>
 
 #include <shapedem/scene.h>
@@ -223,6 +224,9 @@ static int sd_cmd_run(const sd_cli *c)
         if (sd_scene_shape_warning(scene, k)[0]) /* a mesh taken as its hull (nonconvex: hull) */
             fprintf(stderr, "shapedem: warning: shape %s: %s\n", sd_scene_shape_name(scene, k),
                     sd_scene_shape_warning(scene, k));
+    for (size_t k = 0; sd_scene_outlet_warning(scene, k); ++k)
+        if (sd_scene_outlet_warning(scene, k)[0]) /* outlets: one no particle can reach */
+            fprintf(stderr, "shapedem: warning: %s\n", sd_scene_outlet_warning(scene, k));
     sd_error err;
     memset(&err, 0, sizeof err);
     char dir[1040];
@@ -292,6 +296,13 @@ static int sd_cmd_run(const sd_cli *c)
                pr.threads, pr.threads == 1 ? "" : "s");
         printf("          kinetic energy %.6g J, %ld contacts, max overlap %.3g %% of radius; output in %s\n",
                st.kinetic_translational + st.kinetic_rotational, st.contacts, 100 * st.max_overlap_ratio, dir);
+    }
+    /* insertions that fell short: one line each (also in summary.txt) */
+    for (size_t k = 0; k < sd_world_insertion_count(w); ++k) {
+        sd_insert_info ii;
+        if (sd_world_get_insertion(w, k, &ii) == SD_OK && ii.inserted < ii.asked)
+            fprintf(stderr, "shapedem: insert %s: inserted %zu of the %zu asked for: %s\n", ii.name, ii.inserted,
+                    ii.asked, ii.why);
     }
     if (c->profile)
         sd_print_profile(w);
@@ -365,6 +376,11 @@ static int sd_cmd_check(const sd_cli *c)
     for (size_t k = 0; k < info.shape_count; ++k)
         if (sd_scene_shape_warning(scene, k)[0]) { /* a mesh taken as its hull (nonconvex: hull) */
             printf("warning      shape %s: %s\n", sd_scene_shape_name(scene, k), sd_scene_shape_warning(scene, k));
+            warnings++;
+        }
+    for (size_t k = 0; sd_scene_outlet_warning(scene, k); ++k)
+        if (sd_scene_outlet_warning(scene, k)[0]) { /* outlets: one no particle can reach */
+            printf("warning      %s\n", sd_scene_outlet_warning(scene, k));
             warnings++;
         }
     /* last: the trial steps the world */

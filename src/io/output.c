@@ -21,6 +21,7 @@
 #include "world/solver.h"
 #include "io/fsutil.h"
 #include "io/vtk.h"
+#include <shapedem/process.h>
 
 #include <errno.h>
 #include <stdio.h>
@@ -541,6 +542,18 @@ static void sd_output_summary_text(FILE *fp, const sd_output *o, const sd_world 
         for (int v = 0; v < it[i].n; ++v)
             sd_solver_value_print(fp, v == 0 ? " " : it[i].sep, &it[i], v);
         fputc('\n', fp);
+    }
+    /* insertions and outlets of the cells solver (shapedem/process.h) */
+    for (size_t i = 0; i < sd_world_insertion_count(w); ++i) {
+        sd_insert_info ii;
+        if (sd_world_get_insertion(w, i, &ii) == SD_OK)
+            fprintf(fp, "insert %s: asked %zu, inserted %zu, mass_kg %.10g%s%s\n", ii.name, ii.asked, ii.inserted,
+                    ii.mass, ii.inserted < ii.asked ? ", why: " : "", ii.inserted < ii.asked ? ii.why : "");
+    }
+    for (size_t i = 0; i < sd_world_outlet_count(w); ++i) {
+        sd_outlet_info oi;
+        if (sd_world_get_outlet(w, i, &oi) == SD_OK)
+            fprintf(fp, "outlet %s: removed %zu, mass_kg %.10g\n", oi.name, oi.removed, oi.mass);
     }
     size_t nw = sd_world_wall_count(w);
     for (size_t i = 0; i < nw; ++i) {

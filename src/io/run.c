@@ -24,6 +24,7 @@
 #include "core/error.h"
 #include "io/output.h"
 #include "io/scene.h"
+#include "io/scene_process.h"
 
 struct sd_run {
     const sd_scene *s;
@@ -34,7 +35,18 @@ struct sd_run {
     int started, failed;
     double stepping;             /* s of wall time inside sd_world_step */
     double psteps;               /* particle-steps (the count changes with a pour or an outlet) */
+    FILE *outlet;                /* outlet.csv (cells outlets; io/scene_process.c), NULL when none */
+    double outlet_t, outlet_m;   /* s, kg: time and mass removed at its last row */
 };
+
+/* outlet.csv: a row with each stats row, when the world has outlets. */
+static void sd_run_outlet_row(sd_run *r)
+{
+    if (r->outlet) {
+        sd_outlet_csv_row(r->outlet, r->w, &r->outlet_t, &r->outlet_m);
+        fflush(r->outlet);
+    }
+}
 
 static double sd_run_now(void)
 {
@@ -76,6 +88,17 @@ sd_status sd_run_open(const sd_scene *s, sd_world *w, const char *dir, sd_run **
             sd_free(r);
             return st;
         }
+        if (sd_world_outlet_count(w) > 0) {
+            char path[sizeof r->dir + 16];
+            snprintf(path, sizeof path, "%s/outlet.csv", r->dir);
+            r->outlet = fopen(path, "w");
+            if (!r->outlet) {
+                sd_output_close(r->out, w, NULL, NULL);
+                sd_free(r);
+                return sd_error_set(err, SD_ERR_IO, path, 0, "", "cannot write outlet.csv");
+            }
+            sd_outlet_csv_header(r->outlet, w);
+        }
     }
     *out = r;
     return SD_OK;
@@ -105,6 +128,7 @@ sd_status sd_run_advance(sd_run *r, long steps, sd_error *err)
             r->failed = 1;
             return st;
         }
+        sd_run_outlet_row(r);
         if (r->out) /* the output stage of the world's profile (sd_profile) */
             sd_world_profile_add(r->w, SD_PROFILE_OUTPUT, sd_run_now() - t0);
     }
@@ -127,6 +151,8 @@ sd_status sd_run_advance(sd_run *r, long steps, sd_error *err)
         r->done = next;
         if (r->out && r->done % r->stats_every == 0 && (st = sd_output_stats(r->out, r->w, err)) != SD_OK)
             r->failed = 1;
+        if (r->done % r->stats_every == 0)
+            sd_run_outlet_row(r);
         if (r->out && !r->failed && (r->done % r->every == 0 || r->done == r->steps) &&
             (st = sd_output_frame(r->out, r->w, err)) != SD_OK)
             r->failed = 1;
@@ -156,6 +182,8 @@ sd_status sd_run_close(sd_run *r, sd_error *err)
     if (!r)
         return SD_OK;
     sd_status st = SD_OK;
+    if (r->outlet)
+        fclose(r->outlet);
     if (r->out) {
         sd_run_summary sum;
         memset(&sum, 0, sizeof sum);

@@ -22,6 +22,7 @@
 #include "core/alloc.h"
 #include "core/error.h"
 #include "io/scene.h"
+#include "io/scene_process.h"
 #include "io/scene_keys.h"
 #include "shape/shape.h"
 #include "shape/shape2d.h"
@@ -616,6 +617,8 @@ sd_status sd_scene_build(const sd_scene *s, sd_world **out, sd_error *err)
     if (st != SD_OK)
         return sd_where(err, st, s, s->simulation_line, "simulation");
     st = sd_build(s, w, &sp, err);
+    if (st == SD_OK) /* insert: and outlets: (scene_process.c) */
+        st = sd_scene_build_process(s, w, err);
     sd_scene_spheres_free(&sp);
     if (st != SD_OK) {
         sd_world_destroy(w);

@@ -213,18 +213,27 @@ static size_t sd_gen_count(const sd_scene_generator *g)
 }
 
 /* Random sequential addition: each sphere draws its radius once, then
- * positions until one overlaps none of the spheres placed before it. The
- * attempt budget bounds the time when the box is too full to finish. */
-static sd_status sd_gen_random(const sd_scene *s, size_t gi, double bound, sd_rng *rng,
-                               sd_sphere_def *defs, double (*quat)[4], sd_error *err)
+ * positions until one overlaps none of the spheres placed before it, by
+ * this generator or by the generators before it (all[0 .. at), which
+ * share the hash: two generators in one region must not stack their
+ * particles on each other). The attempt budget bounds the time when the
+ * box is too full to finish. */
+static sd_status sd_gen_random(const sd_scene *s, size_t gi, double bound, sd_rng *rng, sd_sphere_def *all,
+                               size_t at, double (*quat)[4], sd_error *err)
 {
     const sd_scene_generator *g = &s->generators[gi];
     size_t n = (size_t)g->number;
+    sd_sphere_def *defs = all + at;
     double rmax = g->shape >= 0 ? bound : g->radius_max;
+    for (size_t k = 0; k < at; ++k)
+        if (all[k].radius > rmax)
+            rmax = all[k].radius;
     sd_gen_hash grid;
     /* Hashed cells one largest diameter wide: memory follows n, not the box. */
-    if (!sd_gen_hash_init(&grid, n, 2.0 * rmax))
+    if (!sd_gen_hash_init(&grid, at + n, 2.0 * rmax))
         return sd_error_set(err, SD_ERR_MEMORY, s->path, g->line, "", "out of memory");
+    for (size_t k = 0; k < at; ++k)
+        sd_gen_hash_insert(&grid, k, all[k].position);
     const double budget = 100.0 * (double)n + 100000.0;
     double attempts = 0.0;
     size_t placed = 0;
@@ -242,7 +251,7 @@ static sd_status sd_gen_random(const sd_scene *s, size_t gi, double bound, sd_rn
             if (s->world.dimension == 2)
                 p.z = 0.0; /* the planar mode: z range ignored (one draw kept for the stream) */
             /* Zero tolerance: generated spheres may touch, never overlap. */
-            if (sd_gen_hash_first_overlap(&grid, defs, p, r, 0.0, NULL, NULL, 0) == SD_GEN_HASH_NONE) {
+            if (sd_gen_hash_first_overlap(&grid, all, p, r, 0.0, NULL, NULL, 0) == SD_GEN_HASH_NONE) {
                 memset(d, 0, sizeof *d);
                 d->position = p;
                 d->radius = r;
@@ -257,7 +266,7 @@ static sd_status sd_gen_random(const sd_scene *s, size_t gi, double bound, sd_rn
         if (g->shape >= 0)
             sd_gen_orient(rng, g->orient, g->quat, quat[placed], s->world.dimension == 2);
         sd_gen_jitter(rng, g, d, s->world.dimension == 2);
-        sd_gen_hash_insert(&grid, placed, d->position);
+        sd_gen_hash_insert(&grid, at + placed, d->position);
         ++placed;
     }
     sd_gen_hash_free(&grid);
@@ -392,7 +401,7 @@ sd_status sd_scene_generate(const sd_scene *s, const double *shape_bound, sd_sce
             break;
         }
         case SD_GEN_RANDOM: {
-            sd_status st = sd_gen_random(s, gi, bound, &rng, defs, quat, err);
+            sd_status st = sd_gen_random(s, gi, bound, &rng, out->defs, at, quat, err);
             if (st != SD_OK) {
                 sd_scene_spheres_free(out);
                 return st;

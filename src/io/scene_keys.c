@@ -35,6 +35,10 @@
 #define CSV (1u << SD_GEN_CSV)
 #define PLANE 1u
 #define BOX 2u
+/* insert and outlet regions, the bit order of their region choices */
+#define IBOX 1u
+#define ICYL 2u
+#define IDISC 4u
 #define SSPH (1u << SD_SHAPE_SPHERE)
 #define SBOX (1u << SD_SHAPE_BOX)
 #define SCYL (1u << SD_SHAPE_CYLINDER)
@@ -73,6 +77,12 @@ const sd_scene_key sd_scene_keys[] = {
     {SD_SEC_ROOT, "outlet", SD_KT_MAP, SD_KR_ANY, NULL, ALL, 0, "", "-",
      "solver grid: a rectangular hole in the floor of the box wall; particles falling through "
      "are counted as discharged (§4.2 of [Naderi 2024])"},
+    {SD_SEC_ROOT, "insert", SD_KT_LIST, SD_KR_ANY, NULL, ALL, 0, "", "[]",
+     "solver cells: particles inserted in a region at a rate or all at once, from a mix of templates and "
+     "sphere size laws, each where its bounding sphere overlaps nothing present (seed 004 §4.1; "
+     "docs/physics.md, Insertion and outlets)"},
+    {SD_SEC_ROOT, "outlets", SD_KT_LIST, SD_KR_ANY, NULL, ALL, 0, "", "[]",
+     "solver cells: regions that remove and count the particles entering them (outlet.csv)"},
 
     {SD_SEC_SIMULATION, "dimension", SD_KT_INT, SD_KR_ANY, NULL, ALL, 0, "", "3",
      "3, or 2: the planar mode (every z, velocity z and gravity z is 0, rotation about z "
@@ -354,6 +364,77 @@ const sd_scene_key sd_scene_keys[] = {
      "[x, y] opposite corner of the hole (max > min)"},
     {SD_SEC_OUTLET, "open_at", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "s", "0",
      "time the hole opens (fill and settle first, then discharge)"},
+    {SD_SEC_INSERT, "name", SD_KT_STRING, SD_KR_NONEMPTY, NULL, ALL, 0, "", "insert0, insert1, ...",
+     "name in summary.txt and messages"},
+    {SD_SEC_INSERT, "region", SD_KT_ENUM, SD_KR_ANY, "box|cylinder|disc", ALL, ALL, "", "required",
+     "where the particles go: every bounding sphere inside the region (disc: centres on the disc)"},
+    {SD_SEC_INSERT, "min", SD_KT_VEC3, SD_KR_ANY, NULL, IBOX, IBOX, "m", "required", "box: lower corner"},
+    {SD_SEC_INSERT, "max", SD_KT_VEC3, SD_KR_ANY, NULL, IBOX, IBOX, "m", "required",
+     "box: upper corner, > min on every axis"},
+    {SD_SEC_INSERT, "center", SD_KT_VEC3, SD_KR_ANY, NULL, ICYL | IDISC, ICYL | IDISC, "m", "required",
+     "cylinder: the middle of its axis; disc: its centre"},
+    {SD_SEC_INSERT, "axis", SD_KT_VEC3, SD_KR_ANY, NULL, ICYL | IDISC, 0, "", "[0, 0, 1]",
+     "cylinder axis, disc normal (normalised)"},
+    {SD_SEC_INSERT, "radius", SD_KT_NUMBER, SD_KR_POS, NULL, ICYL | IDISC, ICYL | IDISC, "m", "required",
+     "radius of the cylinder or disc"},
+    {SD_SEC_INSERT, "length", SD_KT_NUMBER, SD_KR_POS, NULL, ICYL, ICYL, "m", "required",
+     "length of the cylinder along its axis"},
+    {SD_SEC_INSERT, "mix", SD_KT_LIST, SD_KR_ANY, NULL, ALL, ALL, "", "required",
+     "what to insert: templates and sphere size laws with their fractions (insert[].mix[])"},
+    {SD_SEC_INSERT, "mix_by", SD_KT_ENUM, SD_KR_ANY, "number|mass", ALL, 0, "", "number",
+     "whether the mix fractions count particles or mass"},
+    {SD_SEC_INSERT, "count", SD_KT_INT, SD_KR_ONE, NULL, ALL, 0, "", "-",
+     "particles to insert in all; give count or mass"},
+    {SD_SEC_INSERT, "mass", SD_KT_NUMBER, SD_KR_POS, NULL, ALL, 0, "kg", "-", "mass to insert in all"},
+    {SD_SEC_INSERT, "rate", SD_KT_NUMBER, SD_KR_POS, NULL, ALL, 0, "1/s", "all at once",
+     "particles per second from start; without rate and mass_rate all go in at start"},
+    {SD_SEC_INSERT, "mass_rate", SD_KT_NUMBER, SD_KR_POS, NULL, ALL, 0, "kg/s", "-",
+     "mass per second from start (instead of rate)"},
+    {SD_SEC_INSERT, "start", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "s", "0", "time of the first particle"},
+    {SD_SEC_INSERT, "velocity", SD_KT_VEC3, SD_KR_ANY, NULL, ALL, 0, "m/s", "[0, 0, 0]", "initial velocity"},
+    {SD_SEC_INSERT, "velocity_jitter", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "m/s", "0",
+     "uniform random velocity in [-j, j] added to each component"},
+    {SD_SEC_INSERT, "orientation", SD_KT_ENUM, SD_KR_ANY, "random|identity", ALL, 0, "", "random",
+     "orientation of shaped bodies: uniform over all rotations (about z in 2D), or the template's"},
+    {SD_SEC_INSERT, "attempts", SD_KT_INT, SD_KR_ONE, NULL, ALL, 0, "", "100",
+     "positions tried per particle before it waits for the next insertion time (or, all at once, is "
+     "given up; seed 004 §4.1)"},
+
+    {SD_SEC_INSERT_MIX, "material", SD_KT_STRING, SD_KR_NONEMPTY, NULL, ALL, ALL, "", "required",
+     "material name"},
+    {SD_SEC_INSERT_MIX, "shape", SD_KT_STRING, SD_KR_NONEMPTY, NULL, ALL, 0, "", "a sphere",
+     "name of a shape in shapes: bodies of that template (any kind); without it, spheres"},
+    {SD_SEC_INSERT_MIX, "fraction", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "", "1",
+     "share of the mix (by number or mass, mix_by); the fractions sum to 1"},
+    {SD_SEC_INSERT_MIX, "radius", SD_KT_NUM_OR_RANGE, SD_KR_ANY, NULL, ALL, 0, "m", "-",
+     "spheres: a radius, or {min, max} uniform; for normal and lognormal the truncation {min, max}"},
+    {SD_SEC_INSERT_MIX, "distribution", SD_KT_ENUM, SD_KR_ANY, "fixed|uniform|normal|lognormal|table", ALL, 0,
+     "", "from radius", "the radius law of the spheres"},
+    {SD_SEC_INSERT_MIX, "mean", SD_KT_NUMBER, SD_KR_ANY, NULL, ALL, 0, "m", "-", "normal: mean radius"},
+    {SD_SEC_INSERT_MIX, "std", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "m", "-",
+     "normal: standard deviation of the radius"},
+    {SD_SEC_INSERT_MIX, "median", SD_KT_NUMBER, SD_KR_ANY, NULL, ALL, 0, "m", "-", "lognormal: median radius"},
+    {SD_SEC_INSERT_MIX, "sigma", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "", "-",
+     "lognormal: standard deviation of ln r"},
+    {SD_SEC_INSERT_MIX, "classes", SD_KT_VEC3_LIST, SD_KR_ANY, NULL, ALL, 0, "m, m, -", "-",
+     "table: sieve classes [r_lo, r_hi, fraction], the radius uniform within a class; fractions sum to 1"},
+    {SD_SEC_INSERT_MIX, "classes_by", SD_KT_ENUM, SD_KR_ANY, "number|mass", ALL, 0, "", "number",
+     "table: whether the class fractions count particles or mass"},
+
+    {SD_SEC_OUTLETS, "name", SD_KT_STRING, SD_KR_NONEMPTY, NULL, ALL, 0, "", "outlet0, outlet1, ...",
+     "name in outlet.csv and messages"},
+    {SD_SEC_OUTLETS, "region", SD_KT_ENUM, SD_KR_ANY, "box|cylinder", ALL, ALL, "", "required",
+     "particles whose centre enters the region are removed and counted"},
+    {SD_SEC_OUTLETS, "min", SD_KT_VEC3, SD_KR_ANY, NULL, IBOX, IBOX, "m", "required", "box: lower corner"},
+    {SD_SEC_OUTLETS, "max", SD_KT_VEC3, SD_KR_ANY, NULL, IBOX, IBOX, "m", "required", "box: upper corner"},
+    {SD_SEC_OUTLETS, "center", SD_KT_VEC3, SD_KR_ANY, NULL, ICYL, ICYL, "m", "required",
+     "cylinder: the middle of its axis"},
+    {SD_SEC_OUTLETS, "axis", SD_KT_VEC3, SD_KR_ANY, NULL, ICYL, 0, "", "[0, 0, 1]", "cylinder axis"},
+    {SD_SEC_OUTLETS, "radius", SD_KT_NUMBER, SD_KR_POS, NULL, ICYL, ICYL, "m", "required", "cylinder radius"},
+    {SD_SEC_OUTLETS, "length", SD_KT_NUMBER, SD_KR_POS, NULL, ICYL, ICYL, "m", "required", "cylinder length"},
+    {SD_SEC_OUTLETS, "open_at", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "s", "0", "time the outlet opens"},
+    {SD_SEC_OUTLETS, "check_every", SD_KT_INT, SD_KR_ONE, NULL, ALL, 0, "", "1",
+     "steps between removals (a particle may pass a thin region between checks)"},
 };
 
 const size_t sd_scene_key_count = sizeof sd_scene_keys / sizeof sd_scene_keys[0];
@@ -406,6 +487,7 @@ const char sd_scene_example[] =
 static const char *const sd_section_names[SD_SEC_COUNT] = {
     "(top level)", "simulation", "materials[]", "interactions[]", "shapes[]", "particles[]",
     "particles[].spheres[]", "walls[]", "output", "pour", "outlet",
+    "insert[]", "insert[].mix[]", "outlets[]",
 };
 
 const char *sd_scene_section_name(sd_scene_section sec)
@@ -420,6 +502,10 @@ const char *sd_scene_section_kinds(sd_scene_section sec)
         return "lattice|random|list|csv";
     if (sec == SD_SEC_WALL)
         return "plane|box";
+    if (sec == SD_SEC_INSERT)
+        return "box|cylinder|disc";
+    if (sec == SD_SEC_OUTLETS)
+        return "box|cylinder";
     if (sec == SD_SEC_SHAPE)
         return SD_SHAPE_CHOICES;
     return NULL;

@@ -34,6 +34,7 @@
 #include "core/error.h"
 #include "io/scene.h"
 #include "io/scene_keys.h"
+#include "io/scene_process.h"
 #include "io/scene_sections.h"
 #include "io/yaml_read.h"
 #include "shape/shape.h" /* SD_SHAPE_POLYHEDRON, for the volume-law check */
@@ -746,7 +747,8 @@ static sd_status sd_parse_root(sd_parse *p, yaml_node_t *root)
     if ((st = sd_parse_shapes(p, v.node)))
         return st;
     /* particles may be left out when a pour fills the box (solver grid) */
-    if (sd_yaml_get(&p->y, root, SD_SEC_ROOT, "particles", "", &v) || !sd_yaml_map_get(&p->y, root, "pour"))
+    if (sd_yaml_get(&p->y, root, SD_SEC_ROOT, "particles", "", &v) ||
+        (!sd_yaml_map_get(&p->y, root, "pour") && !sd_yaml_map_get(&p->y, root, "insert")))
         if ((st = sd_parse_particles(p, v.node, sd_yaml_key_line(&p->y, root, "particles"))))
             return st;
     sd_yaml_get(&p->y, root, SD_SEC_ROOT, "walls", "", &v);
@@ -755,6 +757,8 @@ static sd_status sd_parse_root(sd_parse *p, yaml_node_t *root)
     if ((st = sd_parse_output(p, root, sd_yaml_map_get(&p->y, root, "output") ? sd_yaml_key_line(&p->y, root, "output") : 1)))
         return st;
     if ((st = sd_parse_pour(p, root)) || (st = sd_parse_outlet(p, root)))
+        return st;
+    if ((st = sd_parse_process(p, root))) /* insert: and outlets: (scene_process.c) */
         return st;
     return sd_check_laws(p);
 }
@@ -796,6 +800,7 @@ void sd_scene_free(sd_scene *s)
 {
     if (!s)
         return;
+    sd_scene_process_free(s);
     for (size_t i = 0; i < s->generator_count; ++i) {
         sd_free(s->generators[i].list);
         sd_free(s->generators[i].list_lines);

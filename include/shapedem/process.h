@@ -1,0 +1,164 @@
+/* shapedem/process.h — process set-ups of the cells solver (issue 16):
+ * insertion of particles into a region, outlets that remove and count
+ * them. Part of the public API (include after or instead of shapedem.h).
+ *
+ * Insertion (seed 004 §4.1, random sequential addition with retries):
+ * each particle takes an entry of the mix (a template, or a sphere with a
+ * size distribution), a random position in the region (its bounding
+ * sphere inside the region) and, for shaped bodies, a random orientation
+ * uniform over all rotations, from the insertion's own stream of the
+ * world's seed; a position is taken when the bounding sphere overlaps the
+ * bounding sphere of no particle present (of any insertion or generator,
+ * periodic images included), else another is tried, up to `attempts`.
+ * Particles are inserted between steps: all at once at `start`, or at a
+ * rate (particles/s or kg/s) from `start` on. What does not fit is tried
+ * again at the next insertion time (a rate) or given up (all at once);
+ * sd_world_get_insertion says how many were asked for, how many went in
+ * and why the others did not.
+ *
+ * Outlets: a region (box or cylinder) that removes every particle whose
+ * centre lies in it, from open_at on, checked every check_every steps;
+ * each counts the particles and mass it removed. At any time, particles
+ * present + removed = initial + inserted (sd_world_get_process).
+ *
+ * The grid solver has its own pour and floor outlet (sd_world_set_pour,
+ * sd_world_set_outlet); these calls are for the cells solver.
+ */
+#ifndef SHAPEDEM_PROCESS_H
+#define SHAPEDEM_PROCESS_H
+
+#include <shapedem/shapedem.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum sd_region_kind {
+    SD_REGION_NONE,     /* not given */
+    SD_REGION_BOX,      /* lo, hi */
+    SD_REGION_CYLINDER, /* center (the middle of its axis), axis, radius, length */
+    SD_REGION_DISC      /* center, axis (its normal), radius: centres on a flat disc (insertion only) */
+} sd_region_kind;
+
+typedef struct sd_region_def {
+    int kind;          /* sd_region_kind */
+    sd_v3d lo, hi;     /* m, box corners */
+    sd_v3d center;     /* m */
+    sd_v3d axis;       /* cylinder axis or disc normal, any length > 0 */
+    double radius;     /* m */
+    double length;     /* m, cylinder */
+} sd_region_def;
+
+/* Radius distribution of inserted spheres (m). */
+typedef enum sd_size_kind {
+    SD_SIZE_FIXED,     /* a */
+    SD_SIZE_UNIFORM,   /* uniform in [a, b) */
+    SD_SIZE_NORMAL,    /* mean a, standard deviation b, truncated to [min, max] */
+    SD_SIZE_LOGNORMAL, /* median a, standard deviation b of ln r, truncated to [min, max] */
+    SD_SIZE_TABLE      /* sieve classes [lo[k], hi[k]) with fractions (by number, or by mass when
+                          by_mass), the radius uniform in its class */
+} sd_size_kind;
+
+#define SD_SIZE_CLASSES_MAX 16
+
+typedef struct sd_size_def {
+    int kind;                             /* sd_size_kind */
+    double a, b;                          /* m (lognormal b: -) */
+    double min, max;                      /* m, truncation (normal, lognormal); max 0 = none */
+    int classes;                          /* table */
+    double lo[SD_SIZE_CLASSES_MAX], hi[SD_SIZE_CLASSES_MAX];
+    double fraction[SD_SIZE_CLASSES_MAX]; /* sum to 1 */
+    int by_mass;                          /* table fractions by mass */
+} sd_size_def;
+
+#define SD_INSERT_MIX_MAX 8
+
+typedef struct sd_insert_entry {
+    int shape;          /* template index (sd_world_add_shape, _shape2d, _composite), -1: a sphere */
+    int material;
+    sd_size_def size;   /* spheres: their radius */
+    double fraction;    /* share of the mix, by number or (mix_by_mass) by mass; the fractions sum to 1 */
+} sd_insert_entry;
+
+typedef struct sd_insert_def {
+    const char *name;
+    sd_region_def region;
+    int entry_count;
+    sd_insert_entry entries[SD_INSERT_MIX_MAX];
+    int mix_by_mass;
+    size_t count;       /* particles in all (or 0 and mass > 0) */
+    double mass;        /* kg in all, when count is 0 */
+    double rate;        /* particles/s from start; 0 with mass_rate 0: all at once */
+    double mass_rate;   /* kg/s from start (instead of rate) */
+    double start;       /* s */
+    sd_v3d velocity;    /* m/s, initial */
+    double velocity_jitter; /* m/s, uniform +- per component */
+    int random_orientation; /* 1 (default): shaped bodies uniform over rotations */
+    int attempts;       /* positions tried per particle (100) */
+    int cookie;
+} sd_insert_def;
+
+sd_insert_def sd_insert_def_default(void);
+sd_size_def sd_size_def_fixed(double radius);
+
+/* Adds an insertion (before or between steps); its index, or -1 with err
+ * filled: a region that is empty or not inside the periodic box, a mix
+ * whose fractions do not sum to 1, a negative or empty size range, an
+ * unknown template or material. */
+int sd_world_add_insertion(sd_world *w, const sd_insert_def *def, sd_error *err);
+
+typedef struct sd_insert_info {
+    const char *name;
+    size_t asked;        /* particles due so far (all of them once the insertion has run out) */
+    size_t inserted;
+    double mass;         /* kg inserted */
+    size_t target;       /* particles in all (count, or inserted so far for a mass target) */
+    int done;            /* inserted all it was asked for, or gave up */
+    char why[256];       /* why some did not go in, "" when all did */
+} sd_insert_info;
+
+size_t sd_world_insertion_count(const sd_world *w);
+sd_status sd_world_get_insertion(const sd_world *w, size_t k, sd_insert_info *out);
+
+typedef struct sd_region_outlet_def {
+    const char *name;
+    sd_region_def region; /* box or cylinder */
+    double open_at;       /* s */
+    long check_every;     /* steps between checks (1) */
+    int cookie;
+} sd_region_outlet_def;
+
+sd_region_outlet_def sd_region_outlet_def_default(void);
+
+/* Adds an outlet; its index or -1 with err filled. Cells solver only. */
+int sd_world_add_outlet(sd_world *w, const sd_region_outlet_def *def, sd_error *err);
+
+typedef struct sd_outlet_info {
+    const char *name;
+    size_t removed;      /* particles */
+    double mass;         /* kg */
+    int open;
+} sd_outlet_info;
+
+size_t sd_world_outlet_count(const sd_world *w);
+sd_status sd_world_get_outlet(const sd_world *w, size_t k, sd_outlet_info *out);
+
+/* The accounting: present = initial + inserted - removed at every step. */
+typedef struct sd_process_info {
+    size_t initial;      /* particles at the first step (before any insertion) */
+    size_t inserted, removed;
+    double inserted_mass, removed_mass; /* kg */
+} sd_process_info;
+
+void sd_world_get_process(const sd_world *w, sd_process_info *out);
+
+/* A loaded scene's warning for outlet k (outlets: section): why no
+ * particle can reach it, or "" (NULL past the end). */
+struct sd_scene;
+const char *sd_scene_outlet_warning(const struct sd_scene *s, size_t k);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,1019 @@
+/* process.c — insertion and outlets of the cells solver (shapedem/process.h,
+ * issue 16), run between steps.
+ *
+ * The step (the solver table's step entry) is cut into chunks that end at
+ * the next event: an outlet check or an insertion time. Chunking does not
+ * change the state (step.c: a run cut into calls of any length gives the
+ * same bits), so a world with no insertion or outlet steps exactly as
+ * before. At an event, the outlets remove first (world/remove.c), then
+ * the insertions add.
+ *
+ * Insertion is random sequential addition with retries (seed 004 §4.1):
+ * a candidate position is drawn in the region (the particle's bounding
+ * sphere inside it) and taken when that sphere overlaps no bounding
+ * sphere present — every owned particle, whichever generator or
+ * insertion made it, and their periodic images — else drawn again, up to
+ * `attempts` times. Bounding spheres make the check exact for spheres and
+ * conservative for shapes. A new particle touches nothing, so its force
+ * at this time is zero and the prepared state stays valid: the step goes
+ * on without a new prepare (which would evaluate the pairs a second time
+ * and advance their springs twice); the next step rebuilds the lists.
+ *
+ * Invariant: present = initial + inserted - removed after every event;
+ * everything random comes from each insertion's own xoshiro stream seeded
+ * from (simulation seed, insertion index), drawn in a fixed order, so the
+ * particles inserted do not depend on the thread count (the check itself
+ * is serial).
+ */
+#include "world/process.h"
+
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "core/alloc.h"
+#include "core/error.h"
+#include "world/remove.h"
+#include "world/view.h"
+#include "world/world.h"
+
+#define SD_COOKIE_PROCESS 0x5D16
+
+static const double sd_pi = 3.14159265358979323846;
+
+sd_size_def sd_size_def_fixed(double radius)
+{
+    sd_size_def s;
+    memset(&s, 0, sizeof s);
+    s.kind = SD_SIZE_FIXED;
+    s.a = radius;
+    return s;
+}
+
+sd_insert_def sd_insert_def_default(void)
+{
+    sd_insert_def d;
+    memset(&d, 0, sizeof d);
+    d.random_orientation = 1;
+    d.attempts = 100;
+    d.cookie = SD_COOKIE_PROCESS;
+    return d;
+}
+
+sd_region_outlet_def sd_region_outlet_def_default(void)
+{
+    sd_region_outlet_def d;
+    memset(&d, 0, sizeof d);
+    d.check_every = 1;
+    d.cookie = SD_COOKIE_PROCESS;
+    return d;
+}
+
+static sd_process *sd_process_of(sd_world *w, sd_error *err)
+{
+    if (!w->process) {
+        w->process = sd_calloc(1, sizeof *w->process);
+        if (!w->process)
+            sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory");
+    }
+    return w->process;
+}
+
+void sd_world_process_free(sd_world *w)
+{
+    sd_free(w->process);
+    w->process = NULL;
+}
+
+/* ---- regions ------------------------------------------------------------ */
+
+static sd_v3d sd_d3(double x, double y, double z)
+{
+    sd_v3d v = {x, y, z};
+    return v;
+}
+
+static double sd_d3_dot(sd_v3d a, sd_v3d b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+
+static sd_v3d sd_d3_unit(sd_v3d a)
+{
+    double n = sqrt(sd_d3_dot(a, a));
+    return sd_d3(a.x / n, a.y / n, a.z / n);
+}
+
+/* Two unit vectors e1, e2 with (e1, e2, a) right-handed and orthonormal. */
+static void sd_region_basis(sd_v3d a, sd_v3d *e1, sd_v3d *e2)
+{
+    sd_v3d t = fabs(a.x) < 0.9 ? sd_d3(1, 0, 0) : sd_d3(0, 1, 0);
+    double d = sd_d3_dot(t, a);
+    *e1 = sd_d3_unit(sd_d3(t.x - d * a.x, t.y - d * a.y, t.z - d * a.z));
+    *e2 = sd_d3(a.y * e1->z - a.z * e1->y, a.z * e1->x - a.x * e1->z, a.x * e1->y - a.y * e1->x);
+}
+
+static sd_status sd_region_check(const sd_world *w, const sd_region_def *r, const char *key, int outlet,
+                                 sd_error *err)
+{
+    int dim2 = w->def.dimension == 2;
+    switch (r->kind) {
+    case SD_REGION_BOX:
+        if (!(r->hi.x > r->lo.x && r->hi.y > r->lo.y && (dim2 || r->hi.z > r->lo.z)))
+            return sd_error_set(err, SD_ERR_INPUT, "", 0, key, "a box region needs max > min on every axis");
+        break;
+    case SD_REGION_CYLINDER:
+    case SD_REGION_DISC:
+        if (!(sd_d3_dot(r->axis, r->axis) > 0) || !(r->radius > 0) ||
+            (r->kind == SD_REGION_CYLINDER && !(r->length > 0)))
+            return sd_error_set(err, SD_ERR_INPUT, "", 0, key,
+                                "a %s region needs an axis, a radius > 0%s", r->kind == SD_REGION_DISC ? "disc"
+                                                                                                    : "cylinder",
+                                r->kind == SD_REGION_CYLINDER ? " and a length > 0" : "");
+        if (r->kind == SD_REGION_DISC && outlet)
+            return sd_error_set(err, SD_ERR_INPUT, "", 0, key, "an outlet is a box or a cylinder (a disc holds no "
+                                                               "centres but those on it)");
+        break;
+    default:
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, key, "expected a box, cylinder or disc region");
+    }
+    return SD_OK;
+}
+
+/* The region's bounding box. */
+static void sd_region_bbox(const sd_region_def *r, double lo[3], double hi[3])
+{
+    if (r->kind == SD_REGION_BOX) {
+        lo[0] = r->lo.x, lo[1] = r->lo.y, lo[2] = r->lo.z;
+        hi[0] = r->hi.x, hi[1] = r->hi.y, hi[2] = r->hi.z;
+        return;
+    }
+    sd_v3d a = sd_d3_unit(r->axis);
+    double ac[3] = {a.x, a.y, a.z}, c[3] = {r->center.x, r->center.y, r->center.z};
+    double half = r->kind == SD_REGION_CYLINDER ? 0.5 * r->length : 0.0;
+    for (int k = 0; k < 3; ++k) {
+        double e = fabs(ac[k]) * half + r->radius * sqrt(fmax(0.0, 1.0 - ac[k] * ac[k]));
+        lo[k] = c[k] - e;
+        hi[k] = c[k] + e;
+    }
+}
+
+/* 1 when the point x lies in the region (outlets: the particle's centre). */
+static int sd_region_contains(const sd_region_def *r, sd_v3d x)
+{
+    if (r->kind == SD_REGION_BOX)
+        return x.x >= r->lo.x && x.x <= r->hi.x && x.y >= r->lo.y && x.y <= r->hi.y && x.z >= r->lo.z &&
+               x.z <= r->hi.z;
+    sd_v3d a = sd_d3_unit(r->axis);
+    sd_v3d d = sd_d3(x.x - r->center.x, x.y - r->center.y, x.z - r->center.z);
+    double s = sd_d3_dot(d, a);
+    double q2 = sd_d3_dot(d, d) - s * s;
+    return fabs(s) <= 0.5 * r->length && q2 <= r->radius * r->radius;
+}
+
+/* A uniform random centre for a bounding radius b in the region, the
+ * sphere inside it; 0 when it cannot fit. Always the same number of draws
+ * per call for a region kind (three), so the stream does not depend on
+ * the sizes. 2D: z = 0. */
+static int sd_region_draw(const sd_region_def *r, double b, int dim2, sd_rng *rng, sd_v3d *out)
+{
+    double u1 = sd_rng_uniform(rng), u2 = sd_rng_uniform(rng), u3 = sd_rng_uniform(rng);
+    if (r->kind == SD_REGION_BOX) {
+        double ex = r->hi.x - r->lo.x - 2 * b, ey = r->hi.y - r->lo.y - 2 * b, ez = r->hi.z - r->lo.z - 2 * b;
+        if (ex < 0 || ey < 0 || (!dim2 && ez < 0))
+            return 0;
+        *out = sd_d3(r->lo.x + b + u1 * ex, r->lo.y + b + u2 * ey, dim2 ? 0.0 : r->lo.z + b + u3 * ez);
+        return 1;
+    }
+    double rr = r->radius - b;
+    double half = r->kind == SD_REGION_CYLINDER ? 0.5 * r->length - b : 0.0;
+    if (rr < 0 || half < 0)
+        return 0;
+    sd_v3d a = sd_d3_unit(r->axis), e1, e2;
+    sd_region_basis(a, &e1, &e2);
+    double rad = rr * sqrt(u1), ang = 2 * sd_pi * u2, s = (2 * u3 - 1) * half;
+    double c1 = rad * cos(ang), c2 = rad * sin(ang);
+    *out = sd_d3(r->center.x + c1 * e1.x + c2 * e2.x + s * a.x, r->center.y + c1 * e1.y + c2 * e2.y + s * a.y,
+                 r->center.z + c1 * e1.z + c2 * e2.z + s * a.z);
+    if (dim2)
+        out->z = 0.0;
+    return 1;
+}
+
+/* ---- size distributions -------------------------------------------------- */
+
+static double sd_normal_draw(sd_rng *rng)
+{
+    /* Box-Muller, one of the pair (two draws per value, always) */
+    double u1 = sd_rng_uniform(rng), u2 = sd_rng_uniform(rng);
+    return sqrt(-2.0 * log(1.0 - u1)) * cos(2 * sd_pi * u2);
+}
+
+static double sd_size_hi(const sd_size_def *s) { return s->max > 0 ? s->max : HUGE_VAL; }
+
+static sd_status sd_size_check(const sd_size_def *s, const char *key, sd_error *err)
+{
+    switch (s->kind) {
+    case SD_SIZE_FIXED:
+        if (!(s->a > 0))
+            return sd_error_set(err, SD_ERR_INPUT, "", 0, key, "expected a radius > 0, got %g (a negative or zero "
+                                "radius)", s->a);
+        break;
+    case SD_SIZE_UNIFORM:
+        if (!(s->a > 0) || !(s->b >= s->a))
+            return sd_error_set(err, SD_ERR_INPUT, "", 0, key, "expected radii 0 < min <= max, got [%g, %g]%s", s->a,
+                                s->b, s->a <= 0 ? " (a negative or zero radius)" : "");
+        break;
+    case SD_SIZE_NORMAL:
+    case SD_SIZE_LOGNORMAL:
+        if (!(s->a > 0) || !(s->b >= 0) || s->min < 0 || s->max < 0 || (s->max > 0 && !(s->max > s->min)))
+            return sd_error_set(err, SD_ERR_INPUT, "", 0, key,
+                                "expected a %s > 0, a spread >= 0 and truncation 0 <= min < max, got %g, %g, [%g, %g]%s",
+                                s->kind == SD_SIZE_NORMAL ? "mean radius" : "median radius", s->a, s->b, s->min,
+                                s->max, (s->a <= 0 || s->min < 0) ? " (a negative radius)" : "");
+        if (s->kind == SD_SIZE_NORMAL && s->b > 0) {
+            /* the truncated range must hold some of the law (redraws end) */
+            double lo = fmax(s->min, 0.0), hi = sd_size_hi(s);
+            double plo = 0.5 * erfc(-(lo - s->a) / (s->b * sqrt(2.0)));
+            double phi = 0.5 * erfc(-(hi - s->a) / (s->b * sqrt(2.0)));
+            if (!(phi - plo > 1e-3))
+                return sd_error_set(err, SD_ERR_INPUT, "", 0, key,
+                                    "the truncation [%g, %g] holds less than 0.1 %% of the normal law", lo, hi);
+        }
+        break;
+    case SD_SIZE_TABLE: {
+        if (s->classes < 1 || s->classes > SD_SIZE_CLASSES_MAX)
+            return sd_error_set(err, SD_ERR_INPUT, "", 0, key, "expected 1 to %d size classes, got %d",
+                                SD_SIZE_CLASSES_MAX, s->classes);
+        double sum = 0;
+        for (int c = 0; c < s->classes; ++c) {
+            if (!(s->lo[c] > 0) || !(s->hi[c] >= s->lo[c]))
+                return sd_error_set(err, SD_ERR_INPUT, "", 0, key,
+                                    "size class %d: expected radii 0 < lo <= hi, got [%g, %g]%s", c, s->lo[c],
+                                    s->hi[c], s->lo[c] <= 0 ? " (a negative or zero radius)" : "");
+            if (!(s->fraction[c] >= 0))
+                return sd_error_set(err, SD_ERR_INPUT, "", 0, key, "size class %d: expected a fraction >= 0, got %g",
+                                    c, s->fraction[c]);
+            sum += s->fraction[c];
+        }
+        if (!(fabs(sum - 1.0) <= 1e-6))
+            return sd_error_set(err, SD_ERR_INPUT, "", 0, key, "the size classes' fractions sum to %.9g, not 1",
+                                sum);
+        break;
+    }
+    default:
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, key, "unknown size distribution %d", s->kind);
+    }
+    return SD_OK;
+}
+
+/* E[r^d] of the distribution (d = 3: volume; 2 in the planar mode), by
+ * midpoint quadrature of the density for the normal laws. */
+static double sd_size_moment(const sd_size_def *s, int d)
+{
+    switch (s->kind) {
+    case SD_SIZE_FIXED: return pow(s->a, d);
+    case SD_SIZE_UNIFORM:
+        return s->b > s->a ? (pow(s->b, d + 1) - pow(s->a, d + 1)) / ((d + 1) * (s->b - s->a)) : pow(s->a, d);
+    case SD_SIZE_TABLE: {
+        double sum = 0, norm = 0;
+        for (int c = 0; c < s->classes; ++c) {
+            sd_size_def u = sd_size_def_fixed(s->lo[c]);
+            u.kind = SD_SIZE_UNIFORM;
+            u.b = s->hi[c];
+            /* number fractions (the mass fractions turned to numbers) */
+            double m = sd_size_moment(&u, d), f = s->by_mass ? s->fraction[c] / m : s->fraction[c];
+            sum += f * m;
+            norm += f;
+        }
+        return sum / norm;
+    }
+    default: {
+        if (!(s->b > 0))
+            return pow(s->a, d);
+        int ln = s->kind == SD_SIZE_LOGNORMAL;
+        double mu = ln ? log(s->a) : s->a, sg = s->b;
+        double lo = mu - 8 * sg, hi = mu + 8 * sg;
+        double tlo = fmax(s->min, 0.0), thi = sd_size_hi(s);
+        if (ln) {
+            lo = fmax(lo, tlo > 0 ? log(tlo) : lo);
+            hi = fmin(hi, isfinite(thi) ? log(thi) : hi);
+        } else {
+            lo = fmax(lo, tlo);
+            hi = fmin(hi, thi);
+        }
+        const int n = 4000;
+        double sum = 0, norm = 0, h = (hi - lo) / n;
+        for (int k = 0; k < n; ++k) {
+            double y = lo + (k + 0.5) * h, z = (y - mu) / sg, pdf = exp(-0.5 * z * z);
+            double r = ln ? exp(y) : y;
+            sum += pdf * pow(r, d);
+            norm += pdf;
+        }
+        return sum / norm;
+    }
+    }
+}
+
+static double sd_size_draw(const sd_insertion *ins, int e, sd_rng *rng)
+{
+    const sd_size_def *s = &ins->def.entries[e].size;
+    switch (s->kind) {
+    case SD_SIZE_FIXED: (void)sd_rng_uniform(rng); return s->a;
+    case SD_SIZE_UNIFORM: return sd_rng_range(rng, s->a, s->b);
+    case SD_SIZE_TABLE: {
+        double u = sd_rng_uniform(rng);
+        int c = 0;
+        while (c + 1 < s->classes && u >= ins->class_cum[e][c])
+            ++c;
+        return sd_rng_range(rng, s->lo[c], s->hi[c]);
+    }
+    default: {
+        double lo = fmax(s->min, 0.0), hi = sd_size_hi(s);
+        for (int k = 0; k < 100000; ++k) {
+            double z = sd_normal_draw(rng);
+            double r = s->kind == SD_SIZE_LOGNORMAL ? s->a * exp(s->b * z) : s->a + s->b * z;
+            if (r > 0 && r >= lo && r <= hi)
+                return r;
+        }
+        return s->a; /* unreachable for a range that holds 0.1 % of the law (sd_size_check) */
+    }
+    }
+}
+
+/* ---- adding an insertion -------------------------------------------------- */
+
+static double sd_material_density(const sd_world *w, int m) { return w->materials[m].def.density; }
+
+int sd_world_add_insertion(sd_world *w, const sd_insert_def *d, sd_error *err)
+{
+    if (!d || d->cookie != SD_COOKIE_PROCESS) {
+        sd_error_set(err, SD_ERR_INPUT, "", 0, "insert", "insertion def not made by sd_insert_def_default");
+        return -1;
+    }
+    if (w->solver != &sd_solver_cells) {
+        sd_error_set(err, SD_ERR_INPUT, "", 0, "insert",
+                     "insertion runs on the cells solver; the grid solver pours with its pour section");
+        return -1;
+    }
+    if (sd_region_check(w, &d->region, "insert.region", 0, err) != SD_OK)
+        return -1;
+    if (d->entry_count < 1 || d->entry_count > SD_INSERT_MIX_MAX) {
+        sd_error_set(err, SD_ERR_INPUT, "", 0, "insert.mix", "expected 1 to %d entries in the mix, got %d",
+                     SD_INSERT_MIX_MAX, d->entry_count);
+        return -1;
+    }
+    if (!(d->count > 0 || d->mass > 0) || d->mass < 0 || d->rate < 0 || d->mass_rate < 0 ||
+        (d->rate > 0 && d->mass_rate > 0) || !(d->start >= 0) || d->attempts < 1 || !(d->velocity_jitter >= 0)) {
+        sd_error_set(err, SD_ERR_INPUT, "", 0, "insert",
+                     "an insertion needs a count or a mass > 0, at most one of rate and mass_rate (>= 0), a start "
+                     ">= 0 s, attempts >= 1 and a velocity jitter >= 0");
+        return -1;
+    }
+    /* the region must lie inside the domain where one is given */
+    int has_domain = w->def.domain_hi.x > w->def.domain_lo.x || w->def.domain_hi.y > w->def.domain_lo.y ||
+                     w->def.domain_hi.z > w->def.domain_lo.z;
+    if (has_domain) {
+        double lo[3], hi[3];
+        sd_region_bbox(&d->region, lo, hi);
+        const double dl[3] = {w->def.domain_lo.x, w->def.domain_lo.y, w->def.domain_lo.z};
+        const double dh[3] = {w->def.domain_hi.x, w->def.domain_hi.y, w->def.domain_hi.z};
+        for (int a = 0; a < (w->def.dimension == 2 ? 2 : 3); ++a)
+            if (dh[a] > dl[a] && (lo[a] < dl[a] || hi[a] > dh[a])) {
+                sd_error_set(err, SD_ERR_INPUT, "", 0, "insert.region",
+                             "the insertion region [%g, %g] on %c lies outside the domain [%g, %g]", lo[a], hi[a],
+                             'x' + a, dl[a], dh[a]);
+                return -1;
+            }
+    }
+    sd_process *pr = sd_process_of(w, err);
+    if (!pr)
+        return -1;
+    if (pr->insertion_count >= SD_INSERTIONS_MAX) {
+        sd_error_set(err, SD_ERR_INPUT, "", 0, "insert", "at most %d insertions", SD_INSERTIONS_MAX);
+        return -1;
+    }
+    sd_insertion ins;
+    memset(&ins, 0, sizeof ins);
+    ins.def = *d;
+    ins.def.name = NULL;
+    snprintf(ins.name, sizeof ins.name, "%s", d->name && d->name[0] ? d->name : "insert");
+    double sum = 0, weight[SD_INSERT_MIX_MAX];
+    int dpow = w->def.dimension == 2 ? 2 : 3;
+    double vol_c = w->def.dimension == 2 ? sd_pi : 4.0 / 3.0 * sd_pi;
+    for (int e = 0; e < d->entry_count; ++e) {
+        const sd_insert_entry *en = &d->entries[e];
+        if (en->material < 0 || (size_t)en->material >= w->material_count) {
+            sd_error_set(err, SD_ERR_INPUT, "", 0, "insert.mix.material", "entry %d: unknown material index %d", e,
+                         en->material);
+            return -1;
+        }
+        double mean_mass;
+        if (en->shape >= 0) {
+            sd_shape_info si;
+            if (sd_world_get_shape(w, (size_t)en->shape, &si) != SD_OK) {
+                sd_error_set(err, SD_ERR_INPUT, "", 0, "insert.mix.shape", "entry %d: unknown template index %d", e,
+                             en->shape);
+                return -1;
+            }
+            ins.bound[e] = si.bounding_radius;
+            ins.body_mass[e] = sd_material_density(w, en->material) * si.volume;
+            mean_mass = ins.body_mass[e];
+        } else {
+            if (sd_size_check(&en->size, "insert.mix.radius", err) != SD_OK)
+                return -1;
+            if (en->size.kind == SD_SIZE_TABLE) {
+                double c = 0, norm = 0, f[SD_SIZE_CLASSES_MAX];
+                for (int k = 0; k < en->size.classes; ++k) {
+                    sd_size_def u = sd_size_def_fixed(en->size.lo[k]);
+                    u.kind = SD_SIZE_UNIFORM;
+                    u.b = en->size.hi[k];
+                    f[k] = en->size.by_mass ? en->size.fraction[k] / sd_size_moment(&u, dpow) : en->size.fraction[k];
+                    norm += f[k];
+                }
+                for (int k = 0; k < en->size.classes; ++k) {
+                    c += f[k] / norm;
+                    ins.class_cum[e][k] = c;
+                }
+            }
+            mean_mass = sd_material_density(w, en->material) * vol_c * sd_size_moment(&en->size, dpow);
+        }
+        if (!(en->fraction >= 0)) {
+            sd_error_set(err, SD_ERR_INPUT, "", 0, "insert.mix.fraction", "entry %d: expected a fraction >= 0, got %g",
+                         e, en->fraction);
+            return -1;
+        }
+        sum += en->fraction;
+        /* a mix by mass turned into probabilities by number */
+        weight[e] = d->mix_by_mass ? en->fraction / mean_mass : en->fraction;
+    }
+    if (!(fabs(sum - 1.0) <= 1e-6)) {
+        sd_error_set(err, SD_ERR_INPUT, "", 0, "insert.mix", "the mix fractions sum to %.9g, not 1", sum);
+        return -1;
+    }
+    double wsum = 0, c = 0;
+    for (int e = 0; e < d->entry_count; ++e)
+        wsum += weight[e];
+    for (int e = 0; e < d->entry_count; ++e) {
+        c += weight[e] / wsum;
+        ins.entry_cum[e] = c;
+    }
+    size_t index = pr->insertion_count;
+    uint64_t x = w->def.seed ^ (0xA0761D6478BD642Full * (uint64_t)(index + 1));
+    ins.rng = sd_rng_seed(sd_rng_splitmix(&x));
+    ins.next_step = (long)ceil(d->start / (double)w->dt - 1e-9);
+    if (ins.next_step < w->step)
+        ins.next_step = w->step;
+    pr->insertions[pr->insertion_count++] = ins;
+    return (int)index;
+}
+
+size_t sd_world_insertion_count(const sd_world *w) { return w->process ? w->process->insertion_count : 0; }
+
+sd_status sd_world_get_insertion(const sd_world *w, size_t k, sd_insert_info *out)
+{
+    memset(out, 0, sizeof *out);
+    if (!w->process || k >= w->process->insertion_count)
+        return SD_ERR_INPUT;
+    const sd_insertion *ins = &w->process->insertions[k];
+    out->name = ins->name;
+    out->asked = ins->asked;
+    out->inserted = ins->inserted;
+    out->mass = ins->mass;
+    out->target = ins->def.count ? ins->def.count : ins->inserted;
+    out->done = ins->done;
+    snprintf(out->why, sizeof out->why, "%s", ins->why);
+    return SD_OK;
+}
+
+/* ---- outlets --------------------------------------------------------------- */
+
+int sd_world_add_outlet(sd_world *w, const sd_region_outlet_def *d, sd_error *err)
+{
+    if (!d || d->cookie != SD_COOKIE_PROCESS) {
+        sd_error_set(err, SD_ERR_INPUT, "", 0, "outlets", "outlet def not made by sd_region_outlet_def_default");
+        return -1;
+    }
+    if (w->solver != &sd_solver_cells) {
+        sd_error_set(err, SD_ERR_INPUT, "", 0, "outlets",
+                     "region outlets run on the cells solver; the grid solver has its floor outlet (outlet:)");
+        return -1;
+    }
+    if (sd_region_check(w, &d->region, "outlets.region", 1, err) != SD_OK)
+        return -1;
+    if (!(d->open_at >= 0) || !isfinite(d->open_at) || d->check_every < 1) {
+        sd_error_set(err, SD_ERR_INPUT, "", 0, "outlets", "an outlet needs open_at >= 0 s and check_every >= 1 step");
+        return -1;
+    }
+    sd_process *pr = sd_process_of(w, err);
+    if (!pr)
+        return -1;
+    if (pr->outlet_count >= SD_OUTLETS_MAX) {
+        sd_error_set(err, SD_ERR_INPUT, "", 0, "outlets", "at most %d outlets", SD_OUTLETS_MAX);
+        return -1;
+    }
+    sd_outlet_state *o = &pr->outlets[pr->outlet_count];
+    memset(o, 0, sizeof *o);
+    o->def = *d;
+    o->def.name = NULL;
+    snprintf(o->name, sizeof o->name, "%s", d->name && d->name[0] ? d->name : "outlet");
+    o->next_step = w->step;
+    return (int)pr->outlet_count++;
+}
+
+size_t sd_world_outlet_count(const sd_world *w) { return w->process ? w->process->outlet_count : 0; }
+
+sd_status sd_world_get_outlet(const sd_world *w, size_t k, sd_outlet_info *out)
+{
+    memset(out, 0, sizeof *out);
+    if (!w->process || k >= w->process->outlet_count)
+        return SD_ERR_INPUT;
+    const sd_outlet_state *o = &w->process->outlets[k];
+    out->name = o->name;
+    out->removed = o->removed;
+    out->mass = o->mass;
+    out->open = w->time >= o->def.open_at - 0.5 * (double)w->dt;
+    return SD_OK;
+}
+
+void sd_world_get_process(const sd_world *w, sd_process_info *out)
+{
+    memset(out, 0, sizeof *out);
+    const sd_process *pr = w->process;
+    if (!pr) {
+        out->initial = w->p.n;
+        return;
+    }
+    out->initial = pr->started ? pr->initial : w->p.n;
+    out->inserted = pr->inserted;
+    out->removed = pr->removed;
+    out->inserted_mass = pr->inserted_mass;
+    out->removed_mass = pr->removed_mass;
+}
+
+typedef struct sd_outlet_ctx {
+    const sd_region_def *region;
+} sd_outlet_ctx;
+
+static int sd_outlet_pred(const sd_world *w, size_t k, void *ctx)
+{
+    const sd_outlet_ctx *c = ctx;
+    sd_v3d x = {(double)w->p.x[k].x, (double)w->p.x[k].y, (double)w->p.x[k].z};
+    return sd_region_contains(c->region, x);
+}
+
+static sd_status sd_outlets_run(sd_world *w, sd_error *err)
+{
+    sd_process *pr = w->process;
+    for (size_t k = 0; k < pr->outlet_count; ++k) {
+        sd_outlet_state *o = &pr->outlets[k];
+        if (w->step < o->next_step)
+            continue;
+        long open_step = (long)ceil(o->def.open_at / (double)w->dt - 1e-9);
+        if (w->step >= open_step) {
+            sd_outlet_ctx ctx = {&o->def.region};
+            sd_remove_result res;
+            sd_status st = sd_world_remove_if(w, sd_outlet_pred, &ctx, &res, err);
+            if (st != SD_OK)
+                return st;
+            o->removed += res.count;
+            o->mass += res.mass;
+            pr->removed += res.count;
+            pr->removed_mass += res.mass;
+        }
+        long next = w->step + 1;
+        if (next < open_step)
+            next = open_step;
+        long ce = o->def.check_every;
+        o->next_step = ((next + ce - 1) / ce) * ce;
+    }
+    return SD_OK;
+}
+
+/* ---- placing -------------------------------------------------------------- */
+
+/* The spheres a new particle must not overlap: the owned particles (their
+ * bounding spheres), their periodic images, and those placed in this
+ * batch, in a uniform grid of cells over the region's box. */
+typedef struct sd_place_grid {
+    double lo[3], cell;
+    int64_t nc[3];
+    size_t n, cap;
+    sd_v3d *x;
+    double *r;
+    size_t *next;   /* per sphere */
+    size_t *head;   /* per cell */
+} sd_place_grid;
+
+#define SD_PLACE_NONE ((size_t)-1)
+
+static void sd_place_grid_free(sd_place_grid *g)
+{
+    sd_free(g->x);
+    sd_free(g->r);
+    sd_free(g->next);
+    sd_free(g->head);
+    memset(g, 0, sizeof *g);
+}
+
+static int64_t sd_place_cell(const sd_place_grid *g, sd_v3d x, int64_t c[3])
+{
+    const double xs[3] = {x.x, x.y, x.z};
+    for (int a = 0; a < 3; ++a) {
+        double f = floor((xs[a] - g->lo[a]) / g->cell);
+        if (f < 0 || f >= (double)g->nc[a])
+            return -1;
+        c[a] = (int64_t)f;
+    }
+    return (c[2] * g->nc[1] + c[1]) * g->nc[0] + c[0];
+}
+
+static int sd_place_push(sd_place_grid *g, sd_v3d x, double r)
+{
+    int64_t c[3];
+    int64_t cell = sd_place_cell(g, x, c);
+    if (cell < 0)
+        return 1; /* too far from the region to matter */
+    if (g->n == g->cap) {
+        size_t cap = g->cap ? 2 * g->cap : 1024;
+        sd_v3d *nx = sd_realloc(g->x, cap * sizeof *nx);
+        if (!nx)
+            return 0;
+        g->x = nx;
+        double *nr = sd_realloc(g->r, cap * sizeof *nr);
+        if (!nr)
+            return 0;
+        g->r = nr;
+        size_t *nn = sd_realloc(g->next, cap * sizeof *nn);
+        if (!nn)
+            return 0;
+        g->next = nn;
+        g->cap = cap;
+    }
+    g->x[g->n] = x;
+    g->r[g->n] = r;
+    g->next[g->n] = g->head[cell];
+    g->head[cell] = g->n;
+    g->n++;
+    return 1;
+}
+
+static int sd_place_free_spot(const sd_place_grid *g, sd_v3d x, double r)
+{
+    int64_t c[3];
+    if (sd_place_cell(g, x, c) < 0)
+        return 1;
+    for (int64_t dz = -1; dz <= 1; ++dz)
+        for (int64_t dy = -1; dy <= 1; ++dy)
+            for (int64_t dx = -1; dx <= 1; ++dx) {
+                int64_t cx = c[0] + dx, cy = c[1] + dy, cz = c[2] + dz;
+                if (cx < 0 || cy < 0 || cz < 0 || cx >= g->nc[0] || cy >= g->nc[1] || cz >= g->nc[2])
+                    continue;
+                for (size_t k = g->head[(cz * g->nc[1] + cy) * g->nc[0] + cx]; k != SD_PLACE_NONE; k = g->next[k]) {
+                    double ex = g->x[k].x - x.x, ey = g->x[k].y - x.y, ez = g->x[k].z - x.z, rs = g->r[k] + r;
+                    if (ex * ex + ey * ey + ez * ez < rs * rs)
+                        return 0;
+                }
+            }
+    return 1;
+}
+
+/* Builds the grid of what is present near the region; rnew is the largest
+ * bounding radius the batch may place. */
+static sd_status sd_place_grid_build(const sd_world *w, const sd_region_def *reg, double rnew, sd_place_grid *g)
+{
+    memset(g, 0, sizeof *g);
+    const sd_particles *p = &w->p;
+    double rmax = rnew;
+    for (size_t k = 0; k < p->n; ++k)
+        rmax = fmax(rmax, (double)p->radius[k]);
+    double lo[3], hi[3];
+    sd_region_bbox(reg, lo, hi);
+    if (w->def.dimension == 2)
+        lo[2] = hi[2] = 0.0;
+    g->cell = 2.0 * rmax;
+    double margin = 2.0 * rmax; /* a neighbour's centre lies within r_new + r_j of the region */
+    size_t cells = 0;
+    for (;;) {
+        cells = 1;
+        for (int a = 0; a < 3; ++a) {
+            g->lo[a] = lo[a] - margin;
+            g->nc[a] = (int64_t)ceil((hi[a] - lo[a] + 2 * margin) / g->cell) + 1;
+            cells *= (size_t)g->nc[a];
+        }
+        if (cells <= ((size_t)1 << 22))
+            break;
+        g->cell *= 2.0; /* coarser cells for a large region of small grains: still correct */
+    }
+    g->head = sd_malloc(cells * sizeof *g->head);
+    if (!g->head)
+        return SD_ERR_MEMORY;
+    for (size_t c = 0; c < cells; ++c)
+        g->head[c] = SD_PLACE_NONE;
+    unsigned per = w->def.periodic;
+    const double dl[3] = {w->def.domain_lo.x, w->def.domain_lo.y, w->def.domain_lo.z};
+    const double dh[3] = {w->def.domain_hi.x, w->def.domain_hi.y, w->def.domain_hi.z};
+    for (size_t k = 0; k < p->n; ++k) {
+        sd_v3d x = {(double)p->x[k].x, (double)p->x[k].y, (double)p->x[k].z};
+        double r = (double)p->radius[k];
+        /* the particle and its images one period away on each periodic axis */
+        int lim[3];
+        for (int a = 0; a < 3; ++a)
+            lim[a] = (per >> a) & 1u;
+        for (int ix = -lim[0]; ix <= lim[0]; ++ix)
+            for (int iy = -lim[1]; iy <= lim[1]; ++iy)
+                for (int iz = -lim[2]; iz <= lim[2]; ++iz) {
+                    sd_v3d y = {x.x + ix * (dh[0] - dl[0]), x.y + iy * (dh[1] - dl[1]), x.z + iz * (dh[2] - dl[2])};
+                    if (!sd_place_push(g, y, r))
+                        return SD_ERR_MEMORY;
+                }
+    }
+    return SD_OK;
+}
+
+/* Shoemake's uniform rotation (as io/scene_gen.c); about z in 2D. Always
+ * three draws. */
+static void sd_place_orient(sd_rng *rng, int random, int dim2, double q[4])
+{
+    double u1 = sd_rng_uniform(rng), u2 = sd_rng_uniform(rng), u3 = sd_rng_uniform(rng);
+    if (!random) {
+        q[0] = 1, q[1] = q[2] = q[3] = 0;
+    } else if (dim2) {
+        q[0] = cos(sd_pi * u1), q[1] = q[2] = 0, q[3] = sin(sd_pi * u1);
+    } else {
+        double a = sqrt(1.0 - u1), b = sqrt(u1);
+        q[0] = b * cos(2 * sd_pi * u3);
+        q[1] = a * sin(2 * sd_pi * u2);
+        q[2] = a * cos(2 * sd_pi * u2);
+        q[3] = b * sin(2 * sd_pi * u3);
+    }
+}
+
+/* How many particles insertion ins owes at step s (rate, mass rate or all
+ * at once); for a mass target, 1 while mass is owed. */
+static size_t sd_insert_due(const sd_world *w, const sd_insertion *ins, long s)
+{
+    const sd_insert_def *d = &ins->def;
+    double t = (double)s * (double)w->dt, dt = (double)w->dt;
+    if (t < d->start - 0.5 * dt)
+        return ins->inserted;
+    if (d->count > 0) {
+        double due = d->rate > 0 ? floor((t - d->start) * d->rate + 1e-9) + 1.0 : (double)d->count;
+        if (d->mass_rate > 0) /* a count at a mass rate: one more each time the mass falls behind */
+            due = (double)ins->inserted + (ins->mass <= d->mass_rate * (t - d->start) + 1e-15 ? 1.0 : 0.0);
+        return due < (double)d->count ? (size_t)due : d->count;
+    }
+    /* a mass target */
+    if (ins->mass >= d->mass)
+        return ins->inserted;
+    if (d->mass_rate > 0)
+        return ins->inserted + (ins->mass <= d->mass_rate * (t - d->start) + 1e-15 ? 1u : 0u);
+    if (d->rate > 0) {
+        double due = floor((t - d->start) * d->rate + 1e-9) + 1.0;
+        return due > (double)ins->inserted ? ins->inserted + 1 : ins->inserted;
+    }
+    return ins->inserted + 1; /* all at once: until the mass is in */
+}
+
+/* Places what insertion ins owes now; records why some did not fit. */
+static sd_status sd_insert_run(sd_world *w, sd_insertion *ins, sd_error *err)
+{
+    sd_process *pr = w->process;
+    const sd_insert_def *d = &ins->def;
+    int dim2 = w->def.dimension == 2;
+    int all_at_once = !(d->rate > 0) && !(d->mass_rate > 0);
+    double rnew = 0;
+    for (int e = 0; e < d->entry_count; ++e) {
+        const sd_insert_entry *en = &d->entries[e];
+        double b = en->shape >= 0 ? ins->bound[e] : 0;
+        if (en->shape < 0) {
+            const sd_size_def *s = &en->size;
+            b = s->kind == SD_SIZE_FIXED ? s->a : s->kind == SD_SIZE_UNIFORM ? s->b : 0;
+            if (s->kind == SD_SIZE_TABLE)
+                for (int c = 0; c < s->classes; ++c)
+                    b = fmax(b, s->hi[c]);
+            if (s->kind == SD_SIZE_NORMAL || s->kind == SD_SIZE_LOGNORMAL)
+                b = s->max > 0 ? s->max : (s->kind == SD_SIZE_NORMAL ? s->a + 8 * s->b : s->a * exp(8 * s->b));
+        }
+        rnew = fmax(rnew, b);
+    }
+    sd_place_grid g;
+    sd_status st = sd_place_grid_build(w, &d->region, rnew, &g);
+    if (st != SD_OK) {
+        sd_place_grid_free(&g);
+        return sd_error_set(err, st, "", 0, "", "out of memory for the insertion check");
+    }
+    int was_prepared = w->prepared;
+    double rmin_new = HUGE_VAL;
+    size_t failed = 0, before = ins->inserted;
+    for (;;) {
+        size_t due = sd_insert_due(w, ins, w->step);
+        if (ins->inserted + failed >= due)
+            break;
+        /* one particle: its entry, size, orientation and velocity, then positions */
+        double u = sd_rng_uniform(&ins->rng);
+        int e = 0;
+        while (e + 1 < d->entry_count && u >= ins->entry_cum[e])
+            ++e;
+        const sd_insert_entry *en = &d->entries[e];
+        double r = sd_size_draw(ins, e, &ins->rng);
+        double b = en->shape >= 0 ? ins->bound[e] : r;
+        double q[4];
+        sd_place_orient(&ins->rng, d->random_orientation, dim2, q);
+        sd_v3d v = d->velocity;
+        if (d->velocity_jitter > 0) {
+            double j = d->velocity_jitter;
+            v.x += sd_rng_range(&ins->rng, -j, j);
+            v.y += sd_rng_range(&ins->rng, -j, j);
+            double jz = sd_rng_range(&ins->rng, -j, j);
+            if (!dim2)
+                v.z += jz;
+        }
+        sd_v3d x;
+        int ok = 0, fits = 1;
+        for (int a = 0; a < d->attempts && !ok; ++a) {
+            if (!sd_region_draw(&d->region, b, dim2, &ins->rng, &x)) {
+                fits = 0;
+                break;
+            }
+            ok = sd_place_free_spot(&g, x, b);
+        }
+        if (!ok) {
+            ++failed;
+            snprintf(ins->why, sizeof ins->why,
+                     fits ? "at t = %.6g s a particle of bounding radius %g m found no free spot in %d attempts "
+                            "(the region is full)"
+                          : "at t = %.6g s a particle of bounding radius %g m is larger than the region",
+                     w->time, b, d->attempts);
+            continue; /* the loop ends once the due count is tried */
+        }
+        sd_status ast;
+        if (en->shape >= 0) {
+            sd_body_def bd;
+            memset(&bd, 0, sizeof bd);
+            bd.position = x;
+            bd.velocity = v;
+            memcpy(bd.orientation, q, sizeof q);
+            bd.shape = en->shape;
+            bd.material = en->material;
+            ast = sd_world_add_bodies(w, 1, &bd, err);
+        } else {
+            sd_sphere_def sp;
+            memset(&sp, 0, sizeof sp);
+            sp.position = x;
+            sp.velocity = v;
+            sp.radius = r;
+            sp.material = en->material;
+            ast = sd_world_add_spheres(w, 1, &sp, err);
+        }
+        if (ast != SD_OK) {
+            sd_place_grid_free(&g);
+            return ast;
+        }
+        double m = 1.0 / (double)w->p.inv_mass[w->p.n - 1];
+        ins->inserted++;
+        ins->mass += m;
+        pr->inserted++;
+        pr->inserted_mass += m;
+        rmin_new = fmin(rmin_new, (double)w->p.radius[w->p.n - 1]);
+        if (!sd_place_push(&g, x, b)) {
+            sd_place_grid_free(&g);
+            return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory for the insertion check");
+        }
+        /* a mass target: stop once the mass is in */
+        if (d->count == 0 && ins->mass >= d->mass)
+            break;
+    }
+    sd_place_grid_free(&g);
+    ins->asked = ins->inserted + failed;
+    if (d->count > 0 && ins->asked < ins->inserted)
+        ins->asked = ins->inserted;
+    /* when it is done, and when it runs next */
+    int complete = d->count > 0 ? ins->inserted >= d->count : ins->mass >= d->mass;
+    if (complete || all_at_once) {
+        ins->done = 1;
+        if (!complete && d->count > 0)
+            ins->asked = d->count;
+        ins->next_step = -1;
+    } else if (d->rate > 0) {
+        /* the next particle's time; the ones that did not fit are tried again then */
+        double tn = d->start + (double)ins->inserted / d->rate;
+        long sn = (long)ceil(tn / (double)w->dt - 1e-9);
+        if (failed)
+            sn = w->step + (long)ceil(1.0 / (d->rate * (double)w->dt)); /* one insertion period later */
+        ins->next_step = sn > w->step ? sn : w->step + 1;
+    } else {
+        double tn = d->start + ins->mass / d->mass_rate;
+        long sn = (long)ceil(tn / (double)w->dt - 1e-9);
+        if (failed)
+            sn = w->step + 1 + (long)ceil(ins->mass / fmax(1.0, (double)ins->inserted) / d->mass_rate / (double)w->dt);
+        ins->next_step = sn > w->step ? sn : w->step + 1;
+    }
+    if (ins->inserted > before && was_prepared) {
+        /* the new particles touch nothing: the prepared state holds (see
+         * the note at the top); the views take the new count, and a world
+         * prepared empty gets the skin prepare would have given it */
+        w->prepared = 1;
+        if (w->skin == 0 && !(w->def.skin > 0))
+            w->skin = (sd_real)(0.2 * rmin_new);
+        st = sd_world_check_params(w, err);
+        if (st != SD_OK)
+            return st;
+        if (sd_world_views(w) != SD_OK)
+            return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory for the views");
+    }
+    return SD_OK;
+}
+
+/* ---- the step ---------------------------------------------------------------- */
+
+static sd_status sd_process_events(sd_world *w, sd_error *err)
+{
+    sd_process *pr = w->process;
+    sd_status st = sd_outlets_run(w, err);
+    if (st != SD_OK)
+        return st;
+    for (size_t k = 0; k < pr->insertion_count; ++k) {
+        sd_insertion *ins = &pr->insertions[k];
+        if (ins->done || w->step < ins->next_step)
+            continue;
+        st = sd_insert_run(w, ins, err);
+        if (st != SD_OK)
+            return st;
+    }
+    return SD_OK;
+}
+
+/* Steps to the next event from now (at least 1). */
+static long sd_process_next(const sd_world *w)
+{
+    const sd_process *pr = w->process;
+    long next = LONG_MAX;
+    for (size_t k = 0; k < pr->outlet_count; ++k)
+        if (pr->outlets[k].next_step < next)
+            next = pr->outlets[k].next_step;
+    for (size_t k = 0; k < pr->insertion_count; ++k)
+        if (!pr->insertions[k].done && pr->insertions[k].next_step < next)
+            next = pr->insertions[k].next_step;
+    return next <= w->step ? 1 : next - w->step;
+}
+
+sd_status sd_cells_process_step(sd_world *w, long nsteps, sd_error *err)
+{
+    sd_process *pr = w->process;
+    if (!pr || (pr->insertion_count == 0 && pr->outlet_count == 0))
+        return sd_cells_step(w, nsteps, err);
+    if (!pr->started) {
+        pr->started = 1;
+        pr->initial = w->p.n;
+    }
+    long done = 0;
+    sd_status st = SD_OK;
+    /* the events of the current step (an insertion at start 0 fills the
+     * world before its first prepare) */
+    if ((st = sd_process_events(w, err)) != SD_OK)
+        return st;
+    while (done < nsteps) {
+        long chunk = sd_process_next(w);
+        if (chunk > nsteps - done)
+            chunk = nsteps - done;
+        if ((st = sd_cells_step(w, chunk, err)) != SD_OK)
+            return st;
+        done += chunk;
+        if ((st = sd_process_events(w, err)) != SD_OK)
+            return st;
+    }
+    if (nsteps == 0 && !w->prepared)
+        return sd_cells_step(w, 0, err);
+    return SD_OK;
+}
+
+/* summary.txt and stats.csv: the accounting (the run's asked-for and
+ * inserted per insertion, removed per outlet). */
+size_t sd_cells_process_info(const sd_world *w, sd_solver_item *items, size_t max)
+{
+    const sd_process *pr = w->process;
+    if (!pr || max < 4)
+        return 0;
+    size_t n = 0;
+    sd_solver_item it;
+    memset(&it, 0, sizeof it);
+    it.n = 1;
+    it.integer = 1;
+    it.sep = " ";
+    it.key = "particles_initial";
+    it.v[0] = (double)(pr->started ? pr->initial : w->p.n);
+    items[n++] = it;
+    it.key = "particles_inserted";
+    it.column = "inserted";
+    it.v[0] = (double)pr->inserted;
+    items[n++] = it;
+    it.key = "particles_removed";
+    it.column = "removed";
+    it.v[0] = (double)pr->removed;
+    items[n++] = it;
+    it.key = "mass_removed";
+    it.column = "removed_mass";
+    it.integer = 0;
+    it.v[0] = pr->removed_mass;
+    items[n++] = it;
+    return n;
+}

@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# process.sh — insertion and outlets through the CLI (issue 16):
+#  - feed-drain.yaml: the run exits 0, warns on stderr about the outlet no
+#    particle can reach, writes outlet.csv whose every row keeps
+#    particles + removed = initial + inserted, and summary.txt says how many
+#    were asked for and inserted (all 300);
+#  - full-box.yaml: fewer fit than asked: summary.txt and one stderr line
+#    say how many went in and why.
+set -u
+bin="$1"
+root="$2"
+pass=0
+fail=0
+check() {
+    if [[ "$2" == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi
+}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+scenes=$root/tests/cli/process_scenes
+
+"$bin" run "$scenes/feed-drain.yaml" --threads 2 --quiet -o "$tmp/feed" >"$tmp/feed.out" 2>"$tmp/feed.err"
+rc=$?
+check "feed-drain: exit 0 (got $rc)" "$((rc == 0))"
+grep -q "warning: outlet 'lost' lies above every particle" "$tmp/feed.err"
+check "feed-drain: stderr warns about the outlet no particle can reach" "$((! $?))"
+rows=$(awk -F, 'NR > 1 { n++; if ($3 + $6 != $4 + $5) bad++ } END { print n + 0, bad + 0 }' "$tmp/feed/outlet.csv")
+echo "     outlet.csv rows, rows off the accounting: $rows"
+check "feed-drain: outlet.csv keeps particles + removed = initial + inserted in every row" \
+    "$([[ ${rows% *} -ge 10 && ${rows#* } == 0 ]] && echo 1 || echo 0)"
+last=$(tail -1 "$tmp/feed/outlet.csv")
+echo "     last row: $last"
+check "feed-drain: particles left through the drain" "$(awk -F, '{ print ($9 > 0) }' <<<"$last")"
+grep -q "^insert feed: asked 300, inserted 300," "$tmp/feed/summary.txt"
+check "feed-drain: summary.txt: asked 300, inserted 300" "$((! $?))"
+
+"$bin" run "$scenes/full-box.yaml" --quiet -o "$tmp/full" >"$tmp/full.out" 2>"$tmp/full.err"
+rc=$?
+check "full-box: exit 0 (got $rc)" "$((rc == 0))"
+cat "$tmp/full.err"
+grep -q "^shapedem: insert crowd: inserted [0-9]* of the 100 asked for: .*no free spot" "$tmp/full.err"
+check "full-box: one stderr line says how many went in and why" "$((! $? && $(wc -l <"$tmp/full.err") == 1))"
+grep -q "^insert crowd: asked 100, inserted [0-9]*, mass_kg [0-9.e-]*, why: " "$tmp/full/summary.txt"
+check "full-box: summary.txt says asked, inserted and why" "$((! $?))"
+
+echo "$pass passed, $fail failed"
+((fail == 0))
