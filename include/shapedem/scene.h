@@ -91,6 +91,11 @@ void sd_scene_get_info(const sd_scene *s, sd_scene_info *out);
 const char *sd_scene_material_name(const sd_scene *s, size_t i);
 const char *sd_scene_shape_name(const sd_scene *s, size_t i);
 const char *sd_scene_shape_warning(const sd_scene *s, size_t i);
+/* A wall's name, and the repairs made to a mesh wall's file ("" when
+ * none; e.g. degenerate facets dropped, wrongly wound ones turned). */
+const char *sd_scene_wall_name(const sd_scene *s, size_t i);
+const char *sd_scene_wall_warning(const sd_scene *s, size_t i);
+
 
 /* The scene's pour: and outlet: (solver grid) as the world gets them
  * (sd_world_set_pour / sd_world_set_outlet): 1 and *out filled when the

@@ -224,6 +224,10 @@ static int sd_cmd_run(const sd_cli *c)
         if (sd_scene_shape_warning(scene, k)[0]) /* a mesh taken as its hull (nonconvex: hull) */
             fprintf(stderr, "shapedem: warning: shape %s: %s\n", sd_scene_shape_name(scene, k),
                     sd_scene_shape_warning(scene, k));
+    for (size_t k = 0; k < info.wall_count; ++k)
+        if (sd_scene_wall_warning(scene, k)[0]) /* a mesh wall's file repaired */
+            fprintf(stderr, "shapedem: warning: wall %s: %s\n", sd_scene_wall_name(scene, k),
+                    sd_scene_wall_warning(scene, k));
     for (size_t k = 0; sd_scene_outlet_warning(scene, k); ++k)
         if (sd_scene_outlet_warning(scene, k)[0]) /* outlets: one no particle can reach */
             fprintf(stderr, "shapedem: warning: %s\n", sd_scene_outlet_warning(scene, k));
@@ -376,6 +380,11 @@ static int sd_cmd_check(const sd_cli *c)
     for (size_t k = 0; k < info.shape_count; ++k)
         if (sd_scene_shape_warning(scene, k)[0]) { /* a mesh taken as its hull (nonconvex: hull) */
             printf("warning      shape %s: %s\n", sd_scene_shape_name(scene, k), sd_scene_shape_warning(scene, k));
+            warnings++;
+        }
+    for (size_t k = 0; k < info.wall_count; ++k)
+        if (sd_scene_wall_warning(scene, k)[0]) { /* a mesh wall's file repaired */
+            printf("warning      wall %s: %s\n", sd_scene_wall_name(scene, k), sd_scene_wall_warning(scene, k));
             warnings++;
         }
     for (size_t k = 0; sd_scene_outlet_warning(scene, k); ++k)

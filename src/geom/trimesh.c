@@ -26,13 +26,22 @@ typedef struct sd_tm_v {
     double x, y, z;
 } sd_tm_v;
 
-static sd_tm_v sd_tm_sub(sd_tm_v a, sd_tm_v b) { return (sd_tm_v){a.x - b.x, a.y - b.y, a.z - b.z}; }
+static sd_tm_v sd_tm_sub(sd_tm_v a, sd_tm_v b)
+{
+    return (sd_tm_v){a.x - b.x, a.y - b.y, a.z - b.z};
+}
 static sd_tm_v sd_tm_cross(sd_tm_v a, sd_tm_v b)
 {
     return (sd_tm_v){a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-static double sd_tm_dot(sd_tm_v a, sd_tm_v b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-static double sd_tm_norm(sd_tm_v a) { return sqrt(sd_tm_dot(a, a)); }
+static double sd_tm_dot(sd_tm_v a, sd_tm_v b)
+{
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+static double sd_tm_norm(sd_tm_v a)
+{
+    return sqrt(sd_tm_dot(a, a));
+}
 
 /* ---- welding: a hash of cells of edge h >= weld_tol ---- */
 
@@ -43,7 +52,8 @@ typedef struct sd_tm_cell {
 
 static uint64_t sd_tm_hash(int64_t i, int64_t j, int64_t k)
 {
-    uint64_t h = (uint64_t)i * 0x9E3779B97F4A7C15u ^ (uint64_t)j * 0xC2B2AE3D27D4EB4Fu ^ (uint64_t)k * 0x165667B19E3779F9u;
+    uint64_t h =
+        (uint64_t)i * 0x9E3779B97F4A7C15u ^ (uint64_t)j * 0xC2B2AE3D27D4EB4Fu ^ (uint64_t)k * 0x165667B19E3779F9u;
     return h ^ (h >> 29);
 }
 
@@ -132,9 +142,21 @@ static int sd_tm_key_cmp(const void *pa, const void *pb)
 static void sd_tm_sort3(uint32_t v[3])
 {
     uint32_t t;
-    if (v[0] > v[1]) { t = v[0]; v[0] = v[1]; v[1] = t; }
-    if (v[1] > v[2]) { t = v[1]; v[1] = v[2]; v[2] = t; }
-    if (v[0] > v[1]) { t = v[0]; v[0] = v[1]; v[1] = t; }
+    if (v[0] > v[1]) {
+        t = v[0];
+        v[0] = v[1];
+        v[1] = t;
+    }
+    if (v[1] > v[2]) {
+        t = v[1];
+        v[1] = v[2];
+        v[2] = t;
+    }
+    if (v[0] > v[1]) {
+        t = v[0];
+        v[0] = v[1];
+        v[1] = t;
+    }
 }
 
 /* The edge records of triangles tri[0 .. n), sorted: edge k of triangle
@@ -183,6 +205,23 @@ static size_t sd_tm_adjacency(const uint32_t (*tri)[3], const sd_tm_key *e, size
     return nonmanifold;
 }
 
+/* The refusal of a mesh whose size makes its squares overflow or underflow. */
+static sd_status sd_tm_fail_free(sd_error *err, double big, double diag, void *a, void *b, void *c, void *d, void *e,
+                                 void *f, void *g)
+{
+    sd_free(a);
+    sd_free(b);
+    sd_free(c);
+    sd_free(d);
+    sd_free(e);
+    sd_free(f);
+    sd_free(g);
+    return sd_error_set(err, SD_ERR_INPUT, "", 0, "",
+                        "the mesh's coordinates reach %g m and its bounding box is %g m across: outside "
+                        "[1e-100, 1e100] m, wrong units (check scale:)",
+                        big, diag);
+}
+
 void sd_trimesh_free(sd_trimesh *m)
 {
     if (!m)
@@ -204,8 +243,7 @@ sd_status sd_trimesh_build(const sd_v3d *v, size_t nv, const uint32_t (*t)[3], s
 }
 
 sd_status sd_trimesh_build_side(const sd_v3d *v, size_t nv, const uint32_t (*t)[3], size_t nt, double weld_tol,
-                                double coplanar_tol, int side, sd_trimesh *out, sd_trimesh_report *rep,
-                                sd_error *err)
+                                double coplanar_tol, int side, sd_trimesh *out, sd_trimesh_report *rep, sd_error *err)
 {
     sd_trimesh_report local;
     if (!rep)
@@ -213,14 +251,13 @@ sd_status sd_trimesh_build_side(const sd_v3d *v, size_t nv, const uint32_t (*t)[
     memset(rep, 0, sizeof *rep);
     memset(out, 0, sizeof *out);
     if (nv >= UINT32_MAX || nt >= UINT32_MAX / 3)
-        return sd_error_set(err, SD_ERR_INPUT, "", 0, "", "a mesh of %zu vertices and %zu facets is too large",
-                            nv, nt);
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "", "a mesh of %zu vertices and %zu facets is too large", nv, nt);
     if (nt == 0)
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "", "the mesh has no facets");
     if (!(weld_tol >= 0.0) || !isfinite(weld_tol) || !(coplanar_tol >= 0.0) || !(coplanar_tol < 1.0))
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "",
-                            "weld tolerance %g m and coplanar tolerance %g rad: expected >= 0 (and < 1 rad)",
-                            weld_tol, coplanar_tol);
+                            "weld tolerance %g m and coplanar tolerance %g rad: expected >= 0 (and < 1 rad)", weld_tol,
+                            coplanar_tol);
     for (size_t j = 0; j < nt; ++j)
         for (int k = 0; k < 3; ++k)
             if (t[j][k] >= nv)
@@ -229,15 +266,15 @@ sd_status sd_trimesh_build_side(const sd_v3d *v, size_t nv, const uint32_t (*t)[
                                     (unsigned)t[j][k] + 1, nv);
     for (size_t i = 0; i < nv; ++i)
         if (!isfinite(v[i].x) || !isfinite(v[i].y) || !isfinite(v[i].z))
-            return sd_error_set(err, SD_ERR_INPUT, "", 0, "", "vertex %zu is (%g, %g, %g), not finite", i + 1,
-                                v[i].x, v[i].y, v[i].z);
+            return sd_error_set(err, SD_ERR_INPUT, "", 0, "", "vertex %zu is (%g, %g, %g), not finite", i + 1, v[i].x,
+                                v[i].y, v[i].z);
     if (coplanar_tol == 0.0)
         coplanar_tol = 1e-6;
 
     sd_status st = SD_OK;
     sd_tm_v *p = sd_malloc(nv * sizeof *p);
     uint32_t *map = sd_malloc(nv * sizeof *map), *newv = sd_malloc(nv * sizeof *newv);
-    uint32_t (*tri)[3] = sd_malloc(nt * sizeof *tri);
+    uint32_t(*tri)[3] = sd_malloc(nt * sizeof *tri);
     uint32_t *src = sd_malloc(nt * sizeof *src);
     sd_tm_key *keys = sd_malloc(nt * sizeof *keys);
     uint8_t *drop = sd_calloc(nt, 1);
@@ -262,8 +299,11 @@ sd_status sd_trimesh_build_side(const sd_v3d *v, size_t nv, const uint32_t (*t)[
             big = fmax(big, fabs(c[a]));
         }
     }
-    double diag = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                       (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    double diag =
+        sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    /* squares of lengths (areas, dot products) must stay finite and normal */
+    if (!(big <= 1e100) || (diag > 0.0 && !(diag >= 1e-100)))
+        return sd_tm_fail_free(err, big, diag, p, map, newv, tri, src, keys, drop);
     double tol = weld_tol > 0.0 ? weld_tol : 1e-9 * diag;
     /* cells no finer than 1e-15 of the coordinates, so cell numbers fit in 64 bits */
     double h = fmax(tol, 1e-15 * big);
@@ -457,8 +497,7 @@ sd_status sd_trimesh_build_side(const sd_v3d *v, size_t nv, const uint32_t (*t)[
                     continue;
                 double li = sd_tm_norm(tn[i]);
                 /* the angle to the group's first facet: sin from the cross product, side from the dot */
-                if (sd_tm_dot(tn[seed], tn[i]) > 0.0 &&
-                    sd_tm_norm(sd_tm_cross(tn[seed], tn[i])) <= sin_tol * ls * li) {
+                if (sd_tm_dot(tn[seed], tn[i]) > 0.0 && sd_tm_norm(sd_tm_cross(tn[seed], tn[i])) <= sin_tol * ls * li) {
                     group[i] = (uint32_t)ng;
                     queue[qt++] = i;
                 }

@@ -58,31 +58,38 @@
 
 #include "core/vec.h"
 
-#define SD_TRIMESH_EDGE(k) (1u << (k))          /* edge corner k -> k+1 (mod 3) active on this triangle */
-#define SD_TRIMESH_CORNER(k) (1u << (3 + (k)))  /* corner k active on this triangle */
+#define SD_TRIMESH_EDGE(k)   (1u << (k))       /* edge corner k -> k+1 (mod 3) active on this triangle */
+#define SD_TRIMESH_CORNER(k) (1u << (3 + (k))) /* corner k active on this triangle */
 
 /* The side particles are on, for closed parts of a mesh. */
 enum { SD_TRIMESH_INSIDE = 1, SD_TRIMESH_OUTSIDE = -1 };
 
 typedef struct sd_trimesh {
     size_t vertex_count, triangle_count, group_count;
-    sd_vec3 *vertices;             /* m, welded (the vertices facets use, in order of their lowest input index) */
-    uint32_t (*triangles)[3];      /* consistently wound where the mesh is orientable; degenerate and duplicate facets dropped */
-    uint32_t *group;               /* plane group of each triangle: connected (through shared edges) coplanar facets */
-    uint8_t *flags;                /* per triangle: SD_TRIMESH_EDGE(k), SD_TRIMESH_CORNER(k) */
-    sd_vec3 *group_normal;         /* unit normal of each plane group (the particle side; closed meshes: inward by default) */
-    sd_real *group_offset;         /* m: n . x = offset on the group's plane */
-    uint32_t *source;              /* per triangle: its facet index in the input (0-based) */
+    /* m, welded: the vertices facets use, in order of their lowest input index */
+    sd_vec3 *vertices;
+    /* consistently wound where the mesh is orientable; degenerate and duplicate facets dropped */
+    uint32_t (*triangles)[3];
+    /* plane group of each triangle: connected (through shared edges) coplanar facets */
+    uint32_t *group;
+    /* per triangle: SD_TRIMESH_EDGE(k), SD_TRIMESH_CORNER(k) */
+    uint8_t *flags;
+    /* unit normal of each plane group (the particle side; closed meshes: inward by default) */
+    sd_vec3 *group_normal;
+    /* m: n . x = offset on the group's plane */
+    sd_real *group_offset;
+    /* per triangle: its facet index in the input (0-based) */
+    uint32_t *source;
 } sd_trimesh;
 
 typedef struct sd_trimesh_report {
-    size_t welded;                 /* input vertices merged into another one */
-    size_t degenerate, duplicates; /* facets dropped */
-    size_t flipped;                /* facets turned to agree with their neighbours */
-    int closed;                    /* 1 when every edge is shared by exactly two facets */
+    size_t welded;                                           /* input vertices merged into another one */
+    size_t degenerate, duplicates;                           /* facets dropped */
+    size_t flipped;                                          /* facets turned to agree with their neighbours */
+    int closed;                                              /* 1 when every edge is shared by exactly two facets */
     size_t first_degenerate, first_duplicate, first_flipped; /* 1-based input facet of the first of each, 0 = none */
-    size_t nonmanifold;            /* edges shared by more than two facets (kept; their facets are not oriented across them) */
-    size_t parts;                  /* connected parts (through shared manifold edges) */
+    size_t nonmanifold; /* edges shared by more than two facets (kept; their facets are not oriented across them) */
+    size_t parts;       /* connected parts (through shared manifold edges) */
 } sd_trimesh_report;
 
 /* Prepares a mesh; closed parts face inward (SD_TRIMESH_INSIDE). rep may
@@ -93,8 +100,7 @@ sd_status sd_trimesh_build(const sd_v3d *v, size_t nv, const uint32_t (*t)[3], s
                            double coplanar_tol, sd_trimesh *out, sd_trimesh_report *rep, sd_error *err);
 /* The same with the side of closed parts chosen (SD_TRIMESH_INSIDE or SD_TRIMESH_OUTSIDE). */
 sd_status sd_trimesh_build_side(const sd_v3d *v, size_t nv, const uint32_t (*t)[3], size_t nt, double weld_tol,
-                                double coplanar_tol, int side, sd_trimesh *out, sd_trimesh_report *rep,
-                                sd_error *err);
+                                double coplanar_tol, int side, sd_trimesh *out, sd_trimesh_report *rep, sd_error *err);
 void sd_trimesh_free(sd_trimesh *m);
 
 #endif

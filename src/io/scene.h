@@ -105,6 +105,21 @@ typedef struct sd_scene_wall {
     int line;
     int has_motion;               /* velocity or servo keys given */
     sd_wall_motion_def motion;    /* prescribed or servo-controlled motion */
+    /* kind 2, a triangle mesh (io/scene_mesh.c): the file read, scaled,
+     * rotated and placed at load; the world prepares it again when added */
+    char file[SD_SCENE_PATH_MAX]; /* resolved against the scene file */
+    sd_v3d *mesh_vertices;        /* m, world frame at t = 0 (sd_malloc'd) */
+    size_t mesh_vertex_count;
+    uint32_t (*mesh_triangles)[3];/* the file's facets (OBJ polygons fanned) */
+    size_t mesh_triangle_count;
+    double weld_tolerance, coplanar_tolerance; /* m, rad; 0 = the defaults */
+    int outside;                  /* side: outside */
+    int has_torque_point;
+    sd_v3d torque_point;          /* m */
+    int has_mesh_motion;          /* motion: given */
+    sd_mesh_motion_def mesh_motion; /* .table points at mesh_table */
+    double *mesh_table;           /* rows of (t, dx, dy, dz, angle_deg) */
+    char warning[400];            /* repairs made to the mesh (dropped, turned facets), or "" */
 } sd_scene_wall;
 
 enum { SD_OUT_VTK = 1 << 0, SD_OUT_CSV = 1 << 1 };

@@ -210,6 +210,8 @@ static sd_status sd_check_walls(const sd_scene *s, const sd_scene_spheres *sp, c
         for (size_t wi = 0; wi < s->wall_count; ++wi) {
             const sd_scene_wall *w = &s->walls[wi];
             const char *side;
+            if (w->kind == 2) /* a mesh: which side a particle starts on is not checked */
+                continue;
             double excess = sd_wall_excess(w, d, xlo, xhi, &side, s->world.dimension == 2);
             if (!(excess > SD_SCENE_WALL_TOL * size))
                 continue;
@@ -488,10 +490,22 @@ static sd_status sd_build(const sd_scene *s, sd_world *w, sd_scene_spheres *sp, 
     for (size_t i = 0; i < s->wall_count; ++i) {
         const sd_scene_wall *wl = &s->walls[i];
         snprintf(key, sizeof key, "walls[%zu]", i);
-        int idx = wl->kind == 0
-                      ? sd_world_add_plane(w, wl->name, wl->point, wl->normal, wl->material, err)
-                      : sd_world_add_box(w, wl->name, wl->lo, wl->hi, wl->open_faces, wl->material,
-                                         err);
+        int idx;
+        if (wl->kind == 2) { /* a mesh: placed at load (io/scene_mesh.c) */
+            sd_mesh_def md = sd_mesh_def_default();
+            md.vertices = wl->mesh_vertices;
+            md.vertex_count = wl->mesh_vertex_count;
+            md.triangles = (const uint32_t(*)[3])wl->mesh_triangles;
+            md.triangle_count = wl->mesh_triangle_count;
+            md.material = wl->material;
+            md.weld_tolerance = wl->weld_tolerance;
+            md.coplanar_tolerance = wl->coplanar_tolerance;
+            md.outside = wl->outside;
+            idx = sd_world_add_mesh(w, wl->name, &md, err);
+        } else {
+            idx = wl->kind == 0 ? sd_world_add_plane(w, wl->name, wl->point, wl->normal, wl->material, err)
+                                : sd_world_add_box(w, wl->name, wl->lo, wl->hi, wl->open_faces, wl->material, err);
+        }
         if (idx < 0)
             return sd_where(err, err->code != SD_OK ? err->code : SD_ERR_INPUT, s, wl->line, key);
     }
@@ -499,6 +513,21 @@ static sd_status sd_build(const sd_scene *s, sd_world *w, sd_scene_spheres *sp, 
      * between the walls across it */
     for (size_t i = 0; i < s->wall_count; ++i) {
         const sd_scene_wall *wl = &s->walls[i];
+        if (wl->kind == 2) { /* a mesh's motion and torque point */
+            sd_error_clear(err);
+            if (wl->has_mesh_motion && (st = sd_world_set_mesh_motion(w, (int)i, &wl->mesh_motion, err)) != SD_OK) {
+                snprintf(key, sizeof key, "walls[%zu].motion", i);
+                err->key[0] = '\0';
+                return sd_where(err, st, s, wl->line, key);
+            }
+            if (wl->has_torque_point &&
+                (st = sd_world_set_wall_torque_point(w, (int)i, wl->torque_point, err)) != SD_OK) {
+                snprintf(key, sizeof key, "walls[%zu].torque_point", i);
+                err->key[0] = '\0';
+                return sd_where(err, st, s, wl->line, key);
+            }
+            continue;
+        }
         if (!wl->has_motion)
             continue;
         sd_error_clear(err);

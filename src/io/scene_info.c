@@ -59,6 +59,13 @@ const char *sd_scene_shape_warning(const sd_scene *s, size_t i)
     return i < s->shape_count ? s->shapes[i].warning : NULL;
 }
 
+const char *sd_scene_wall_name(const sd_scene *s, size_t i) { return i < s->wall_count ? s->walls[i].name : NULL; }
+
+const char *sd_scene_wall_warning(const sd_scene *s, size_t i)
+{
+    return i < s->wall_count ? s->walls[i].warning : NULL;
+}
+
 int sd_scene_get_pour(const sd_scene *s, sd_pour_def *out)
 {
     if (!s->pour.given)

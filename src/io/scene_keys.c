@@ -35,6 +35,12 @@
 #define CSV (1u << SD_GEN_CSV)
 #define PLANE 1u
 #define BOX 2u
+#define MESH 4u
+/* mesh motion types, in SD_MESH_* order */
+#define MFIX 1u
+#define MTRA 2u
+#define MROT 4u
+#define MTAB 8u
 /* insert and outlet regions, the bit order of their region choices */
 #define IBOX 1u
 #define ICYL 2u
@@ -68,7 +74,7 @@ const sd_scene_key sd_scene_keys[] = {
     {SD_SEC_ROOT, "particles", SD_KT_LIST, SD_KR_ANY, NULL, ALL, 0, "", "required",
      "particle generators, at least one (none when pour is given); particle ids follow their "
      "order"},
-    {SD_SEC_ROOT, "walls", SD_KT_LIST, SD_KR_ANY, NULL, ALL, 0, "", "[]", "planes and boxes"},
+    {SD_SEC_ROOT, "walls", SD_KT_LIST, SD_KR_ANY, NULL, ALL, 0, "", "[]", "planes, boxes and triangle meshes"},
     {SD_SEC_ROOT, "output", SD_KT_MAP, SD_KR_ANY, NULL, ALL, 0, "", "{}",
      "where and how often results are written"},
     {SD_SEC_ROOT, "pour", SD_KT_MAP, SD_KR_ANY, NULL, ALL, 0, "", "-",
@@ -292,8 +298,9 @@ const sd_scene_key sd_scene_keys[] = {
 
     {SD_SEC_WALL, "name", SD_KT_STRING, SD_KR_NONEMPTY, NULL, ALL, 0, "", "wall0, wall1, ...",
      "name in output and messages"},
-    {SD_SEC_WALL, "type", SD_KT_ENUM, SD_KR_ANY, "plane|box", ALL, ALL, "", "required",
-     "an infinite plane or a box container"},
+    {SD_SEC_WALL, "type", SD_KT_ENUM, SD_KR_ANY, "plane|box|mesh", ALL, ALL, "", "required",
+     "an infinite plane, a box container, or a triangle mesh read from an STL or OBJ file (§2.4 of "
+     "[Xu n.d.]; docs/mesh-walls.md)"},
     {SD_SEC_WALL, "material", SD_KT_STRING, SD_KR_NONEMPTY, NULL, ALL, ALL, "", "required",
      "material name"},
     {SD_SEC_WALL, "point", SD_KT_VEC3, SD_KR_ANY, NULL, PLANE, PLANE, "m", "required",
@@ -306,12 +313,12 @@ const sd_scene_key sd_scene_keys[] = {
      "upper corner, > min on every axis; particles stay inside"},
     {SD_SEC_WALL, "open", SD_KT_ENUM_LIST, SD_KR_ANY, "xmin|xmax|ymin|ymax|zmin|zmax", BOX, 0, "",
      "[]", "faces left out of the box"},
-    {SD_SEC_WALL, "velocity", SD_KT_VEC3, SD_KR_ANY, NULL, ALL, 0, "m/s", "[0, 0, 0]",
+    {SD_SEC_WALL, "velocity", SD_KT_VEC3, SD_KR_ANY, NULL, PLANE | BOX, 0, "m/s", "[0, 0, 0]",
      "prescribed velocity (loading), applied from move_start to move_end"},
-    {SD_SEC_WALL, "move_start", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "s", "0",
+    {SD_SEC_WALL, "move_start", SD_KT_NUMBER, SD_KR_NONNEG, NULL, PLANE | BOX, 0, "s", "0",
      "time the prescribed velocity starts; the strains of biaxial.csv count from the first "
      "start of a non-zero velocity"},
-    {SD_SEC_WALL, "move_end", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "s", "never",
+    {SD_SEC_WALL, "move_end", SD_KT_NUMBER, SD_KR_NONNEG, NULL, PLANE | BOX, 0, "s", "never",
      "time the prescribed velocity stops"},
     {SD_SEC_WALL, "servo_stress", SD_KT_NUMBER, SD_KR_NONNEG, NULL, PLANE, 0, "Pa", "0",
      "servo control (§3.2 of [Huang 2021]): each step the plane moves along its normal so the normal "
@@ -326,6 +333,54 @@ const sd_scene_key sd_scene_keys[] = {
      "cancel the error in one step from the contact stiffness on the wall (docs/physics.md)"},
     {SD_SEC_WALL, "servo_max_speed", SD_KT_NUMBER, SD_KR_NONNEG, NULL, PLANE, 0, "m/s", "0",
      "cap of the servo velocity; 0 = a tenth of the skin per step"},
+    {SD_SEC_WALL, "file", SD_KT_STRING, SD_KR_NONEMPTY, NULL, MESH, MESH, "", "required",
+     "STL (ASCII or binary) or OBJ file of the mesh, relative to the scene file; checked as it is read "
+     "(truncated or inconsistent files, NaN, non-orientable surfaces are errors naming the facet; "
+     "degenerate and duplicated facets are dropped and wrongly wound ones turned, with a warning)"},
+    {SD_SEC_WALL, "scale", SD_KT_NUMBER, SD_KR_POS, NULL, MESH, 0, "m per file unit", "1",
+     "length of one file unit, e.g. 0.001 for a file in mm; applied first"},
+    {SD_SEC_WALL, "orientation", SD_KT_ORIENTATION, SD_KR_ANY, NULL, MESH, 0, "", "identity",
+     "rotation of the (scaled) file about its origin, identity or a quaternion [w, x, y, z] as for "
+     "particles (not random); applied after scale"},
+    {SD_SEC_WALL, "position", SD_KT_VEC3, SD_KR_ANY, NULL, MESH, 0, "m", "[0, 0, 0]",
+     "translation applied last: world = position + R (scale x_file), the pose at t = 0"},
+    {SD_SEC_WALL, "side", SD_KT_ENUM, SD_KR_ANY, "inside|outside", MESH, 0, "", "inside",
+     "closed parts of the mesh (every edge shared by two facets): inside = particles inside (a drum, "
+     "a box), outside = an obstacle; open parts hold particles on the side their facets' right-hand "
+     "normals point to (docs/mesh-walls.md)"},
+    {SD_SEC_WALL, "weld_tolerance", SD_KT_NUMBER, SD_KR_NONNEG, NULL, MESH, 0, "m", "0",
+     "vertices closer than this become one; 0 = 1e-9 of the mesh's bounding-box diagonal"},
+    {SD_SEC_WALL, "coplanar_tolerance", SD_KT_NUMBER, SD_KR_NONNEG, NULL, MESH, 0, "rad", "0",
+     "neighbouring facets whose normals agree within this angle form one plane group (one contact); "
+     "0 = 1e-6"},
+    {SD_SEC_WALL, "torque_point", SD_KT_VEC3, SD_KR_ANY, NULL, MESH, 0, "m", "reference point",
+     "point the mesh's torque (the wall's stats.csv columns, summary.txt) is taken about, e.g. on a "
+     "drum's axis; it moves with the mesh's translation; default: a rotating mesh's axis_point, else "
+     "the centre of the mesh's bounding box"},
+    {SD_SEC_WALL, "motion", SD_KT_MAP, SD_KR_ANY, NULL, MESH, 0, "", "{type: fixed}",
+     "the mesh's rigid motion from its pose at t = 0 (the keys of walls[].motion)"},
+
+    {SD_SEC_MESH_MOTION, "type", SD_KT_ENUM, SD_KR_ANY, "fixed|translate|rotate|table", ALL, ALL, "",
+     "required", "fixed: rests; translate: constant velocity; rotate: about the axis at rpm; table: "
+     "displacement and angle from a CSV time table"},
+    {SD_SEC_MESH_MOTION, "velocity", SD_KT_VEC3, SD_KR_ANY, NULL, MTRA, MTRA, "m/s", "required",
+     "translation velocity"},
+    {SD_SEC_MESH_MOTION, "axis_point", SD_KT_VEC3, SD_KR_ANY, NULL, MROT | MTAB, MROT, "m",
+     "required", "a point on the rotation axis, world frame at t = 0 (table: it moves with the "
+     "displacement; default [0, 0, 0])"},
+    {SD_SEC_MESH_MOTION, "axis", SD_KT_VEC3, SD_KR_ANY, NULL, MROT | MTAB, 0, "", "[0, 0, 1]",
+     "direction of the rotation axis (normalised); positive rpm and angles turn right-handed about it"},
+    {SD_SEC_MESH_MOTION, "rpm", SD_KT_NUMBER, SD_KR_ANY, NULL, MROT, MROT, "rev/min", "required",
+     "rotation speed (negative: the other way)"},
+    {SD_SEC_MESH_MOTION, "start", SD_KT_NUMBER, SD_KR_NONNEG, NULL, MTRA | MROT, 0, "s", "0",
+     "time the motion starts"},
+    {SD_SEC_MESH_MOTION, "ramp", SD_KT_NUMBER, SD_KR_NONNEG, NULL, MTRA | MROT, 0, "s", "0",
+     "the speed rises linearly from 0 over this time after start; 0 = at once"},
+    {SD_SEC_MESH_MOTION, "table", SD_KT_STRING, SD_KR_NONEMPTY, NULL, MTAB, MTAB, "", "required",
+     "CSV file relative to the scene file, rows t, dx, dy, dz, angle_deg (s, m, m, m, degrees about the "
+     "axis) with t increasing; an optional header line; blank lines and lines starting with # skipped; "
+     "linear between rows, held before the first and after the last"},
+
 
     {SD_SEC_OUTPUT, "directory", SD_KT_STRING, SD_KR_ANY, NULL, ALL, 0, "", "\"\"",
      "output directory, relative to the current directory; \"\" = out/NAME for a scene NAME.yaml"},
@@ -487,7 +542,7 @@ const char sd_scene_example[] =
 static const char *const sd_section_names[SD_SEC_COUNT] = {
     "(top level)", "simulation", "materials[]", "interactions[]", "shapes[]", "particles[]",
     "particles[].spheres[]", "walls[]", "output", "pour", "outlet",
-    "insert[]", "insert[].mix[]", "outlets[]",
+    "insert[]", "insert[].mix[]", "outlets[]", "walls[].motion",
 };
 
 const char *sd_scene_section_name(sd_scene_section sec)
@@ -497,11 +552,14 @@ const char *sd_scene_section_name(sd_scene_section sec)
 
 const char *sd_scene_section_kinds(sd_scene_section sec)
 {
-    /* The bit order matches sd_gen_kind and the wall kinds (0 plane, 1 box). */
+    /* The bit order matches sd_gen_kind, the wall kinds (0 plane, 1 box,
+     * 2 mesh) and SD_MESH_FIXED .. SD_MESH_TABLE. */
     if (sec == SD_SEC_PARTICLES)
         return "lattice|random|list|csv";
     if (sec == SD_SEC_WALL)
-        return "plane|box";
+        return "plane|box|mesh";
+    if (sec == SD_SEC_MESH_MOTION)
+        return "fixed|translate|rotate|table";
     if (sec == SD_SEC_INSERT)
         return "box|cylinder|disc";
     if (sec == SD_SEC_OUTLETS)

@@ -26,6 +26,7 @@ typedef enum sd_scene_section {
     SD_SEC_INSERT,      /* insert: - ... (cells solver) */
     SD_SEC_INSERT_MIX,  /* insert: - mix: - ... */
     SD_SEC_OUTLETS,     /* outlets: - ... (cells solver) */
+    SD_SEC_MESH_MOTION, /* walls: - type: mesh, motion: */
     SD_SEC_COUNT
 } sd_scene_section;
 
@@ -64,7 +65,8 @@ typedef enum sd_scene_range {
 
 /* Kinds a key applies to, within its section: generator kinds for
  * SD_SEC_PARTICLES (bit = 1 << sd_gen_kind), wall types for SD_SEC_WALL
- * (bit = 1 << kind, 0 plane, 1 box), shape types for SD_SEC_SHAPE (bit =
+ * (bit = 1 << kind, 0 plane, 1 box, 2 mesh), mesh motion types for
+ * SD_SEC_MESH_MOTION (bit = 1 << SD_MESH_*), shape types for SD_SEC_SHAPE (bit =
  * 1 << sd_shape_kind); everything else uses SD_KIND_ALL. */
 #define SD_KIND_ALL 0xffffu /* 16 kinds: the 3D and the 2D shape types */
 

@@ -184,6 +184,12 @@ static sd_status sd_check_periodic_walls(sd_parse *p)
         for (int a = 0; a < 3; ++a) {
             if (!(s->world.periodic & (1u << a)))
                 continue;
+            if (w->kind == 2) {
+                snprintf(key, sizeof key, "walls[%zu]", k);
+                return sd_fail(p, w->line, key,
+                               "mesh wall '%s' in a periodic scene: mesh walls do not take periodic images; make the "
+                               "axes non-periodic", w->name);
+            }
             int across = w->kind == 0 ? n[a] != 0.0 : (w->open_faces & (3u << (2 * a))) != (3u << (2 * a));
             if (across) {
                 snprintf(key, sizeof key, "walls[%zu]", k);
@@ -392,14 +398,14 @@ static sd_status sd_parse_walls(sd_parse *p, yaml_node_t *list)
         return sd_yaml_oom(&p->y);
     for (size_t i = 0; i < n; ++i) {
         yaml_node_t *m;
-        if ((st = sd_yaml_entry(&p->y, list, i, "walls", "(type: plane|box, ...)", path, sizeof path, &m)))
+        if ((st = sd_yaml_entry(&p->y, list, i, "walls", "(type: plane|box|mesh, ...)", path, sizeof path, &m)))
             return st;
         sd_scene_wall *w = &s->walls[i];
         w->line = sd_yaml_line(m);
         yaml_node_t *tn = sd_yaml_map_get(&p->y, m, "type");
         snprintf(key, sizeof key, "%s.type", path);
         if (!tn)
-            return sd_fail(p, w->line, key, "missing required key 'type' (plane or box)");
+            return sd_fail(p, w->line, key, "missing required key 'type' (plane, box or mesh)");
         if ((st = sd_yaml_read_value(&p->y, sd_scene_key_find(SD_SEC_WALL, "type"), tn, key, &v)))
             return st;
         w->kind = v.choice;
@@ -419,7 +425,10 @@ static sd_status sd_parse_walls(sd_parse *p, yaml_node_t *list)
         if ((st = sd_material_ref(p, v.str, v.line, sd_yaml_kp(key, sizeof key, path, "material"),
                                   &w->material)))
             return st;
-        if (w->kind == 0) {
+        if (w->kind == 2) {
+            if ((st = sd_parse_mesh_wall(p, m, w, path)))
+                return st;
+        } else if (w->kind == 0) {
             sd_yaml_get(&p->y, m, SD_SEC_WALL, "point", path, &v);
             w->point = sd_parse_v3(v.v);
             sd_yaml_get(&p->y, m, SD_SEC_WALL, "normal", path, &v);
@@ -818,6 +827,11 @@ void sd_scene_free(sd_scene *s)
     sd_free(s->generators);
     sd_free(s->materials);
     sd_free(s->interactions);
+    for (size_t i = 0; i < s->wall_count; ++i) { /* mesh walls (scene_mesh.c) */
+        sd_free(s->walls[i].mesh_vertices);
+        sd_free(s->walls[i].mesh_triangles);
+        sd_free(s->walls[i].mesh_table);
+    }
     sd_free(s->walls);
     sd_free(s);
 }

@@ -409,21 +409,51 @@ static sd_status sd_vtk_wall(const sd_world *w, size_t i, double side, sd_wall_i
     return SD_OK;
 }
 
+/* Mesh wall i's facets (sd_world_get_mesh): 1 and *mi when wall i is a mesh. */
+static int sd_vtk_mesh(const sd_world *w, size_t i, sd_mesh_info *mi)
+{
+    return sd_world_get_mesh(w, (int)i, mi) == SD_OK;
+}
+
+/* Vertex k of a mesh at its current pose: world = R x_mesh + t, R of the
+ * unit quaternion (w, x, y, z). */
+static sd_v3d sd_vtk_mesh_point(const sd_mesh_info *mi, size_t k)
+{
+    const double *x = mi->vertices + 3 * k, *q = mi->rotation, *t = mi->translation;
+    double qw = q[0], qx = q[1], qy = q[2], qz = q[3];
+    /* v' = v + 2 qw (u x v) + 2 u x (u x v), u = (qx, qy, qz) */
+    double cx = qy * x[2] - qz * x[1], cy = qz * x[0] - qx * x[2], cz = qx * x[1] - qy * x[0];
+    double dx = qy * cz - qz * cy, dy = qz * cx - qx * cz, dz = qx * cy - qy * cx;
+    sd_v3d r = {x[0] + 2.0 * (qw * cx + dx) + t[0], x[1] + 2.0 * (qw * cy + dy) + t[1],
+                x[2] + 2.0 * (qw * cz + dz) + t[2]};
+    return r;
+}
+
 sd_status sd_vtk_write_walls(FILE *fp, const sd_world *w, double plane_side, sd_error *err)
 {
     errno = 0; /* so that a failure below reports its own reason */
     size_t nw = sd_world_wall_count(w);
     sd_wall_info wi;
+    sd_mesh_info mi;
     sd_v3d q[6][4];
     int nq = 0;
-    size_t ncells = 0;
+    /* cells: 4-corner quads (planes, boxes) and a mesh's triangles on its
+     * own (shared) points, at the mesh's current pose */
+    size_t ncells = 0, npts = 0, nconn = 0;
     for (size_t i = 0; i < nw; ++i) {
         sd_status s = sd_vtk_wall(w, i, plane_side, &wi, q, &nq, err);
         if (s != SD_OK)
             return s;
-        ncells += (size_t)nq;
+        if (sd_vtk_mesh(w, i, &mi)) {
+            ncells += mi.triangle_count;
+            npts += mi.vertex_count;
+            nconn += 3 * mi.triangle_count;
+        } else {
+            ncells += (size_t)nq;
+            npts += 4 * (size_t)nq;
+            nconn += 4 * (size_t)nq;
+        }
     }
-    size_t npts = 4 * ncells;
     uint64_t off = 0;
     sd_vtk_file_open(fp, "PolyData");
     fprintf(fp, "  <PolyData>\n");
@@ -437,7 +467,7 @@ sd_status sd_vtk_write_walls(FILE *fp, const sd_world *w, double plane_side, sd_
     fprintf(fp, "      </CellData>\n      <Points>\n");
     sd_vtk_array_decl(fp, "        ", "Float64", "position", 3, npts, 8, &off);
     fprintf(fp, "      </Points>\n      <Polys>\n");
-    sd_vtk_array_decl(fp, "        ", "Int64", "connectivity", 1, npts, 8, &off);
+    sd_vtk_array_decl(fp, "        ", "Int64", "connectivity", 1, nconn, 8, &off);
     sd_vtk_array_decl(fp, "        ", "Int64", "offsets", 1, ncells, 8, &off);
     fprintf(fp, "      </Polys>\n    </Piece>\n  </PolyData>\n");
     sd_vtk_appended_open(fp);
@@ -446,33 +476,49 @@ sd_status sd_vtk_write_walls(FILE *fp, const sd_world *w, double plane_side, sd_
     b.fp = fp;
     b.used = 0;
     b.failed = 0;
-    /* Pass 1: wall index per cell; pass 2: force per cell; pass 3: corners. */
-    for (int pass = 0; pass < 3; ++pass) {
+    /* Pass 0: wall index per cell; 1: force per cell; 2: points;
+     * 3: connectivity; 4: offsets. */
+    for (int pass = 0; pass < 5; ++pass) {
         uint64_t bytes = pass == 0 ? (uint64_t)ncells * 4u
                        : pass == 1 ? (uint64_t)ncells * 24u
-                                   : (uint64_t)npts * 24u;
+                       : pass == 2 ? (uint64_t)npts * 24u
+                       : pass == 3 ? (uint64_t)nconn * 8u
+                                   : (uint64_t)ncells * 8u;
         sd_bin_u64(&b, bytes);
+        int64_t base = 0, end = 0; /* first point of the wall; running cell end */
         for (size_t i = 0; i < nw; ++i) {
             sd_status s = sd_vtk_wall(w, i, plane_side, &wi, q, &nq, err);
             if (s != SD_OK)
                 return s;
-            for (int k = 0; k < nq; ++k) {
-                if (pass == 0)
+            int mesh = sd_vtk_mesh(w, i, &mi);
+            size_t cells = mesh ? mi.triangle_count : (size_t)nq;
+            for (size_t k = 0; k < cells; ++k) {
+                if (pass == 0) {
                     sd_bin_i32(&b, (int32_t)i);
-                else if (pass == 1)
+                } else if (pass == 1) {
                     sd_bin_v3(&b, wi.force);
-                else
-                    for (int c = 0; c < 4; ++c)
-                        sd_bin_v3(&b, q[k][c]);
+                } else if (pass == 2) {
+                    if (!mesh)
+                        for (int c = 0; c < 4; ++c)
+                            sd_bin_v3(&b, q[k][c]);
+                } else if (pass == 3) {
+                    if (mesh)
+                        for (int c = 0; c < 3; ++c)
+                            sd_bin_i64(&b, base + (int64_t)mi.triangles[k][c]);
+                    else
+                        for (int c = 0; c < 4; ++c)
+                            sd_bin_i64(&b, base + 4 * (int64_t)k + c);
+                } else {
+                    end += mesh ? 3 : 4;
+                    sd_bin_i64(&b, end);
+                }
             }
+            if (mesh && pass == 2)
+                for (size_t k = 0; k < mi.vertex_count; ++k)
+                    sd_bin_v3(&b, sd_vtk_mesh_point(&mi, k));
+            base += mesh ? (int64_t)mi.vertex_count : 4 * (int64_t)nq;
         }
     }
-    sd_bin_u64(&b, (uint64_t)npts * 8u);
-    for (size_t i = 0; i < npts; ++i)
-        sd_bin_i64(&b, (int64_t)i);
-    sd_bin_u64(&b, (uint64_t)ncells * 8u);
-    for (size_t i = 0; i < ncells; ++i)
-        sd_bin_i64(&b, 4 * ((int64_t)i + 1));
     sd_status s = sd_vtk_bin_status(&b, err);
     if (s != SD_OK)
         return s;
