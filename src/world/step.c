@@ -33,6 +33,7 @@ _Static_assert(SD_PROFILE_SPHERES + SD_PAIR_SPHERES == SD_PROFILE_SPHERES &&
                    SD_PROFILE_SPHERES + SD_PAIR_CONVEX == SD_PROFILE_CONVEX &&
                    SD_PROFILE_SPHERES + SD_PAIR_POLY_VOLUME == SD_PROFILE_POLY_VOLUME &&
                    SD_PROFILE_SPHERES + SD_PAIR_CONVEX2D == SD_PROFILE_CONVEX2D &&
+                   SD_PROFILE_SPHERES + SD_PAIR_ELEMENTS == SD_PROFILE_ELEMENTS &&
                    SD_PROFILE_SPHERES + SD_PAIR_KIND_COUNT == SD_PROFILE_WALLS,
                "SD_PROFILE_STAGES lists the pair kinds of contact/kinds.h in their order");
 
@@ -101,13 +102,18 @@ static sd_status sd_stage_walls_drift(sd_world *w, const sd_backend *be, double 
     return SD_OK;
 }
 
-/* A NaN anywhere ends the run with a clear message rather than garbage. */
+/* A NaN anywhere ends the run with a clear message rather than garbage,
+ * naming the particle; then the guards (guards.c: runaway speed, deep
+ * overlap). */
 static sd_status sd_stage_check_finite(sd_world *w, const sd_backend *be, sd_error *err)
 {
-    if (be->check_finite(&w->stage))
+    if (be->check_finite(&w->stage)) {
+        if (sd_world_guard_nonfinite(w, err) != SD_OK)
+            return SD_ERR_PHYSICS;
         return sd_error_set(err, SD_ERR_PHYSICS, "", 0, "", "a particle state became NaN or infinite at step %ld "
                             "(time step too large for the stiffness?)", w->step);
-    return SD_OK;
+    }
+    return sd_world_guards(w, err);
 }
 
 sd_status sd_cells_prepare(sd_world *w, sd_error *err)

@@ -33,6 +33,16 @@ SD_KERNEL void sd_check_pair_kind(const sd_step_view *v, sd_pair_out *o, int kin
     case SD_PAIR_CONVEX2D:
         sd_item_convex2d(v, o, e);
         break;
+    case SD_PAIR_ELEMENTS:
+        /* one thread per run of a composite pair's element pairs: the
+         * thread whose pair starts a run evaluates and combines it */
+        if (sd_item_elements_starts(o, e0, e)) {
+            size_t end = e + 1;
+            while (end < e1 && !sd_item_elements_starts(o, e0, end))
+                ++end;
+            (void)sd_item_elements(v, o, e, end, &ws[SD_ITEM_INDEX]);
+        }
+        break;
     default:
         break;
     }
@@ -56,6 +66,14 @@ SD_KERNEL void sd_check_wall_kind(const sd_step_view *v, sd_wall_pair_out *o, in
         break;
     case SD_WALL_PAIR_CONVEX2D:
         sd_item_wall_convex2d(v, o, e);
+        break;
+    case SD_WALL_PAIR_ELEMENTS:
+        if (sd_item_wall_elements_starts(o, e0, e)) {
+            size_t end = e + 1;
+            while (end < e1 && !sd_item_wall_elements_starts(o, e0, end))
+                ++end;
+            (void)sd_item_wall_elements(v, o, e, end);
+        }
         break;
     default:
         break;

@@ -101,6 +101,36 @@ SD_PRAGMA(omp for schedule(dynamic, 64))
     }
 }
 
+/* The composite element pairs over [e0, e1): one item per run of element
+ * pairs of one composite pair (backend/items.h), so the multi-contact
+ * combination of seed 004 §2.6 needs no second pass; runs of very uneven
+ * cost, dynamic chunks; each thread finds the runs that start in its
+ * chunk. The tallies count the element pairs under the particles' kinds
+ * (a composite row). */
+static void sd_cpu_elements(sd_stage *s, size_t e0, size_t e1)
+{
+    const sd_step_view *v = &s->v;
+    sd_pair_out *o = &s->pairs;
+SD_CPU_REGION(s->exec)
+    {
+    sd_overlap_workspace ws;
+    sd_tally3 y;
+    memset(&y, 0, sizeof y);
+SD_PRAGMA(omp for schedule(dynamic, 16))
+    for (size_t e = e0; e < e1; ++e) {
+        if (!sd_item_elements_starts(o, e0, e))
+            continue;
+        size_t end = e + 1;
+        while (end < e1 && !sd_item_elements_starts(o, e0, end))
+            ++end;
+        (void)sd_item_elements(v, o, e, end, &ws);
+        for (size_t k = e; k < end; ++k)
+            sd_tally3_add(&y, v, o, k);
+    }
+    sd_tally3_flush(s, &y);
+    }
+}
+
 /* The 2D tallies: evaluations, contacts, support calls, support calls of
  * the contacts per sorted pair of 2D kinds. */
 typedef struct sd_tally2 {
@@ -161,6 +191,9 @@ void sd_cpu_forces(sd_stage *s, sd_pair_kind kind)
         break;
     case SD_PAIR_CONVEX2D:
         sd_cpu_convex2d(s, e0, e1);
+        break;
+    case SD_PAIR_ELEMENTS:
+        sd_cpu_elements(s, e0, e1);
         break;
     case SD_PAIR_KIND_COUNT:
         break;

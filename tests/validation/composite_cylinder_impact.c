@@ -1,0 +1,260 @@
+/* composite_cylinder_impact.c — seed 004 §3.2 (Table 1, Figs. 7-9): a
+ * cylinder sliced into N equal glued slices (a composite of N cylinder
+ * elements) hits a flat wall, no gravity, mu = 0.
+ *
+ * Table 1: D = 8 mm, L = 5.3 mm, rho = 1245 kg/m^3 (mass 3.1e-4 kg),
+ * k_n = 1e5 N/m, e_n = 0.85, V = 1 m/s towards the wall, dt = 5e-6 s.
+ *
+ *  1. theta = 90 deg (axis parallel to the wall, a line contact, N contact
+ *     points): the analytic post-impact velocities (seed 004 eqs. 22-23)
+ *     are V_z+ = e_n V and omega_y+ = 0. A cylinder's support point on a
+ *     line contact is one end of the line (a tie of its support function
+ *     broken by rounding), so one contact point spins the body: the true
+ *     cylinder (N = 1) leaves with a V_z+ 7 % off. Each slice's contact
+ *     point is the same end of its own segment, so the spurious torque of
+ *     the slices falls like 1/N (seed 004 Fig. 9b) and with it the error
+ *     of V_z+: asserted to fall with N, and with model B (average, eq.
+ *     21) to be below seed 004's 0.5 % (Fig. 9a) from N = 8 on (it is
+ *     0.5 % at N = 5). Model B's contact duration and peak force do not
+ *     depend on N (Fig. 8b, eq. 20); model A's duration falls like
+ *     1/sqrt(N) (eq. 19), so at a fixed dt its impacts are resolved by
+ *     fewer and fewer steps (6 at N = 30): its V_z+ is printed only.
+ *  2. theta = 0..90 deg: the true cylinder and the 10-slice composite
+ *     agree (Fig. 7): printed, and asserted within 1 % of the impact
+ *     speed (V_z+) and of the largest omega of the sweep for 10..80 deg.
+ *  3. glued-sphere cylinders of 9 and 54 spheres (Fig. 10, Table 2): run
+ *     and their deviation from the true cylinder printed, not asserted
+ *     (seed 004 finds them "markedly off" away from 0 and 90 deg).
+ */
+#include <stdlib.h>
+#include <string.h>
+
+#include "test.h"
+
+static const double PI = 3.14159265358979323846;
+static const double D = 8e-3, L = 5.3e-3, RHO = 1245, KN = 1e5, E = 0.85, V0 = 1.0, DT = 5e-6;
+
+typedef struct outcome {
+    double vz, wy;
+    double duration; /* s, steps with a wall contact times dt */
+    double fmax;     /* N, largest wall force during the impact */
+} outcome;
+
+typedef struct model {
+    const char *kind;   /* "true": one cylinder; "slices": N glued slices; "spheres": glued spheres */
+    int n;              /* slices, or spheres (9 or 54) */
+    int multi_contact;  /* SD_MULTI_CONTACT_* */
+} model;
+
+/* Glued-sphere cylinders in the spirit of seed 004 Fig. 10 (our own
+ * layouts: the paper gives counts, not positions), all flush with the end
+ * faces and the rim. 9: three layers of three mutually touching spheres of
+ * radius r (2 sqrt 3 - 3), the layers overlapping; 54: three layers of 18
+ * spheres of radius L/6 (a centre one, a ring of 6, a ring of 11 at the
+ * rim). Overlaps go to the lattice of the composite's mass properties.
+ * Writes the elements, returns their count and the radius in *radius. */
+static size_t sphere_layout(int n, int shape, sd_composite_element *el, double *radius)
+{
+    size_t k = 0;
+    double h = 0.5 * L, r = 0.5 * D;
+    if (n == 9) {
+        double a = r * (2 * sqrt(3.0) - 3);
+        *radius = a;
+        for (int lz = 0; lz < 3; ++lz)
+            for (int t = 0; t < 3; ++t) {
+                double ang = 2 * PI * t / 3.0, rr = r - a;
+                memset(&el[k], 0, sizeof el[k]);
+                el[k].shape = shape;
+                el[k].position = sd_test_v(rr * cos(ang), rr * sin(ang), (lz - 1) * (h - a));
+                ++k;
+            }
+        return k;
+    }
+    double a = L / 6.0;
+    *radius = a;
+    for (int lz = 0; lz < 3; ++lz) {
+        double z = (lz - 1) * 2 * a;
+        static const int ring[3] = {1, 6, 11};
+        double rad[3] = {0, 2 * a, r - a};
+        for (int g = 0; g < 3; ++g)
+            for (int t = 0; t < ring[g]; ++t) {
+                double ang = 2 * PI * t / ring[g];
+                memset(&el[k], 0, sizeof el[k]);
+                el[k].shape = shape;
+                el[k].position = sd_test_v(rad[g] * cos(ang), rad[g] * sin(ang), z);
+                ++k;
+            }
+    }
+    return k;
+}
+
+static outcome simulate(double theta, model md)
+{
+    sd_error err;
+    sd_world *w;
+    sd_world_def d = sd_world_def_default();
+    d.law = SD_LAW_LINEAR;
+    d.dt = DT;
+    d.gravity = sd_test_v(0, 0, 0);
+    d.threads = 1;
+    d.multi_contact = md.multi_contact;
+    sd_test_require(sd_world_create(&d, &w, &err) == SD_OK, "world", &err);
+    sd_material_def m = sd_material_def_default();
+    m.density = RHO;
+    m.stiffness = KN;
+    m.restitution = E;
+    m.friction = 0;
+    int mat = sd_world_add_material(w, &m, &err);
+    int shape = -1;
+    sd_shape_desc s = sd_shape_desc_default();
+    if (!strcmp(md.kind, "true")) {
+        s.kind = "cylinder";
+        s.size = sd_test_v(D, D, L);
+        shape = sd_world_add_shape(w, "cylinder", &s, &err);
+    } else if (!strcmp(md.kind, "slices")) {
+        s.kind = "cylinder";
+        s.size = sd_test_v(D, D, L / md.n);
+        int slice = sd_world_add_shape(w, "slice", &s, &err);
+        sd_test_require(slice >= 0, "slice", &err);
+        sd_composite_element el[64];
+        for (int k = 0; k < md.n; ++k) {
+            memset(&el[k], 0, sizeof el[k]);
+            el[k].shape = slice;
+            el[k].position = sd_test_v(0, 0, -0.5 * L + (k + 0.5) * L / md.n);
+        }
+        sd_composite_desc cd = sd_composite_desc_default();
+        cd.elements = el;
+        cd.element_count = (size_t)md.n;
+        shape = sd_world_add_composite(w, "glued", &cd, &err);
+    } else {
+        s.kind = "sphere";
+        s.size = sd_test_v(md.n == 9 ? 0.5 * D * (2 * sqrt(3.0) - 3) : L / 6.0, 0, 0);
+        int sph = sd_world_add_shape(w, "ball", &s, &err);
+        sd_test_require(sph >= 0, "sphere element", &err);
+        sd_composite_element el[64];
+        double radius;
+        size_t n = sphere_layout(md.n, sph, el, &radius);
+        sd_composite_desc cd = sd_composite_desc_default();
+        cd.elements = el;
+        cd.element_count = n;
+        shape = sd_world_add_composite(w, "glued-spheres", &cd, &err);
+    }
+    sd_test_require(shape >= 0, "shape", &err);
+    sd_world_add_plane(w, "wall", sd_test_v(0, 0, 0), sd_test_v(0, 0, 1), mat, &err);
+    sd_body_def b;
+    memset(&b, 0, sizeof b);
+    double h = 0.5 * L, r = 0.5 * D;
+    /* the axis (z) turned by theta about y; the lowest rim point is then
+     * h cos(theta) + r sin(theta) below the centre (composites: their
+     * principal frame, whose axis is the cylinder's by symmetry) */
+    b.orientation[0] = cos(0.5 * theta);
+    b.orientation[2] = sin(0.5 * theta);
+    b.position = sd_test_v(0, 0, h * fabs(cos(theta)) + r * sin(theta) + 1e-7);
+    b.velocity = sd_test_v(0, 0, -V0);
+    b.shape = shape;
+    b.material = mat;
+    sd_test_require(sd_world_add_bodies(w, 1, &b, &err) == SD_OK, "body", &err);
+    int touched = 0, steps = 0;
+    double fmax = 0;
+    for (int k = 0; k < 4000; ++k) {
+        sd_test_require(sd_world_step(w, 1, &err) == SD_OK, "step", &err);
+        sd_stats st;
+        sd_world_stats(w, &st);
+        if (st.wall_contacts > 0) {
+            touched = 1;
+            ++steps;
+            sd_wall_info wi;
+            if (sd_world_get_wall(w, 0, &wi) == SD_OK)
+                fmax = fmax > fabs(wi.force.z) ? fmax : fabs(wi.force.z);
+        } else if (touched)
+            break; /* the first impact is over */
+    }
+    sd_particle_state p;
+    sd_world_get_particle(w, 0, &p);
+    sd_world_destroy(w);
+    outcome o = {p.velocity.z, p.angular_velocity.y, steps * DT, fmax};
+    return o;
+}
+
+int main(void)
+{
+    /* 1. theta = 90 deg, N = 1..30 slices */
+    printf("theta = 90 deg: analytic Vz+ = %.6f m/s, wy+ = 0 (seed 004 eqs. 22-23)\n", E * V0);
+    printf("model  N   Vz+ computed  err%%     |wy+| rad/s   duration s   peak force N\n");
+    static const int ns[] = {1, 2, 3, 5, 8, 10, 15, 20, 25, 30};
+    enum { NN = sizeof ns / sizeof ns[0] };
+    outcome ob[NN], oa[NN];
+    for (int k = 0; k < NN; ++k) {
+        model mb = {"slices", ns[k], SD_MULTI_CONTACT_AVERAGE};
+        model ma = {"slices", ns[k], SD_MULTI_CONTACT_SUM};
+        ob[k] = simulate(0.5 * PI, mb);
+        oa[k] = simulate(0.5 * PI, ma);
+        double eb = 100 * fabs(ob[k].vz - E * V0) / (E * V0), ea = 100 * fabs(oa[k].vz - E * V0) / (E * V0);
+        printf("B     %2d  %12.6f  %6.3f  %12.4e  %11.4e  %10.3f\n", ns[k], ob[k].vz, eb, fabs(ob[k].wy),
+               ob[k].duration, ob[k].fmax);
+        printf("A     %2d  %12.6f  %6.3f  %12.4e  %11.4e  %10.3f\n", ns[k], oa[k].vz, ea, fabs(oa[k].wy),
+               oa[k].duration, oa[k].fmax);
+        char label[96];
+        if (ns[k] >= 8) {
+            snprintf(label, sizeof label, "model B, N = %2d: Vz+ within 0.5 %% (m/s)", ns[k]);
+            CHECK_REL(label, ob[k].vz, E * V0, 0.005);
+            /* model B: the peak force of one contact point and the same
+             * duration, whatever N (eq. 20): against N = 30 */
+            snprintf(label, sizeof label, "model B, N = %2d: peak force as N = 30 (N)", ns[k]);
+            CHECK_REL(label, ob[k].fmax, ob[NN - 1].fmax, 0.01);
+        }
+        if (k > 0) {
+            /* the error of V_z+ comes from the spurious spin (below), and
+             * falls with it */
+            snprintf(label, sizeof label, "model B, N = %2d: Vz+ error below N = %d's", ns[k], ns[k - 1]);
+            CHECK(fabs(ob[k].vz - E * V0) <= fabs(ob[k - 1].vz - E * V0) + 1e-9);
+            printf("%s\n", label);
+        }
+        snprintf(label, sizeof label, "model B, N = %2d: duration as N = 1 (s)", ns[k]);
+        CHECK_NEAR(label, ob[k].duration, ob[0].duration, 2.5 * DT);
+        /* model A: T_c(N) = T_c(1) / sqrt(N) (eq. 19) */
+        snprintf(label, sizeof label, "model A, N = %2d: duration T_c(1)/sqrt(N) (s)", ns[k]);
+        CHECK_NEAR(label, oa[k].duration, oa[0].duration / sqrt((double)ns[k]), 2.5 * DT);
+    }
+    /* the spurious spin of the line contact falls like 1/N (Fig. 9b):
+     * below twice the single contact point's over N */
+    for (int k = 1; k < NN; ++k) {
+        char label[96];
+        snprintf(label, sizeof label, "model B, N = %2d: |wy+| below 2 |wy+(1)| / N (rad/s)", ns[k]);
+        CHECK_NEAR(label, fabs(ob[k].wy), 0.0, 2.0 * fabs(ob[0].wy) / ns[k]);
+    }
+
+    /* 2. the true cylinder against the 10-slice composite, theta 0..90 */
+    double wmax = 0;
+    outcome tr[19], gl[19];
+    for (int k = 0; k <= 18; ++k) {
+        double th = 5.0 * k * PI / 180.0;
+        model mt = {"true", 1, SD_MULTI_CONTACT_AVERAGE}, mg = {"slices", 10, SD_MULTI_CONTACT_AVERAGE};
+        tr[k] = simulate(th, mt);
+        gl[k] = simulate(th, mg);
+        wmax = fmax(wmax, fabs(tr[k].wy));
+    }
+    printf("theta  Vz+ true    Vz+ glued(10)   wy+ true    wy+ glued(10)\n");
+    for (int k = 0; k <= 18; ++k) {
+        printf("%5d  %10.6f  %12.6f  %11.4f  %12.4f\n", 5 * k, tr[k].vz, gl[k].vz, tr[k].wy, gl[k].wy);
+        if (k >= 2 && k <= 16) {
+            char label[96];
+            snprintf(label, sizeof label, "theta %2d deg: glued Vz+ as the true cylinder's (m/s)", 5 * k);
+            CHECK_NEAR(label, gl[k].vz, tr[k].vz, 0.01 * V0);
+            snprintf(label, sizeof label, "theta %2d deg: glued wy+ as the true cylinder's (rad/s)", 5 * k);
+            CHECK_NEAR(label, gl[k].wy, tr[k].wy, 0.01 * wmax);
+        }
+    }
+
+    /* 3. glued-sphere cylinders: reported, not asserted */
+    printf("glued spheres (deviation from the true cylinder, reported only)\n");
+    printf("theta  Vz+ true   Vz+ 9 sph  Vz+ 54 sph   wy+ true   wy+ 9 sph  wy+ 54 sph\n");
+    for (int k = 0; k <= 18; k += 3) {
+        double th = 5.0 * k * PI / 180.0;
+        model m9 = {"spheres", 9, SD_MULTI_CONTACT_AVERAGE}, m54 = {"spheres", 54, SD_MULTI_CONTACT_AVERAGE};
+        outcome a = simulate(th, m9), c = simulate(th, m54);
+        printf("%5d  %9.5f  %9.5f  %10.5f  %9.3f  %9.3f  %10.3f\n", 5 * k, tr[k].vz, a.vz, c.vz, tr[k].wy, a.wy,
+               c.wy);
+    }
+    return sd_test_summary();
+}
