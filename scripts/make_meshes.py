@@ -16,7 +16,8 @@ Usage:
                                        --segments N --layers K]
   scripts/make_meshes.py plane OUT.stl [--size LX LY --cells NX NY --random SEED]
   scripts/make_meshes.py box OUT.stl [--min X Y Z --max X Y Z --cells N]
-  scripts/make_meshes.py examples DIR    (the meshes the examples/mesh-*.yaml scenes read)
+  scripts/make_meshes.py examples DIR    (the meshes the examples/mesh-*.yaml scenes read, as OBJ)
+An OUT ending in .obj writes an indexed OBJ instead of binary STL.
 Each prints the facet count. Standard library only.
 """
 import argparse
@@ -27,8 +28,33 @@ import struct
 import sys
 
 
+def write_obj(path, tris, title):
+    """An indexed OBJ (vertices shared, coordinates to 9 digits): compact
+    enough to commit the examples' meshes."""
+    index, verts, faces = {}, [], []
+    for t in tris:
+        face = []
+        for p in t:
+            key = tuple("%.9g" % (x + 0.0) for x in p)
+            if key not in index:
+                index[key] = len(verts) + 1
+                verts.append(key)
+            face.append(index[key])
+        faces.append(face)
+    with open(path, "w") as f:
+        f.write("# shapedem scripts/make_meshes.py %s: %d facets, metres\n" % (title, len(faces)))
+        for v in verts:
+            f.write("v %s %s %s\n" % v)
+        for a, b, c in faces:
+            f.write("f %d %d %d\n" % (a, b, c))
+    print("%s: %d facets" % (path, len(tris)))
+
+
 def write_stl(path, tris, title):
-    """tris: list of ((x, y, z), (x, y, z), (x, y, z)); binary STL, normals computed."""
+    """tris: list of ((x, y, z), (x, y, z), (x, y, z)); binary STL, normals
+    computed (an OUT ending in .obj writes an OBJ instead)."""
+    if path.endswith(".obj"):
+        return write_obj(path, tris, title)
     with open(path, "wb") as f:
         head = ("shapedem make_meshes.py " + title).encode("ascii")[:80]
         f.write(head + b" " * (80 - len(head)))
@@ -201,10 +227,12 @@ def main(argv):
         cells = a.cells or [1]
         write_stl(a.out, box(a.min, a.max, cells[0]), "box")
     else:
+        # the meshes of examples/mesh-*.yaml, committed as examples/meshes/*.obj
+        # (tests/cli/example_meshes.sh checks they are what this writes)
         os.makedirs(a.out, exist_ok=True)
-        write_stl(os.path.join(a.out, "drum.stl"), drum(0.08, 0.06, 64), "drum")
-        write_stl(os.path.join(a.out, "hopper.stl"), hopper(0.06, 0.2, 0.024, 64, 4), "hopper")
-        write_stl(os.path.join(a.out, "silo.stl"), silo(0.05, 0.2, 16, 0.004, 128, 16), "silo")
+        write_stl(os.path.join(a.out, "drum.obj"), drum(0.06, 0.04, 48), "drum")
+        write_stl(os.path.join(a.out, "hopper.obj"), hopper(0.02, 0.08, 0.015, 48, 2, 1), "hopper")
+        write_stl(os.path.join(a.out, "silo.obj"), silo(0.03, 0.1, 12, 0.0025, 96, 1), "silo")
     return 0
 
 
