@@ -542,8 +542,16 @@ SD_HD static SD_HOT sd_body sd_item_wall_body(const sd_step_view *v, const sd_wa
     return a;
 }
 
-/* SD_WALL_PAIR_SPHERE: a plain sphere (or disc) against a plane or a box
- * face; in the planar mode a box has no z faces. */
+/* A drum's surface velocity at c (m/s): omega x (c - centre), taken off
+ * the particle's velocity so the law sees the relative velocity (the
+ * drum's translation velocity is 0; dynamics/walls.h). */
+SD_HD static SD_INLINE sd_vec3 sd_item_drum_relative(const sd_wall_view *wl, sd_vec3 v, sd_vec3 c)
+{
+    return sd_v3_sub(v, sd_v3_cross(wl->omega, sd_v3_sub(c, wl->g.centre)));
+}
+
+/* SD_WALL_PAIR_SPHERE: a plain sphere (or disc) against a plane, a box
+ * face or a drum feature; in the planar mode a box has no z faces. */
 SD_HD static SD_HOT void sd_item_wall_sphere(const sd_step_view *v, sd_wall_pair_out *o, size_t e)
 {
     uint32_t i = o->i[e];
@@ -553,6 +561,13 @@ SD_HD static SD_HOT void sd_item_wall_sphere(const sd_step_view *v, sd_wall_pair
     int touching = 0;
     if (wl->g.kind == SD_WALL_PLANE) {
         touching = sd_sphere_plane(a.x, a.radius, wl->g.point, wl->g.normal, &g);
+    } else if (wl->g.kind == SD_WALL_DRUM) {
+        /* the tangent plane at the radial projection: exact for a sphere */
+        sd_vec3 p0, nw;
+        touching = sd_wall_feature_plane(&wl->g, (int)o->sub[e], a.x, &p0, &nw) &&
+                   sd_sphere_plane(a.x, a.radius, p0, nw, &g);
+        if (touching)
+            a.v = sd_item_drum_relative(wl, a.v, g.point);
     } else if (!v->dim2 || o->sub[e] < 4) { /* the plane has no z faces */
         sd_wall_face f = sd_wall_box_face_of(wl->g.lo, wl->g.hi, o->sub[e]);
         touching = sd_sphere_box_face(a.x, a.radius, f.axis, f.value, f.dir, wl->g.lo, wl->g.hi, &g);
@@ -575,6 +590,8 @@ SD_HD static SD_INLINE void sd_item_wall_convex(const sd_step_view *v, sd_wall_p
     int inside = sd_wall_feature_plane(&wl->g, o->sub[e], a.x, &p0, &nw);
     sd_narrow_count ns;
     int touching = inside && sd_convex_wall_geom(&c, p0, nw, &g, &ns);
+    if (touching && wl->g.kind == SD_WALL_DRUM)
+        a.v = sd_item_drum_relative(wl, a.v, g.point);
     const sd_pair_params *prm = sd_item_params(v, v->material[i], wl->material);
     sd_pair_result r = sd_pair_wall(prm, &a, &g, touching, v->shape_req[v->shape[i]], &o->ds[e], v->dt);
     sd_item_wall_store(o, e, touching ? g.point : a.x, &r);
@@ -595,6 +612,8 @@ SD_HD static SD_INLINE void sd_item_wall_poly_volume(const sd_step_view *v, sd_w
         r = sd_pair_none(&o->ds[e]);
     } else {
         sd_convex c = sd_item_shape_of(v, i);
+        if (wl->g.kind == SD_WALL_DRUM) /* the surface's speed where the particle's radius meets it */
+            a.v = sd_item_drum_relative(wl, a.v, p0);
         r = sd_pair_poly_wall(prm, &a, &c, p0, nw, v->shape_req[s], &o->ds[e], v->dt, &point);
     }
     sd_item_wall_store(o, e, point, &r);
@@ -617,6 +636,10 @@ SD_HD static SD_INLINE int sd_item_wall_element_geom(const sd_step_view *v, cons
         *req = r;
         if (wl->g.kind == SD_WALL_PLANE)
             return sd_sphere_plane(c->x, r, wl->g.point, wl->g.normal, g);
+        if (wl->g.kind == SD_WALL_DRUM) { /* the drum's turning speed: not yet for composites */
+            sd_vec3 q0, qn;
+            return sd_wall_feature_plane(&wl->g, (int)o->sub[e], c->x, &q0, &qn) && sd_sphere_plane(c->x, r, q0, qn, g);
+        }
         sd_wall_face f = sd_wall_box_face_of(wl->g.lo, wl->g.hi, (int)o->sub[e]);
         return sd_sphere_box_face(c->x, r, f.axis, f.value, f.dir, wl->g.lo, wl->g.hi, g);
     }
@@ -877,13 +900,50 @@ SD_HD static SD_INLINE void sd_item_mesh_poly_volume(const sd_step_view *v, sd_w
     sd_item_wall_store(o, e, point, &r);
 }
 
-/* SD_WALL_PAIR_MESH_CONVEX2D: a 2D shape against a mesh cut by z = 0: not
- * yet; never a force (the scene refuses 2D shapes with meshes). */
+/* SD_WALL_PAIR_MESH_CONVEX2D: a 2D shape against a plane group cut by the
+ * plane z = 0 (the planar mode): the group's plane meets z = 0 in a line,
+ * the 2D wall-line contact is made against it, and kept when its contact
+ * point lies on one of the group's near triangles (the 2D counterpart of
+ * the clipped area: the cut of a triangle by z = 0 is a segment of the
+ * line, so the weight is 1 on it and 0 off it). A group parallel to z = 0
+ * makes no line. */
 SD_HD static SD_INLINE void sd_item_mesh_convex2d(const sd_step_view *v, sd_wall_pair_out *o, size_t e)
 {
-    (void)v;
-    sd_pair_result r = sd_pair_none(&o->ds[e]);
-    sd_item_wall_store(o, e, v->x[o->i[e]], &r);
+    uint32_t i = o->i[e];
+    const sd_wall_view *wl = &v->walls[o->wall[e]];
+    const sd_mesh_view *m = &v->meshes[wl->g.mesh];
+    sd_body a = sd_item_body(v, i);
+    sd_vec3 p0, nw;
+    sd_mesh_group_plane(m, &wl->g, o->sub[e], &p0, &nw);
+    sd_real nl = sd_sqrt(nw.x * nw.x + nw.y * nw.y);
+    sd_contact_geom g;
+    int touching = 0;
+    if (nl > SD_R(1e-9)) {
+        sd_vec2 n2 = sd_v2(nw.x / nl, nw.y / nl);
+        /* the point of the plane's trace nearest the origin's foot: n . x = n . p0 at z = 0 */
+        sd_real off = sd_v3_dot(nw, p0) / nl;
+        sd_vec2 l0 = sd_v2(n2.x * off, n2.y * off);
+        sd_shape2d tmp;
+        sd_convex2d c = sd_item_convex2d_of(v, i, &tmp);
+        touching = sd_convex2d_wall_geom(&c, l0, n2, &g);
+        if (touching) {
+            sd_vec3 pm = sd_mesh_to_frame(wl->g.q, wl->g.trans, g.point);
+            sd_vec3 nm = m->group_normal[o->sub[e]];
+            pm = sd_v3_sub(pm, sd_v3_scale(nm, sd_v3_dot(nm, pm) - m->group_offset[o->sub[e]]));
+            sd_vec3 e1, e2;
+            sd_clip_basis(nm, &e1, &e2);
+            sd_vec2 q = sd_v2(sd_v3_dot(pm, e1), sd_v3_dot(pm, e2));
+            sd_vec3 shift;
+            touching = sd_mesh_clip_weight(m, &wl->g, o->tri + o->tstart[e], o->tcount[e], e1, e2, NULL, 0, q,
+                                           &shift) > 0;
+        }
+        if (touching)
+            a.v = sd_v3_sub(a.v, sd_item_wall_velocity_at(wl, g.point));
+    }
+    const sd_pair_params *prm = sd_item_params(v, v->material[i], wl->material);
+    sd_real req = v->shape[i] >= 0 ? v->shapes2d[v->shape[i]].eq_radius : v->radius[i];
+    sd_pair_result r = sd_pair_wall(prm, &a, &g, touching, req, &o->ds[e], v->dt);
+    sd_item_wall_store(o, e, touching ? g.point : a.x, &r);
 }
 
 #endif
