@@ -131,6 +131,14 @@ sd_status sd_run_open(const sd_scene *s, sd_world *w, const char *dir, sd_run **
  * it is; sd_run_close still writes the summary. */
 sd_status sd_run_advance(sd_run *r, long steps, sd_error *err);
 
+/* Writes a checkpoint of the run's world now (between steps), as
+ * DIR/checkpoint-<step>.h5 (six digits or more): what the scene's
+ * output.checkpoint_every and checkpoint_minutes do, and what `shapedem
+ * run` does at SIGINT and SIGTERM. Nothing for a run without files. */
+sd_status sd_run_checkpoint(sd_run *r, sd_error *err);
+/* The path of the last checkpoint the run wrote, "" when none. */
+const char *sd_run_last_checkpoint(const sd_run *r);
+
 /* Steps from now to the next frame or stats row (or the end): what a
  * caller that checks for an interrupt between outputs advances by. */
 long sd_run_steps_to_output(const sd_run *r);

@@ -46,7 +46,8 @@ static void sd_usage(FILE *f)
 {
     fprintf(f,
             "usage: shapedem run SCENE.yaml [-o DIR] [--threads N] [--steps N] [--quiet] [--bench NAME]\n"
-            "                  [--profile]\n"
+            "                  [--profile] [--restart CHECKPOINT.h5]\n"
+            "       shapedem info CHECKPOINT.h5\n"
             "       shapedem check SCENE.yaml [--threads N]\n"
             "       shapedem shape info KIND --size X[,Y,Z] [--rounding R] [--margin M] [--density RHO]\n"
             "       shapedem shape info SCENE.yaml\n"
@@ -66,7 +67,10 @@ static void sd_usage(FILE *f)
             "  --steps N    run N steps instead of the scene's (short runs)\n"
             "  --quiet      no progress line and no summary on the terminal\n"
             "  --bench NAME write no files; print one JSON line of timings for case NAME\n"
-            "  --profile    print the wall time of each stage of the step at the end\n");
+            "  --profile    print the wall time of each stage of the step at the end\n"
+            "  --restart F  continue the run of checkpoint F (written by this scene) bit for bit;\n"
+            "               SIGINT/SIGTERM write a final checkpoint (docs/checkpoints.md)\n"
+            "  info F.h5    what a checkpoint holds (step, time, particles, datasets)\n");
 }
 
 int sd_cli_fail_input(const sd_error *err)
@@ -90,6 +94,7 @@ typedef struct sd_cli {
     const char *scene;
     const char *outdir;
     const char *bench;
+    const char *restart;  /* --restart: the checkpoint to continue */
     long threads;
     long steps;
     int quiet;
@@ -137,6 +142,10 @@ static int sd_parse_args(int argc, char **argv, sd_cli *c)
             if (!next)
                 return sd_usage_error("%s needs a case name", a);
             c->bench = argv[++k];
+        } else if (!strcmp(a, "--restart")) {
+            if (!next)
+                return sd_usage_error("%s needs a checkpoint file", a);
+            c->restart = argv[++k];
         } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
             c->quiet = 1;
         } else if (!strcmp(a, "--profile")) {
@@ -172,6 +181,27 @@ static int sd_load_world(const sd_cli *c, sd_scene **scene, sd_world **world)
         *scene = NULL;
         return sd_cli_fail_input(&err);
     }
+    /* --restart: the checkpoint's state replaces the scene's start (refused
+     * with the reason: another scene, version, a damaged file) */
+    if (c->restart && sd_checkpoint_restore(*world, c->restart, &err) != SD_OK) {
+        sd_world_destroy(*world);
+        sd_scene_free(*scene);
+        *world = NULL;
+        *scene = NULL;
+        return sd_cli_fail_input(&err);
+    }
+    return 0;
+}
+
+/* shapedem info CHECKPOINT.h5 */
+static int sd_cmd_info(const sd_cli *c)
+{
+    if (!c->scene)
+        return sd_usage_error("%s needs a checkpoint file", c->command);
+    sd_error err;
+    memset(&err, 0, sizeof err);
+    if (sd_checkpoint_print(stdout, c->scene, &err) != SD_OK)
+        return sd_cli_fail_input(&err);
     return 0;
 }
 
@@ -272,6 +302,21 @@ static int sd_cmd_run(const sd_cli *c)
     }
     if (tty)
         fputc('\n', stderr);
+    /* SIGINT/SIGTERM: a final checkpoint where the run stopped (the loop
+     * stops between chunks, so the world is between steps) */
+    char ckpt[1100] = "";
+    sd_status ckpt_st = SD_OK;
+    if (sd_interrupted && !failed && !c->bench) {
+        sd_error cerr0;
+        memset(&cerr0, 0, sizeof cerr0);
+        ckpt_st = sd_run_checkpoint(run, &cerr0);
+        if (ckpt_st != SD_OK) {
+            char buf[1024];
+            sd_error_format(&cerr0, buf, sizeof buf);
+            fprintf(stderr, "shapedem: the final checkpoint failed: %s\n", buf);
+        } else
+            snprintf(ckpt, sizeof ckpt, "%s", sd_run_last_checkpoint(run));
+    }
     size_t peak_memory = sd_memory_peak(), peak_rss = sd_peak_rss();
     if (failed) {
         char buf[1024];
@@ -313,7 +358,11 @@ static int sd_cmd_run(const sd_cli *c)
     sd_world_destroy(w);
     sd_scene_free(scene);
     if (sd_interrupted) {
-        fprintf(stderr, "shapedem: interrupted at step %ld; the files written so far are complete\n", pr.done);
+        if (ckpt_st == SD_OK && ckpt[0])
+            fprintf(stderr, "shapedem: interrupted at step %ld; the files written so far are complete; "
+                    "continue with --restart %s\n", pr.done, ckpt);
+        else
+            fprintf(stderr, "shapedem: interrupted at step %ld; the files written so far are complete\n", pr.done);
         return 130;
     }
     return failed ? 1 : 0;
@@ -443,6 +492,8 @@ int main(int argc, char **argv)
         return sd_cmd_run(&c);
     if (!strcmp(c.command, "check"))
         return sd_cmd_check(&c);
+    if (!strcmp(c.command, "info"))
+        return sd_cmd_info(&c);
     if (!strcmp(c.command, "help")) {
         if (c.scene && !strcmp(c.scene, "scene")) {
             sd_scene_print_keys(stdout, c.markdown);

@@ -35,6 +35,11 @@ struct sd_run {
     int started, failed;
     double stepping;             /* s of wall time inside sd_world_step */
     double psteps;               /* particle-steps (the count changes with a pour or an outlet) */
+    /* checkpoints (io/checkpoint.c): every ckpt_every steps of the world
+     * and every ckpt_seconds of wall time (0: not), into dir */
+    long ckpt_every;
+    double ckpt_seconds, ckpt_wall; /* s; wall clock of the last one */
+    char ckpt_last[SD_SCENE_PATH_MAX + 48];
     FILE *outlet;                /* outlet.csv (cells outlets; io/scene_process.c), NULL when none */
     double outlet_t, outlet_m;   /* s, kg: time and mass removed at its last row */
 };
@@ -76,6 +81,11 @@ sd_status sd_run_open(const sd_scene *s, sd_world *w, const char *dir, sd_run **
     r->steps = info.steps;
     r->every = info.frame_every;
     r->stats_every = info.stats_every;
+    /* a restarted world (sd_checkpoint_restore) continues the schedule */
+    r->done = sd_world_step_count(w) < r->steps ? sd_world_step_count(w) : r->steps;
+    r->ckpt_every = s->output.checkpoint_every;
+    r->ckpt_seconds = 60.0 * s->output.checkpoint_minutes;
+    r->ckpt_wall = sd_run_now();
     if (dir) {
         if (strlen(dir) >= sizeof r->dir) {
             sd_free(r);
@@ -112,7 +122,50 @@ long sd_run_steps_to_output(const sd_run *r)
         next = r->done + to_frame;
     if (r->done + to_stats < next)
         next = r->done + to_stats;
+    if (r->ckpt_every > 0 && r->done + (r->ckpt_every - r->done % r->ckpt_every) < next)
+        next = r->done + (r->ckpt_every - r->done % r->ckpt_every);
     return next - r->done;
+}
+
+sd_status sd_run_checkpoint(sd_run *r, sd_error *err)
+{
+    if (!r->out)
+        return SD_OK; /* a run without files writes no checkpoint either */
+    char path[sizeof r->ckpt_last];
+    snprintf(path, sizeof path, "%s/checkpoint-%06ld.h5", r->dir, sd_world_step_count(r->w));
+    sd_status st = sd_checkpoint_write(r->w, path, err);
+    if (st == SD_OK) {
+        snprintf(r->ckpt_last, sizeof r->ckpt_last, "%s", path);
+        r->ckpt_wall = sd_run_now();
+    }
+    return st;
+}
+
+const char *sd_run_last_checkpoint(const sd_run *r) { return r->ckpt_last; }
+
+/* A checkpoint falls due at multiples of checkpoint_every and when
+ * checkpoint_minutes of wall time have passed since the last one. */
+static int sd_run_checkpoint_due(const sd_run *r)
+{
+    return (r->ckpt_every > 0 && r->done % r->ckpt_every == 0) ||
+           (r->ckpt_seconds > 0 && sd_run_now() - r->ckpt_wall >= r->ckpt_seconds);
+}
+
+/* After a step that failed on the state (a guard, NaN): the state as it
+ * is, written for inspection (failed-<step>.h5, not a restart point), its
+ * path added to the message. */
+static void sd_run_failed_state(sd_run *r, sd_error *err)
+{
+    if (!r->out || !err || err->code != SD_ERR_PHYSICS)
+        return;
+    char path[sizeof r->ckpt_last];
+    snprintf(path, sizeof path, "%s/failed-%06ld.h5", r->dir, sd_world_step_count(r->w));
+    sd_error e2;
+    memset(&e2, 0, sizeof e2);
+    if (sd_checkpoint_write(r->w, path, &e2) == SD_OK) {
+        size_t n = strlen(err->msg);
+        snprintf(err->msg + n, sizeof err->msg - n, "; the state is in %s for inspection", path);
+    }
 }
 
 sd_status sd_run_advance(sd_run *r, long steps, sd_error *err)
@@ -142,6 +195,7 @@ sd_status sd_run_advance(sd_run *r, long steps, sd_error *err)
         size_t n_before = sd_world_particle_count(r->w);
         if ((st = sd_world_step(r->w, next - r->done, err)) != SD_OK) {
             r->failed = 1;
+            sd_run_failed_state(r, err);
             return st;
         }
         double t1 = sd_run_now();
@@ -155,6 +209,8 @@ sd_status sd_run_advance(sd_run *r, long steps, sd_error *err)
             sd_run_outlet_row(r);
         if (r->out && !r->failed && (r->done % r->every == 0 || r->done == r->steps) &&
             (st = sd_output_frame(r->out, r->w, err)) != SD_OK)
+            r->failed = 1;
+        if (r->out && !r->failed && sd_run_checkpoint_due(r) && (st = sd_run_checkpoint(r, err)) != SD_OK)
             r->failed = 1;
         if (r->out)
             sd_world_profile_add(r->w, SD_PROFILE_OUTPUT, sd_run_now() - t1);

@@ -129,6 +129,8 @@ typedef struct sd_scene_output {
     long every;                   /* steps between frames */
     long stats_every;             /* steps between stats.csv rows */
     unsigned formats;             /* SD_OUT_* mask */
+    long checkpoint_every;        /* steps between checkpoints, 0 = none */
+    double checkpoint_minutes;    /* minutes of wall time between checkpoints, 0 = none */
 } sd_scene_output;
 
 /* Layer-by-layer pouring and the outlet of the grid solver (seed 001

@@ -390,6 +390,10 @@ const sd_scene_key sd_scene_keys[] = {
      "steps between rows of stats.csv (the default is at least 1)"},
     {SD_SEC_OUTPUT, "formats", SD_KT_ENUM_LIST, SD_KR_ANY, "vtk|csv", ALL, 0, "", "[vtk, csv]",
      "what to write: vtk frames, csv statistics"},
+    {SD_SEC_OUTPUT, "checkpoint_every", SD_KT_INT, SD_KR_NONNEG, NULL, ALL, 0, "", "0",
+     "steps between checkpoints (checkpoint-STEP.h5 in the output directory, docs/checkpoints.md); 0 = none"},
+    {SD_SEC_OUTPUT, "checkpoint_minutes", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "min", "0",
+     "minutes of wall time between checkpoints (besides checkpoint_every); 0 = none"},
 
     {SD_SEC_POUR, "material", SD_KT_STRING, SD_KR_NONEMPTY, NULL, ALL, ALL, "", "required",
      "material of the poured spheres"},

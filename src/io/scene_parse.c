@@ -485,6 +485,9 @@ static sd_status sd_parse_output(sd_parse *p, yaml_node_t *root, int line)
     /* The choice order vtk|csv matches SD_OUT_VTK, SD_OUT_CSV. */
     s->output.formats =
         sd_yaml_get(&p->y, out, SD_SEC_OUTPUT, "formats", path, &v) ? v.mask : (SD_OUT_VTK | SD_OUT_CSV);
+    s->output.checkpoint_every = sd_yaml_get(&p->y, out, SD_SEC_OUTPUT, "checkpoint_every", path, &v) ? (long)v.integer : 0;
+    s->output.checkpoint_minutes =
+        sd_yaml_get(&p->y, out, SD_SEC_OUTPUT, "checkpoint_minutes", path, &v) ? v.num : 0.0;
     return SD_OK;
 }
 

@@ -243,7 +243,8 @@ uint64_t sd_snapshot_checksum(const sd_snapshot *s)
     X(velocity)                                                                                          \
     X(point_ref)                                                                                         \
     X(stiffness)                                                                                         \
-    X(servo_i)
+    X(servo_i)                                                                                           \
+    X(omega)
 
 /* The sizes a restore gives the arrays: the saved one-value item name, or
  * 0 and a message. */
@@ -296,6 +297,7 @@ sd_status sd_cells_state(sd_world *w, sd_state_table *t, sd_error *err)
             (st = sd_saved_size(t, "wall_pairs/n", &nwp, err)) != SD_OK)
             return st;
         size_t gs = sd_saved_rows(t, "pairs/gstart"), wgs = sd_saved_rows(t, "wall_pairs/gstart");
+        size_t ntri = sd_saved_rows(t, "wall_pairs/tri");
         if (sd_particles_reserve(p, n + ng) != SD_OK || sd_grow_u32(&w->ghost_owner, &w->ghost_cap, ng) != SD_OK)
             return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory for %zu particles", n + ng);
         if (ng > 0) {
@@ -310,6 +312,9 @@ sd_status sd_cells_state(sd_world *w, sd_state_table *t, sd_error *err)
             return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory for %zu pairs", np + nwp);
         l->gstart_cap = lgs;
         wl->gstart_cap = wlgs;
+        if (sd_grow_u32(&wl->tri, &wl->tri_cap, ntri) != SD_OK)
+            return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory for %zu mesh triangles", ntri);
+        wl->tri_n = ntri;
         p->n = n;
         w->n_ghost = ng;
         l->n = np;
@@ -347,6 +352,8 @@ sd_status sd_cells_state(sd_world *w, sd_state_table *t, sd_error *err)
     size_t wgs = t->saved ? sd_saved_rows(t, "wall_pairs/gstart") : (wl->gstart ? p->n + 1 : 0);
     sd_state_add(t, "wall_pairs/gstart", SD_ST_U32, 1, wgs, wl->gstart, 4);
     sd_state_add(t, "wall_pairs/gidx", SD_ST_U32, 1, wgs ? wl->n : 0, wl->gidx, 4);
+    /* mesh pairs: the near triangles of each pair's plane group */
+    sd_state_add(t, "wall_pairs/tri", SD_ST_U32, 1, wl->tri_n, wl->tri, 4);
     if (t->saved && ((gs != 0 && gs != p->n + 1) || (wgs != 0 && wgs != p->n + 1)))
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "pairs/gstart",
                             "the checkpoint's gather lists have %zu and %zu starts for %zu particles", gs, wgs, p->n);
@@ -373,7 +380,8 @@ sd_status sd_cells_resumed(sd_world *w, sd_error *err)
             return sd_error_set(err, SD_ERR_INPUT, "", 0, "pairs/i", "pair %zu indexes particles %u and %u of %zu",
                                 e, l->i[e], l->j[e], nt);
     for (size_t e = 0; e < wl->n; ++e)
-        if (wl->i[e] >= n || wl->wall[e] >= w->wall_count)
+        if (wl->i[e] >= n || wl->wall[e] >= w->wall_count || wl->tstart[e] > wl->tri_n ||
+            wl->tcount[e] > wl->tri_n - wl->tstart[e])
             return sd_error_set(err, SD_ERR_INPUT, "", 0, "wall_pairs/i", "wall pair %zu indexes particle %u, wall %u",
                                 e, wl->i[e], wl->wall[e]);
     for (size_t g = 0; g < w->n_ghost; ++g)

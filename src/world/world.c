@@ -444,7 +444,12 @@ int sd_world_add_box(sd_world *w, const char *name, sd_v3d lo, sd_v3d hi, unsign
 /* ---- the solver interface (world/solver.h) ------------------------------------- */
 
 sd_status sd_world_prepare(sd_world *w, sd_error *err) { return w->solver->prepare(w, err); }
-sd_status sd_world_step(sd_world *w, long nsteps, sd_error *err) { return w->solver->step(w, nsteps, err); }
+sd_status sd_world_step(sd_world *w, long nsteps, sd_error *err)
+{
+    /* the stability limit, as the scene loader and `shapedem check` see it (guards.c) */
+    sd_status st = nsteps > 0 ? sd_world_check_dt(w, err) : SD_OK;
+    return st != SD_OK ? st : w->solver->step(w, nsteps, err);
+}
 size_t sd_world_particle_count(const sd_world *w) { return w->solver->count(w); }
 sd_status sd_world_get_particle(const sd_world *w, size_t k, sd_particle_state *out)
 {

@@ -175,6 +175,8 @@ struct sd_world {
     struct sd_process *process; /* insertions and outlets (world/process.h), NULL when none */
     int prepared;
     int dirty;                /* particles added since the last rebuild */
+    double dt_checked;        /* s, the time step sd_world_check_dt last passed (guards.c), 0 none */
+    size_t dt_checked_n;      /* particles at that check */
 };
 
 /* Grows the particle arrays to hold at least cap particles. */
@@ -199,6 +201,10 @@ void sd_world_walls_mark(sd_world *w);
 int sd_world_push_wall(sd_world *w, const sd_wall *proto, sd_error *err);
 /* mesh.c: the torque of wall k about its torque point (N m). */
 sd_vec3 sd_world_wall_torque_about(const sd_world *w, size_t k);
+
+/* guards.c: SD_ERR_INPUT when dt is above the stability limit (1/5 of the
+ * shortest estimated contact); prepares the world first when needed. */
+sd_status sd_world_check_dt(sd_world *w, sd_error *err);
 
 /* A new shape's name is valid and free (bodies.c). */
 sd_status sd_world_check_shape_name(const sd_world *w, const char *name, sd_error *err);
