@@ -171,7 +171,7 @@ SD_HD static SD_INLINE sd_real sd_mesh_clip_weight(const sd_mesh_view *m, const 
                                                    sd_vec2 q, sd_vec3 *shift)
 {
     *shift = sd_v3_zero();
-    sd_vec2 c0;
+    sd_vec2 c0 = sd_v2(SD_R(0.0), SD_R(0.0)); /* set by sd_clip_area when ns >= 3; zero keeps -Wmaybe-uninitialized quiet */
     sd_real a0 = ns >= 3 ? sd_clip_area(sec, ns, &c0) : SD_R(0.0);
     sd_real asum = SD_R(0.0), cx = SD_R(0.0), cy = SD_R(0.0);
     int inside = 0;
