@@ -198,10 +198,6 @@ int main(void)
         if (ns[k] >= 8) {
             snprintf(label, sizeof label, "model B, N = %2d: Vz+ within 0.5 %% (m/s)", ns[k]);
             CHECK_REL(label, ob[k].vz, E * V0, 0.005);
-            /* model B: the peak force of one contact point and the same
-             * duration, whatever N (eq. 20): against N = 30 */
-            snprintf(label, sizeof label, "model B, N = %2d: peak force as N = 30 (N)", ns[k]);
-            CHECK_REL(label, ob[k].fmax, ob[NN - 1].fmax, 0.01);
         }
         if (k > 0) {
             /* the error of V_z+ comes from the spurious spin (below), and
@@ -215,6 +211,13 @@ int main(void)
         /* model A: T_c(N) = T_c(1) / sqrt(N) (eq. 19) */
         snprintf(label, sizeof label, "model A, N = %2d: duration T_c(1)/sqrt(N) (s)", ns[k]);
         CHECK_NEAR(label, oa[k].duration, oa[0].duration / sqrt((double)ns[k]), 2.5 * DT);
+    }
+    /* model B: the peak force of one contact point whatever N (eq. 20),
+     * against N = 30 (from N = 8, where the spin no longer matters) */
+    for (int k = 4; k < NN - 1; ++k) {
+        char label[96];
+        snprintf(label, sizeof label, "model B, N = %2d: peak force as N = 30 (N)", ns[k]);
+        CHECK_REL(label, ob[k].fmax, ob[NN - 1].fmax, 0.01);
     }
     /* the spurious spin of the line contact falls like 1/N (Fig. 9b):
      * below twice the single contact point's over N */
