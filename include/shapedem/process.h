@@ -152,6 +152,30 @@ typedef struct sd_process_info {
 
 void sd_world_get_process(const sd_world *w, sd_process_info *out);
 
+/* A rotating cylindrical drum, an analytic wall (cells solver, 3D): the
+ * particles live inside the mantle of radius `radius` about the axis
+ * through `center` (the middle of the axis) along `axis`, between the end
+ * caps at +-length/2 (each may be left open: a drum open at both ends with
+ * its axis along a periodic axis of the domain has periodic axial
+ * boundaries). It turns at rpm about +axis (right-handed): the law sees
+ * the particle's velocity relative to the surface, omega x r. Contact for
+ * spheres (exact), convex shapes and polyhedra (the tangent plane at the
+ * particle's radial projection), composite elements (without the turning
+ * speed yet). */
+typedef struct sd_drum_def {
+    const char *name;
+    sd_v3d center, axis;  /* m; any length > 0 */
+    double radius, length;/* m */
+    double rpm;           /* rev/min about +axis */
+    int open_lo, open_hi; /* leave out the cap at center - length/2 axis (lo) or + (hi) */
+    int material;
+    int cookie;
+} sd_drum_def;
+
+sd_drum_def sd_drum_def_default(void);
+/* Adds the drum; its wall index, or -1 with err filled. */
+int sd_world_add_drum(sd_world *w, const sd_drum_def *def, sd_error *err);
+
 /* A loaded scene's warning for outlet k (outlets: section): why no
  * particle can reach it, or "" (NULL past the end). */
 struct sd_scene;

@@ -542,12 +542,16 @@ SD_HD static SD_HOT sd_body sd_item_wall_body(const sd_step_view *v, const sd_wa
     return a;
 }
 
-/* A drum's surface velocity at c (m/s): omega x (c - centre), taken off
- * the particle's velocity so the law sees the relative velocity (the
- * drum's translation velocity is 0; dynamics/walls.h). */
-SD_HD static SD_INLINE sd_vec3 sd_item_drum_relative(const sd_wall_view *wl, sd_vec3 v, sd_vec3 c)
+/* A drum turns as a rigid body at omega about its axis through centre, so
+ * the law sees the particle's motion relative to it (seed 004 §4.2's
+ * drum): v - omega x (x - centre) and w - omega. At the contact point the
+ * relative velocity is then v + w x (c - x) - omega x (c - centre), the
+ * surface speed omega x r taken off, and rolling resistance acts on the
+ * spin relative to the wall. (The drum's translation velocity is 0.) */
+SD_HD static SD_INLINE void sd_item_drum_relative(const sd_wall_view *wl, sd_body *a)
 {
-    return sd_v3_sub(v, sd_v3_cross(wl->omega, sd_v3_sub(c, wl->g.centre)));
+    a->v = sd_v3_sub(a->v, sd_v3_cross(wl->omega, sd_v3_sub(a->x, wl->g.centre)));
+    a->w = sd_v3_sub(a->w, wl->omega);
 }
 
 /* SD_WALL_PAIR_SPHERE: a plain sphere (or disc) against a plane, a box
@@ -567,7 +571,7 @@ SD_HD static SD_HOT void sd_item_wall_sphere(const sd_step_view *v, sd_wall_pair
         touching = sd_wall_feature_plane(&wl->g, (int)o->sub[e], a.x, &p0, &nw) &&
                    sd_sphere_plane(a.x, a.radius, p0, nw, &g);
         if (touching)
-            a.v = sd_item_drum_relative(wl, a.v, g.point);
+            sd_item_drum_relative(wl, &a);
     } else if (!v->dim2 || o->sub[e] < 4) { /* the plane has no z faces */
         sd_wall_face f = sd_wall_box_face_of(wl->g.lo, wl->g.hi, o->sub[e]);
         touching = sd_sphere_box_face(a.x, a.radius, f.axis, f.value, f.dir, wl->g.lo, wl->g.hi, &g);
@@ -591,7 +595,7 @@ SD_HD static SD_INLINE void sd_item_wall_convex(const sd_step_view *v, sd_wall_p
     sd_narrow_count ns;
     int touching = inside && sd_convex_wall_geom(&c, p0, nw, &g, &ns);
     if (touching && wl->g.kind == SD_WALL_DRUM)
-        a.v = sd_item_drum_relative(wl, a.v, g.point);
+        sd_item_drum_relative(wl, &a);
     const sd_pair_params *prm = sd_item_params(v, v->material[i], wl->material);
     sd_pair_result r = sd_pair_wall(prm, &a, &g, touching, v->shape_req[v->shape[i]], &o->ds[e], v->dt);
     sd_item_wall_store(o, e, touching ? g.point : a.x, &r);
@@ -612,8 +616,8 @@ SD_HD static SD_INLINE void sd_item_wall_poly_volume(const sd_step_view *v, sd_w
         r = sd_pair_none(&o->ds[e]);
     } else {
         sd_convex c = sd_item_shape_of(v, i);
-        if (wl->g.kind == SD_WALL_DRUM) /* the surface's speed where the particle's radius meets it */
-            a.v = sd_item_drum_relative(wl, a.v, p0);
+        if (wl->g.kind == SD_WALL_DRUM)
+            sd_item_drum_relative(wl, &a);
         r = sd_pair_poly_wall(prm, &a, &c, p0, nw, v->shape_req[s], &o->ds[e], v->dt, &point);
     }
     sd_item_wall_store(o, e, point, &r);

@@ -29,7 +29,8 @@
 #define SD_WALL_KINDS(X)                                                                   \
     X(PLANE, plane, 1, "an infinite plane: the half-space its normal points away from")     \
     X(BOX, box, 6, "a box container: its closed faces, seen from inside")                  \
-    X(MESH, mesh, 0, "a triangle mesh: one feature per plane group (dynamics/meshwall.h)")
+    X(MESH, mesh, 0, "a triangle mesh: one feature per plane group (dynamics/meshwall.h)")            \
+    X(DRUM, drum, 3, "a rotating cylindrical drum seen from inside: mantle (0) and end caps (1, 2)")
 
 enum sd_wall_kind {
 #define SD_X_WALL(NAME, name, nf, doc) SD_WALL_##NAME,
@@ -55,6 +56,28 @@ typedef struct sd_wall_geom {
     sd_vec3 trans, centre;
     int mesh;
 } sd_wall_geom;
+
+/* A drum (SD_WALL_DRUM) keeps its geometry in the common members: point =
+ * the middle of its axis (m), normal = the unit axis, lo.x = radius (m),
+ * lo.y = half length (m), open_faces bit 1 / bit 2 = end cap at
+ * point - half normal / point + half normal left out (a drum open at both
+ * ends runs with a periodic axis), centre = point (the velocity field is
+ * omega x (c - centre), sd_wall_view.omega = 2 pi rpm / 60 along the axis).
+ * Its mantle's feature plane is the tangent plane at the particle's
+ * radial projection: exact for a sphere (the contact is along the radius),
+ * a plane approximation of the curved wall for shapes (error ~ size^2 / R). */
+#define SD_WALL_DRUM_CAP_LO 2u /* open_faces bit of cap 1 */
+#define SD_WALL_DRUM_CAP_HI 4u /* open_faces bit of cap 2 */
+
+/* Axial coordinate s and radial vector d (perpendicular to the axis) of x
+ * in a drum. */
+SD_HD static SD_INLINE sd_real sd_wall_drum_coords(const sd_wall_geom *w, sd_vec3 x, sd_vec3 *d)
+{
+    sd_vec3 r = sd_v3_sub(x, w->point);
+    sd_real s = sd_v3_dot(r, w->normal);
+    *d = sd_v3_sub(r, sd_v3_scale(w->normal, s));
+    return s;
+}
 
 /* The call data of one box face: the plane axis = value with inward
  * normal sign dir (+1 at lo, -1 at hi), as geom/sphere.h's
@@ -98,12 +121,16 @@ SD_HD static SD_INLINE int sd_wall_feature_count(const sd_wall_geom *w)
 {
     if (w->kind == SD_WALL_MESH)
         return 0; /* plane groups come from the facet bins */
+    if (w->kind == SD_WALL_DRUM)
+        return 3;
     return w->kind == SD_WALL_BOX ? SD_WALL_BOX_FACES : 1;
 }
 
 /* 1 when feature f exists (a closed face, or the plane). */
 SD_HD static SD_INLINE int sd_wall_feature_exists(const sd_wall_geom *w, int f)
 {
+    if (w->kind == SD_WALL_DRUM)
+        return f == 0 || (f <= 2 && !(w->open_faces & (1u << f)));
     return w->kind == SD_WALL_BOX ? sd_wall_box_face_closed(w->open_faces, f) : f == 0;
 }
 
@@ -116,6 +143,14 @@ SD_HD static SD_INLINE int sd_wall_feature_near(const sd_wall_geom *w, int f, sd
 {
     if (w->kind == SD_WALL_PLANE)
         return sd_v3_dot(sd_v3_sub(x, w->point), w->normal) < reach;
+    if (w->kind == SD_WALL_DRUM) {
+        sd_vec3 d;
+        sd_real s = sd_wall_drum_coords(w, x, &d), rho = sd_v3_norm(d), R = w->lo.x, h = w->lo.y;
+        if (f == 0)
+            return R - rho < reach && rho - R < reach && sd_fabs(s) < h + reach;
+        sd_real gap = f == 1 ? s + h : h - s; /* > 0 inside */
+        return gap < reach && gap > -reach && rho < R + reach;
+    }
     sd_real s = sd_wall_box_face_gap(w->lo, w->hi, f, x);
     return s < reach && s > -reach;
 }
@@ -130,6 +165,24 @@ SD_HD static SD_INLINE int sd_wall_feature_plane(const sd_wall_geom *w, int f, s
     if (w->kind == SD_WALL_PLANE) {
         *p0 = w->point;
         *n = w->normal;
+        return 1;
+    }
+    if (w->kind == SD_WALL_DRUM) {
+        sd_vec3 d;
+        sd_real s = sd_wall_drum_coords(w, x, &d), rho = sd_v3_norm(d), R = w->lo.x, h = w->lo.y;
+        if (f == 0) {
+            if (!(rho > SD_R(0.0)) || sd_fabs(s) > h)
+                return 0; /* on the axis (no direction) or beyond a cap */
+            sd_vec3 u = sd_v3_scale(d, SD_R(1.0) / rho);
+            *p0 = sd_v3_add(sd_v3_add(w->point, sd_v3_scale(w->normal, s)), sd_v3_scale(u, R));
+            *n = sd_v3_scale(u, SD_R(-1.0)); /* inward: towards the axis */
+            return 1;
+        }
+        if (rho > R)
+            return 0;
+        sd_real sign = f == 1 ? SD_R(-1.0) : SD_R(1.0);
+        *p0 = sd_v3_add(x, sd_v3_scale(w->normal, sign * h - s));
+        *n = sd_v3_scale(w->normal, -sign); /* cap 1 faces +axis, cap 2 faces -axis */
         return 1;
     }
     int axis = f / 2;
@@ -151,6 +204,8 @@ SD_HD static SD_INLINE int sd_wall_feature_plane(const sd_wall_geom *w, int f, s
  * do not exist in the plane. */
 SD_HD static SD_INLINE int sd_wall_feature_line(const sd_wall_geom *w, int f, sd_vec3 x, sd_vec2 *p0, sd_vec2 *n)
 {
+    if (w->kind == SD_WALL_DRUM)
+        return 0; /* 3D only (refused in the planar mode) */
     if (w->kind == SD_WALL_PLANE) {
         *p0 = sd_v2(w->point.x, w->point.y);
         *n = sd_v2(w->normal.x, w->normal.y);
@@ -182,6 +237,9 @@ SD_HD static SD_INLINE int sd_wall_crosses_axis(const sd_wall_geom *w, int a)
 {
     if (w->kind == SD_WALL_MESH)
         return 0; /* a mesh is a body inside the domain; its facets are not wrapped */
+    if (w->kind == SD_WALL_DRUM) /* the mantle is invariant along its own axis only; caps cut it */
+        return sd_fabs(sd_wall_comp(w->normal, a)) < SD_R(1.0) - SD_R(1e-12) ||
+               (w->open_faces & (SD_WALL_DRUM_CAP_LO | SD_WALL_DRUM_CAP_HI)) != (SD_WALL_DRUM_CAP_LO | SD_WALL_DRUM_CAP_HI);
     if (w->kind == SD_WALL_PLANE)
         return sd_wall_comp(w->normal, a) != SD_R(0.0);
     return sd_wall_box_face_closed(w->open_faces, 2 * a) || sd_wall_box_face_closed(w->open_faces, 2 * a + 1);

@@ -923,6 +923,50 @@ static sd_status sd_insert_run(sd_world *w, sd_insertion *ins, sd_error *err)
     return SD_OK;
 }
 
+/* ---- the drum wall (dynamics/walls.h, SD_WALL_DRUM) ------------------------------ */
+
+sd_drum_def sd_drum_def_default(void)
+{
+    sd_drum_def d;
+    memset(&d, 0, sizeof d);
+    d.axis.z = 1;
+    d.cookie = SD_COOKIE_PROCESS;
+    return d;
+}
+
+int sd_world_add_drum(sd_world *w, const sd_drum_def *d, sd_error *err)
+{
+    if (!d || d->cookie != SD_COOKIE_PROCESS) {
+        sd_error_set(err, SD_ERR_INPUT, "", 0, "walls", "drum def not made by sd_drum_def_default");
+        return -1;
+    }
+    double an = sqrt(sd_d3_dot(d->axis, d->axis));
+    if (!(an > 0) || !(d->radius > 0) || !(d->length > 0) || !isfinite(d->rpm)) {
+        sd_error_set(err, SD_ERR_INPUT, "", 0, "walls", "a drum needs a non-zero axis, a radius > 0, a length > 0 and "
+                                                        "a finite rpm");
+        return -1;
+    }
+    if (w->dim2) {
+        sd_error_set(err, SD_ERR_INPUT, "", 0, "walls", "dimension 2: the drum wall is 3D only");
+        return -1;
+    }
+    sd_wall wl;
+    memset(&wl, 0, sizeof wl);
+    wl.kind = SD_WALL_DRUM;
+    wl.point = sd_v3((sd_real)d->center.x, (sd_real)d->center.y, (sd_real)d->center.z);
+    wl.normal = sd_v3((sd_real)(d->axis.x / an), (sd_real)(d->axis.y / an), (sd_real)(d->axis.z / an));
+    wl.lo = sd_v3((sd_real)d->radius, (sd_real)(0.5 * d->length), SD_R(0.0));
+    wl.hi = wl.lo;
+    wl.open_faces = (d->open_lo ? SD_WALL_DRUM_CAP_LO : 0u) | (d->open_hi ? SD_WALL_DRUM_CAP_HI : 0u);
+    wl.centre = wl.point;
+    wl.q = sd_quat_identity();
+    /* rad/s: 2 pi rpm / 60 about +axis */
+    wl.omega = sd_v3_scale(wl.normal, (sd_real)(2.0 * sd_pi * d->rpm / 60.0));
+    wl.material = d->material;
+    snprintf(wl.name, sizeof wl.name, "%s", d->name && d->name[0] ? d->name : "drum");
+    return sd_world_push_wall(w, &wl, err);
+}
+
 /* ---- the step ---------------------------------------------------------------- */
 
 static sd_status sd_process_events(sd_world *w, sd_error *err)
