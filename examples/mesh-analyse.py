@@ -11,7 +11,7 @@ hopper: the particles that have passed below the floor (z < 0, through the
   orifice) in each frame, and the discharge rate (particles/s and kg/s from
   the mean particle mass) by a straight fit over the middle of the flow.
 silo: the vertical force of the grains on the silo (silo_fz: floor and the
-  friction on the corrugated wall) against the weight of the grains.
+  friction on the corrugated wall), which at rest is their weight.
 Standard library for the numbers; matplotlib (when installed) for the plots.
 """
 import csv
@@ -93,7 +93,7 @@ def drum(out, start=0.5):
     mean = sum(steady) / len(steady) if steady else float("nan")
     print("drum: mean torque about the axis from t = %.2f s: %.4g N m (%d rows)" % (start + 0.2, mean, len(steady)))
     plot(os.path.join(out, "torque.png"), t, ty, "time (s)", "torque on the drum about y (N m)",
-         "mesh-drum: torque of the charge on the drum (mean %.3g N m once turning)" % mean,
+         "mesh-drum: torque on the drum, mean %.3g N m turning" % mean,
          lambda ax: ax.axvline(0.3, color="grey", ls=":", lw=1))
 
 
@@ -101,12 +101,13 @@ def hopper(out):
     fr = frames(out)
     ts, below, mass = [], [], None
     for t, p in fr:
-        a = vtu_arrays(p, ("position", "mass"))
+        a = vtu_arrays(p, ("position", "radius"))
         z = a["position"][2::3]
         ts.append(t)
         below.append(sum(1 for v in z if v < 0.0))
-        if mass is None and "mass" in a and a["mass"]:
-            mass = sum(a["mass"]) / len(a["mass"])
+        if mass is None and a.get("radius"):
+            # the example's glass spheres: 2500 kg/m^3
+            mass = 2500.0 * sum(4.0 / 3.0 * math.pi * r ** 3 for r in a["radius"]) / len(a["radius"])
     n_total = len(vtu_arrays(fr[0][1], ("position",))["position"]) // 3 if fr else 0
     with open(os.path.join(out, "discharge.csv"), "w") as f:
         f.write("time_s,discharged\n")
@@ -122,29 +123,24 @@ def hopper(out):
         msg += " (%.4g kg/s)" % (rate * mass)
     print(msg)
     plot(os.path.join(out, "discharge.png"), ts, below, "time (s)", "particles below the floor",
-         "mesh-hopper: discharge through the orifice, %.3g particles/s" % rate)
+         "mesh-hopper: discharge, %.3g particles/s" % rate)
 
 
 def silo(out):
     rows = stats(out)
     t = [float(r["time"]) for r in rows]
     fz = [float(r["silo_fz"]) for r in rows]
-    fr = frames(out)
-    weight = None
-    if fr:
-        a = vtu_arrays(fr[-1][1], ("mass",))
-        if "mass" in a:
-            weight = 9.81 * sum(a["mass"])
+    ke = [float(r["kinetic_translational"]) for r in rows]
     with open(os.path.join(out, "silo.csv"), "w") as f:
-        f.write("time_s,vertical_force_N\n")
-        for a, b in zip(t, fz):
-            f.write("%.6g,%.6g\n" % (a, b))
-    if weight:
-        print("silo: vertical force on the silo %.4g N at the end, weight of the grains %.4g N (ratio %.3f)" % (
-            fz[-1], weight, fz[-1] / weight))
+        f.write("time_s,vertical_force_N,kinetic_J\n")
+        for a, b, c in zip(t, fz, ke):
+            f.write("%.6g,%.6g,%.6g\n" % (a, b, c))
+    # at rest the silo (floor and wall) carries the whole weight of the grains
+    print("silo: vertical force on the silo %.4g N at t = %.3g s (peak %.4g N during the pour), kinetic energy %.3g J"
+          % (fz[-1], t[-1], min(fz), ke[-1]))
     plot(os.path.join(out, "silo.png"), t, fz, "time (s)", "vertical force on the silo (N)",
-         "mesh-silo: grains settling in a corrugated silo",
-         (lambda ax: ax.axhline(-weight, color="grey", ls=":", lw=1)) if weight else None)
+         "mesh-silo: grains poured into a corrugated silo",
+         lambda ax: ax.axhline(fz[-1], color="grey", ls=":", lw=1))
 
 
 def main(argv):
