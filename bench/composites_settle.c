@@ -1,0 +1,176 @@
+/* composites_settle.c — benchmark `composites-settle` (issue 15): 2,000
+ * particles settling in a box under gravity, the same scene size for four
+ * particle types, to give the cost ratio composite / convex / sphere that
+ * seed 004 §2.5 puts at about 50x spheres:
+ *   spheres   plain spheres of radius r
+ *   cubes     convex cubes of edge 2 r (GJK/EPA)
+ *   clumps    multi-sphere clumps, 4 spheres of radius r on a tetrahedron
+ *   crosses   3D crosses of 7 cubes of edge 1.4 r (composites of convex elements)
+ * Each case: particles on a loose lattice with random velocities, `warm`
+ * steps to bring them into contact, then `steps` timed steps. Prints per
+ * case particle-steps per second, element-pair tests per second (element
+ * pairs in the list, each evaluated once per step) and the ratio to the
+ * sphere case (with one thread per CPU second of the process, with more
+ * per wall second). Build against a release library build, e.g.
+ *   cmake -S . -B build-release -DCMAKE_BUILD_TYPE=Release && cmake --build build-release -j 2 --target shapedem_lib
+ *   cc -O2 -std=c17 -fopenmp -Isrc -Iinclude bench/composites_settle.c \
+ *      build-release/libshapedem.a -lyaml -lhdf5 -lm -o build-release/composites_settle
+ *   build-release/composites_settle [threads] [steps] [warm]
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "world/world.h"
+
+static double now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* s of CPU time of this process (all threads): on a shared, loaded machine
+ * the one-thread figures are taken from it, wall time being mostly waiting */
+static double cpu(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static double frand(unsigned *s)
+{
+    *s = *s * 1664525u + 1013904223u;
+    return (double)(*s >> 8) / 16777216.0;
+}
+
+enum { N = 2000 };
+
+static void run(const char *kind, int threads, int steps, int warm, double *psps_out)
+{
+    sd_error err;
+    sd_world *w;
+    sd_world_def d = sd_world_def_default();
+    d.law = SD_LAW_LINEAR;
+    d.dt = 1e-5;
+    d.gravity = (sd_v3d){0, 0, -9.81};
+    d.threads = threads;
+    if (sd_world_create(&d, &w, &err) != SD_OK)
+        exit(1);
+    sd_material_def m = sd_material_def_default();
+    m.density = 2500;
+    m.stiffness = 2e4;
+    m.restitution = 0.5;
+    m.friction = 0.4;
+    int mat = sd_world_add_material(w, &m, &err);
+    double r = 0.001;
+    int shape = -1;
+    sd_shape_desc s = sd_shape_desc_default();
+    sd_composite_element el[7];
+    sd_composite_desc cd = sd_composite_desc_default();
+    cd.elements = el;
+    if (!strcmp(kind, "cubes")) {
+        s.kind = "box";
+        s.size = (sd_v3d){2 * r, 2 * r, 2 * r};
+        shape = sd_world_add_shape(w, "cube", &s, &err);
+    } else if (!strcmp(kind, "clumps")) {
+        s.kind = "sphere";
+        s.size = (sd_v3d){r, 0, 0};
+        int ball = sd_world_add_shape(w, "ball", &s, &err);
+        static const double tet[4][3] = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
+        for (int k = 0; k < 4; ++k) {
+            memset(&el[k], 0, sizeof el[k]);
+            el[k].shape = ball;
+            el[k].position = (sd_v3d){1.1 * r * tet[k][0] / sqrt(2.0), 1.1 * r * tet[k][1] / sqrt(2.0),
+                                      1.1 * r * tet[k][2] / sqrt(2.0)};
+        }
+        cd.element_count = 4;
+        shape = sd_world_add_composite(w, "clump", &cd, &err);
+    } else if (!strcmp(kind, "crosses")) {
+        s.kind = "box";
+        double c = 1.4 * r;
+        s.size = (sd_v3d){c, c, c};
+        int cube = sd_world_add_shape(w, "cube", &s, &err);
+        static const double arm[7][3] = {{0, 0, 0}, {1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+        for (int k = 0; k < 7; ++k) {
+            memset(&el[k], 0, sizeof el[k]);
+            el[k].shape = cube;
+            el[k].position = (sd_v3d){c * arm[k][0], c * arm[k][1], c * arm[k][2]};
+        }
+        cd.element_count = 7;
+        shape = sd_world_add_composite(w, "cross", &cd, &err);
+    }
+    if (strcmp(kind, "spheres") && shape < 0) {
+        char msg[512];
+        sd_error_format(&err, msg, sizeof msg);
+        fprintf(stderr, "%s: %s\n", kind, msg);
+        exit(1);
+    }
+    enum { NX = 12, NY = 12 };
+    double h = 4.5 * r;
+    int nz = (N + NX * NY - 1) / (NX * NY);
+    sd_world_add_box(w, "box", (sd_v3d){0, 0, 0}, (sd_v3d){NX * h, NY * h, nz * h * 2}, 0, mat, &err);
+    static sd_body_def b[N];
+    static sd_sphere_def sp[N];
+    unsigned seed = 12345;
+    for (int n = 0; n < N; ++n) {
+        int i = n % NX, j = (n / NX) % NY, k = n / (NX * NY);
+        sd_v3d x = {(i + 0.5) * h, (j + 0.5) * h, (k + 0.5) * h};
+        sd_v3d v = {frand(&seed) - 0.5, frand(&seed) - 0.5, -frand(&seed)};
+        memset(&b[n], 0, sizeof b[n]);
+        memset(&sp[n], 0, sizeof sp[n]);
+        b[n].position = sp[n].position = x;
+        b[n].velocity = sp[n].velocity = v;
+        b[n].material = sp[n].material = mat;
+        sp[n].radius = r;
+        double qw = frand(&seed) - 0.5, qx = frand(&seed) - 0.5, qy = frand(&seed) - 0.5, qz = frand(&seed) - 0.5;
+        double ql = sqrt(qw * qw + qx * qx + qy * qy + qz * qz);
+        b[n].orientation[0] = qw / ql;
+        b[n].orientation[1] = qx / ql;
+        b[n].orientation[2] = qy / ql;
+        b[n].orientation[3] = qz / ql;
+        b[n].shape = shape;
+    }
+    if (!strcmp(kind, "spheres"))
+        sd_world_add_spheres(w, N, sp, &err);
+    else
+        sd_world_add_bodies(w, N, b, &err);
+    if (sd_world_step(w, warm, &err) != SD_OK)
+        exit(1);
+    double t0 = now(), c0 = cpu(), tests = 0;
+    int chunk = 50;
+    for (int k = 0; k < steps; k += chunk) {
+        sd_world_step(w, chunk, &err);
+        const sd_pair_list *l = &w->pairs;
+        tests += (double)chunk * (double)(l->kind_start[SD_PAIR_ELEMENTS + 1] - l->kind_start[SD_PAIR_ELEMENTS]);
+    }
+    double t = now() - t0, c = cpu() - c0;
+    sd_stats st;
+    sd_world_stats(w, &st);
+    /* per CPU second with one thread, per wall second with more */
+    double tt = threads == 1 ? c : t;
+    double psps = (double)N * steps / tt;
+    *psps_out = psps;
+    printf("%-8s threads %d: %8.0f particle-steps/s, %10.0f element-pair tests/s, %ld contacts, %ld wall contacts, "
+           "%zu candidate pairs, %.2f s wall, %.2f s CPU\n",
+           kind, threads, psps, tests / tt, st.contacts, st.wall_contacts, st.pairs, t, c);
+    fflush(stdout);
+    sd_world_destroy(w);
+}
+
+int main(int argc, char **argv)
+{
+    int threads = argc > 1 ? atoi(argv[1]) : 1, steps = argc > 2 ? atoi(argv[2]) : 1000,
+        warm = argc > 3 ? atoi(argv[3]) : 1000;
+    static const char *kinds[4] = {"spheres", "cubes", "clumps", "crosses"};
+    double p[4];
+    for (int k = 0; k < 4; ++k)
+        run(kinds[k], threads, steps, warm, &p[k]);
+    printf("cost per particle-step relative to spheres: cubes %.1fx, clumps of 4 spheres %.1fx, crosses of 7 cubes %.1fx "
+           "(crosses / cubes %.1fx)\n",
+           p[0] / p[1], p[0] / p[2], p[0] / p[3], p[1] / p[3]);
+    return 0;
+}
