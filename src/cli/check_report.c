@@ -22,6 +22,7 @@
 #include "grid/grid.h"
 #include "io/output.h"
 #include "io/scene.h"
+#include "world/dt_report.h"
 
 static double sd_check_now(void)
 {
@@ -310,4 +311,55 @@ void sd_check_print_output(FILE *f, const sd_scene *s, const sd_world *w, size_t
     if (od.csv)
         fprintf(f, "%s%ld stats rows x %.0f bytes", od.vtk ? ", " : "", rows, osz.stats_row);
     fprintf(f, "\n");
+}
+
+/* The time step's reasons (docs/physics.md "Time step"): which limit set
+ * the recommended step and, under the volume law, what the face contacts
+ * do at the scene's dt. Returns the number of warnings printed. */
+int sd_check_print_dt(FILE *f, const sd_world *w)
+{
+    sd_dt_report r;
+    sd_world_dt_report(w, &r);
+    double dt = sd_world_dt(w);
+    int n = 0;
+    if (isfinite(r.recommended))
+        fprintf(f, "dt limit     the recommended step is set by: %s\n", r.limit);
+    if (!r.volume)
+        return 0;
+    if (r.onset > 0)
+        fprintf(f,
+                "volume law   regularised below V0 = %.3g m^3 at dt = %.4g s (a face sunk %.3g m, %.3g %% of R_eq = "
+                "%.4g m; volume_face_omega_dt): below it F is linear in V, above it seed 000's law\n",
+                r.onset, dt, r.onset_depth, 100 * r.onset_depth / r.onset_radius, r.onset_radius);
+    fprintf(f, "face landing flat at %.3g m/s: lasts %.4g s (%.1f steps), %.3g m deep%s; seed 000's unregularised "
+               "law: %.4g s\n",
+            r.speed, r.impact, r.impact / dt, r.impact_depth,
+            r.onset > 0 ? (r.impact_inside ? ", inside the regularised range of that pair" : ", beyond the regularised range of that pair") : "",
+            r.seed_impact);
+    if (isfinite(r.rest_dt)) {
+        int resolved = r.onset > 0 ? r.rest_inside || dt <= r.rest_dt : dt <= r.rest_dt;
+        fprintf(f,
+                "resting face under its weight: %.3g m deep under seed 000's law, where dF/dd needs dt <= %.4g s "
+                "(the resting-face limit, omega dt <= 1)%s\n",
+                r.rest_depth, r.rest_dt,
+                r.onset > 0 && r.rest_inside ? "; at this dt it rests inside the regularised range, resolved with "
+                                               "omega dt <= volume_face_omega_dt"
+                                             : "");
+        if (!resolved) {
+            fprintf(f,
+                    "warning      dt = %.4g s is above the resting-face limit %.4g s: a face resting under a light "
+                    "load buzzes instead of settling (the face contact is infinitely stiff at zero overlap); set "
+                    "materials[].volume_face_omega_dt: 0.5 to regularise it, or lower dt\n",
+                    dt, r.rest_dt);
+            n++;
+        }
+    }
+    if (r.onset == 0 && r.seed_impact < 5 * dt) {
+        fprintf(f,
+                "warning      a face landing flat lasts %.4g s, %.1f steps of dt = %.4g s: it gains energy; set "
+                "materials[].volume_face_omega_dt: 0.5 to regularise it, or lower dt\n",
+                r.seed_impact, r.seed_impact / dt, dt);
+        n++;
+    }
+    return n;
 }

@@ -56,6 +56,11 @@ void sd_check_print_grid(FILE *f, const sd_scene *s);
 /* The output line: what a run of w would write (io/output.c's estimate)
  * for `total` particles, `frames` frames and `rows` stats rows; poured:
  * the frames are sized with every poured sphere in. */
+/* The recommended step's limit and, under the volume law, the face
+ * contacts at the scene's dt (regularised range, landing, resting face);
+ * the number of warnings printed. */
+int sd_check_print_dt(FILE *f, const sd_world *w);
+
 void sd_check_print_output(FILE *f, const sd_scene *s, const sd_world *w, size_t total, long frames, long rows,
                            double end_time, size_t poured);
 

@@ -425,6 +425,7 @@ static int sd_cmd_check(const sd_cli *c)
                rec, tc / dt);
         warnings++;
     }
+    warnings += sd_check_print_dt(stdout, w); /* what set the step; the volume law's face contacts */
     warnings += sd_check_units(stdout, scene, &cnt, tc, dt);
     for (size_t k = 0; k < info.shape_count; ++k)
         if (sd_scene_shape_warning(scene, k)[0]) { /* a mesh taken as its hull (nonconvex: hull) */

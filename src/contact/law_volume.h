@@ -22,6 +22,31 @@
  * Seed 000's law is exactly conservative: with e = 1 and mu = 0, kinetic
  * energy plus W(V) is constant (tests/validation/poly_energy.c).
  *
+ * Regularisation near V = 0 (SD_LAW_VOLUME, opt-in: materials[].
+ * volume_face_omega_dt). A face of area A pressed in by d has V = A d and
+ * F = c A^(4/3) d^(1/3), whose stiffness dF/dd = c A^2 / (3 V^(2/3)) is
+ * infinite at zero overlap: a face landing or resting under a light load is
+ * stiffer than any explicit step resolves (seed 000 Table 1, E = 1.15 GPa:
+ * a face-on landing at 1 m/s lasts 0.25 us, half the table's dt = 0.5 us;
+ * Table 2, a 25 mm cube resting under its weight at E = 1 MPa: d = 3e-13 m,
+ * omega dt = 33 at dt = 10 us). With the regularisation on, below an onset
+ * volume V0 the law is linear in V, W'(V) = c V / V0^(2/3), continuous with
+ * c V^(1/3) at V0. It is still a function of V alone, and V0 is a constant
+ * of the pair, so F = W'(V) S stays minus the gradient of W(V) = integral
+ * of W' (energy conserving with e = 1, mu = 0, as before); W and W' are
+ * continuous at V0 (only the stiffness jumps, by 3x down). V0
+ * (sd_volume_onset) makes the largest face either body can have (pi R_b^2,
+ * R_b the bounding radius) at zero overlap as stiff as the step resolves
+ * with omega dt = face_omega on the pair's translational reduced mass; it
+ * scales as dt^3, so the law tends to seed 000's as dt -> 0, and contacts
+ * deeper than V0 feel seed 000's force exactly (the potential there differs
+ * from the seed's by the constant c V0^(4/3) / 4 only). Why it is not on by
+ * default: W(V) cannot tell a face from a vertex, and a vertex contact below
+ * V0 is softened too (F ~ d^5 instead of d^3). At Table 1's dt the face
+ * needs V0 ~ 1e-8 m^3 while a whole 1 m/s vertex impact stays below 5e-12
+ * m^3 (W = 3/4 c V^(4/3) takes the kinetic energy), so the seed's own
+ * oblique impacts (theta = 10..80 deg) would change by up to 11 % of V_z.
+ *
  * Normal damping, seed 000 eqs. 14-15 adapted. Eq. 15 with a constant k_n
  * gives the restitution e only for a linear spring; the elastic force here
  * grows as a power p of the penetration depth d (face on face: V ~ d,
@@ -70,6 +95,7 @@ typedef struct sd_volume_geom {
     sd_vec3 point;  /* m, world: contact point (line of action of S) */
     sd_real twist;  /* m^3, (S.T)/|S| seen from j to i: the couple on i is W' twist n */
     sd_real depth;  /* m, extent of the overlap along n (> 0) */
+    sd_real onset;  /* m^3, V0 of the regularisation (sd_volume_onset), 0 = none */
 } sd_volume_geom;
 
 typedef struct sd_volume_out {
@@ -79,27 +105,68 @@ typedef struct sd_volume_out {
     sd_real energy; /* J, W(V) + tangential spring energy */
 } sd_volume_out;
 
-/* W'(V) (N/m^2) of the law: c V^(1/3), or k_V V / |S|. */
-SD_HD static SD_INLINE sd_real sd_volume_dw(const sd_pair_params *p, sd_real kcoef, sd_real volume, sd_real area)
+/* Onset volume V0 (m^3) of the volume law's regularisation (see the note
+ * above): the face contact's stiffness at zero overlap, c A_ref^2 / V0^(2/3),
+ * is set to m_ref (Omega / dt)^2 with Omega = p->face_omega, i.e.
+ *     V0 = (c A_ref^2 dt^2 / (m_ref Omega^2))^(3/2),
+ * from constants of the pair only (c = kcoef, Pa/m; A_ref = pi R_b^2, m^2,
+ * R_b the smaller bounding radius, no face of either body is larger;
+ * inv_mass = 1/m_i + 1/m_j, 1/kg, translational; dt, s), so W stays a
+ * function of V alone. 0 (the seed's law unchanged) when the pair has no
+ * face_omega (the default), for volume_linear, or when dt, the area or the
+ * mass is not positive. */
+SD_HD static SD_INLINE sd_real sd_volume_onset(const sd_pair_params *p, sd_real kcoef, sd_real area_ref,
+                                               sd_real inv_mass, sd_real dt)
+{
+    if (p->law != SD_LAW_VOLUME || !(p->face_omega > SD_R(0.0)) || !(kcoef > SD_R(0.0)) ||
+        !(area_ref > SD_R(0.0)) || !(inv_mass > SD_R(0.0)) || !(dt > SD_R(0.0)))
+        return SD_R(0.0);
+    sd_real s = kcoef * area_ref * area_ref * dt * dt * inv_mass / (p->face_omega * p->face_omega);
+    return s * sd_sqrt(s); /* s = V0^(2/3) */
+}
+
+/* W'(V) (N/m^2) of the law: c V^(1/3) for V >= V0 and c V / V0^(2/3)
+ * below (onset V0, 0 = none), or k_V V / |S|. */
+SD_HD static SD_INLINE sd_real sd_volume_dw(const sd_pair_params *p, sd_real kcoef, sd_real volume, sd_real area,
+                                            sd_real onset)
 {
     if (p->law == SD_LAW_VOLUME_LINEAR)
         return area > SD_R(0.0) ? p->kv * volume / area : SD_R(0.0);
+    if (volume < onset) {
+        sd_real c0 = sd_pow(onset, SD_R(1.0) / SD_R(3.0)); /* V0^(1/3) */
+        return kcoef * volume / (c0 * c0);
+    }
     return kcoef * sd_pow(volume, SD_R(1.0) / SD_R(3.0));
 }
 
-/* W(V) (J): 3/4 c V^(4/3), or k_V V^2 / (2 |S|). */
-SD_HD static SD_INLINE sd_real sd_volume_w(const sd_pair_params *p, sd_real kcoef, sd_real volume, sd_real area)
+/* W(V) (J), the integral of W' from 0: c V^2 / (2 V0^(2/3)) below V0,
+ * 3/4 c V^(4/3) - 1/4 c V0^(4/3) above (continuous at V0, and W' too);
+ * or k_V V^2 / (2 |S|). */
+SD_HD static SD_INLINE sd_real sd_volume_w(const sd_pair_params *p, sd_real kcoef, sd_real volume, sd_real area,
+                                           sd_real onset)
 {
     if (p->law == SD_LAW_VOLUME_LINEAR)
         return area > SD_R(0.0) ? SD_R(0.5) * p->kv * volume * volume / area : SD_R(0.0);
+    if (onset > SD_R(0.0)) {
+        sd_real c0 = sd_pow(onset, SD_R(1.0) / SD_R(3.0));
+        if (volume < onset)
+            return SD_R(0.5) * kcoef * volume * volume / (c0 * c0);
+        return SD_R(0.75) * kcoef * sd_pow(volume, SD_R(4.0) / SD_R(3.0)) - SD_R(0.25) * kcoef * onset * c0;
+    }
     return SD_R(0.75) * kcoef * sd_pow(volume, SD_R(4.0) / SD_R(3.0));
+}
+
+/* Shape factor m = |S| d / V of the contact, in [1, 3]. */
+SD_HD static SD_INLINE sd_real sd_volume_shape_factor(sd_real area, sd_real depth, sd_real volume)
+{
+    sd_real m = volume > SD_R(0.0) ? area * depth / volume : SD_R(1.0);
+    return sd_clamp(m, SD_R(1.0), SD_R(3.0));
 }
 
 /* Force-depth exponent p of the contact from its shape factor m = |S| d / V. */
 SD_HD static SD_INLINE sd_real sd_volume_exponent(int law, sd_real area, sd_real depth, sd_real volume)
 {
-    sd_real m = volume > SD_R(0.0) ? area * depth / volume : SD_R(1.0);
-    m = sd_clamp(m, SD_R(1.0), SD_R(3.0));
+    sd_real m = sd_volume_shape_factor(area, depth, volume);
     return law == SD_LAW_VOLUME_LINEAR ? m : (SD_R(4.0) * m - SD_R(3.0)) / SD_R(3.0);
 }
 
@@ -123,7 +190,7 @@ SD_HD static SD_INLINE sd_volume_out sd_law_volume_eval(const sd_pair_params *p,
 {
     sd_volume_out out;
     sd_vec3 n = g->n;
-    sd_real dw = sd_volume_dw(p, kcoef, g->volume, g->area);
+    sd_real dw = sd_volume_dw(p, kcoef, g->volume, g->area, g->onset);
     sd_real fe = dw * g->area; /* eqs. 12-13: k_n V^(1/3) with A_n = |S| */
     sd_real un = sd_v3_dot(v_rel, n);
     sd_vec3 vt = sd_v3_madd(v_rel, -un, n);
@@ -132,6 +199,8 @@ SD_HD static SD_INLINE sd_volume_out sd_law_volume_eval(const sd_pair_params *p,
     sd_real cn = SD_R(0.0);
     if (p->restitution < SD_R(1.0) && g->depth > SD_R(0.0) && m_star > SD_R(0.0)) {
         sd_real expo = sd_volume_exponent(p->law, g->area, g->depth, g->volume);
+        if (p->law == SD_LAW_VOLUME && g->volume < g->onset) /* F = c |S| V / V0^(2/3): p = 2m - 1 (<= 5) */
+            expo = SD_R(2.0) * sd_volume_shape_factor(g->area, g->depth, g->volume) - SD_R(1.0);
         /* secant stiffness F_e / d, read at no less than the depth the
          * contact point travels in one step: on the first and last step of a
          * contact d can be anything down to rounding (1e-18 m), where F_e / d
@@ -167,7 +236,7 @@ SD_HD static SD_INLINE sd_volume_out sd_law_volume_eval(const sd_pair_params *p,
     *ds = fs;
     out.force = sd_v3_madd(ft, fn, n);
     out.couple = sd_v3_scale(n, dw * g->twist);
-    out.energy = sd_volume_w(p, kcoef, g->volume, g->area) + (kt > SD_R(0.0) ? SD_R(0.5) * sd_v3_norm2(fs) / kt : SD_R(0.0));
+    out.energy = sd_volume_w(p, kcoef, g->volume, g->area, g->onset) + (kt > SD_R(0.0) ? SD_R(0.5) * sd_v3_norm2(fs) / kt : SD_R(0.0));
     return out;
 }
 

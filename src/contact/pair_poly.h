@@ -42,7 +42,15 @@ SD_HD static SD_INLINE sd_pair_result sd_pair_volume_apply(const sd_pair_params 
     /* eq. 15's m_eff, taken at the contact point as for the other laws */
     sd_real inv = sd_body_inv_mass_at(a, arm_i, g->n) + sd_body_inv_mass_at(b, arm_j, g->n);
     sd_real m_star = inv > SD_R(0.0) ? SD_R(1.0) / inv : SD_R(0.0);
-    sd_volume_out o = sd_law_volume_eval(prm, g, kcoef, ktcoef, m_star, sd_v3_sub(vi, vj), ds, dt);
+    /* the regularisation's onset from constants of the pair (law_volume.h):
+     * the smaller bounding radius (a wall has none) and the translational
+     * masses, never the contact point's m_star, which moves */
+    sd_real rb = a->radius;
+    if (b->radius > SD_R(0.0) && (!(rb > SD_R(0.0)) || b->radius < rb))
+        rb = b->radius;
+    sd_volume_geom gr = *g;
+    gr.onset = sd_volume_onset(prm, kcoef, SD_PI * rb * rb, a->inv_mass + b->inv_mass, dt);
+    sd_volume_out o = sd_law_volume_eval(prm, &gr, kcoef, ktcoef, m_star, sd_v3_sub(vi, vj), ds, dt);
     r.f = o.force;
     r.ti = sd_v3_add(sd_v3_cross(arm_i, o.force), o.couple);
     r.tj = sd_v3_sub(sd_v3_cross(arm_j, sd_v3_neg(o.force)), o.couple);
@@ -62,6 +70,7 @@ SD_HD static SD_INLINE sd_volume_geom sd_volume_geom_of(const sd_overlap *ov, sd
     g.point = ov->point;
     g.twist = ov->twist;
     g.depth = depth;
+    g.onset = SD_R(0.0); /* set by sd_pair_volume_apply */
     return g;
 }
 

@@ -97,8 +97,10 @@ static inline double sd_law_need_field(const void *def, size_t field)
     return *(const double *)(const void *)((const char *)def + field);
 }
 
-/* Exponents p at which the volume laws' damping is calibrated (law_volume.h). */
-#define SD_VOLUME_ZETA_N 9
+/* Exponents p at which the volume laws' damping is calibrated (law_volume.h):
+ * 1/3 .. 5 in steps of 1/3 (5: a vertex contact inside the volume law's
+ * regularised range, F ~ |S| V ~ d^5). */
+#define SD_VOLUME_ZETA_N 15
 
 typedef struct sd_pair_params {
     int law;             /* sd_contact_law */
@@ -117,8 +119,9 @@ typedef struct sd_pair_params {
     sd_real young_a, young_b; /* Pa, E of seed 000 eq. 13 */
     sd_real shear_a, shear_b; /* Pa, E / (2 (1 + nu)) of seed 000 eq. 19 */
     sd_real kv;          /* N/m^3, volume_linear stiffness k_V */
+    sd_real face_omega;  /* -, volume law: omega dt of a face at zero overlap (regularisation), 0 = off */
     /* -, damping ratios zeta(e, p) on SD_VOLUME_ZETA_N force-overlap
-     * exponents p, uniform in [1/3, 3] (calibrated in world/material.c) */
+     * exponents p, uniform in [1/3, 5] (calibrated in world/material.c) */
     sd_real zeta[SD_VOLUME_ZETA_N];
 } sd_pair_params;
 

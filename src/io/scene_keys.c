@@ -150,6 +150,10 @@ const sd_scene_key sd_scene_keys[] = {
     {SD_SEC_MATERIAL, "volume_stiffness", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "N/m^3", "0",
      "stiffness k_V of the volume_linear law (F = k_V V, V the overlap volume of two "
      "polyhedra); 0 = unset, required when a volume_linear contact involves the material"},
+    {SD_SEC_MATERIAL, "volume_face_omega_dt", SD_KT_NUMBER, SD_KR_UNIT, NULL, ALL, 0, "", "off",
+     "volume law: regularise near zero overlap so a face contact is never stiffer than omega dt = this "
+     "(0.5 runs seed 000's own moduli at its time steps; a pair takes the smaller of its materials'; "
+     "docs/physics.md)"},
 
     {SD_SEC_INTERACTION, "between", SD_KT_NAME_PAIR, SD_KR_NONEMPTY, NULL, ALL, ALL, "",
      "required", "the two material names (may be the same)"},

@@ -217,6 +217,7 @@ static const sd_yaml_place sd_material_place[] = {
     {"tangential_stiffness_ratio", offsetof(sd_material_def, tangential_stiffness_ratio)},
     {"damping", offsetof(sd_material_def, damping)},
     {"volume_stiffness", offsetof(sd_material_def, volume_stiffness)},
+    {"volume_face_omega_dt", offsetof(sd_material_def, volume_face_omega_dt)},
 };
 static const char *const sd_material_rules[] = {"name", "youngs_modulus", NULL};
 

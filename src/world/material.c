@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "shape/shape_make.h"
 #include "world/solver.h"
+#include "world/dt_report.h"
 #include "world/world.h"
 
 static double sd_mean(double a, double b) { return 0.5 * (a + b); }
@@ -146,6 +147,12 @@ sd_status sd_world_mix_materials(sd_world *w, sd_error *err)
             p->shear_a = (sd_real)(ma->youngs_modulus / (2.0 * (1.0 + ma->poisson_ratio)));
             p->shear_b = (sd_real)(mb->youngs_modulus / (2.0 * (1.0 + mb->poisson_ratio)));
             p->kv = (sd_real)kv;
+            /* the volume law's face regularisation: the smaller value set
+             * (the stricter cap), off when neither material sets it */
+            double fo = ma->volume_face_omega_dt > 0 ? ma->volume_face_omega_dt : mb->volume_face_omega_dt;
+            if (mb->volume_face_omega_dt > 0 && mb->volume_face_omega_dt < fo)
+                fo = mb->volume_face_omega_dt;
+            p->face_omega = (sd_real)(fo > 0 ? fo : 0.0);
             if (sd_law_traits(law) & SD_LAW_IS_VOLUME) {
                 w->has_volume_law = 1;
                 /* the calibration costs ~0.1 s: reuse it for an equal e */
@@ -225,6 +232,13 @@ sd_status sd_world_check_params(const sd_world *w, sd_error *err)
     for (size_t k = 0; k < w->wall_count; ++k)
         if ((size_t)w->walls[k].material < sizeof used)
             used[w->walls[k].material] = 1;
+    for (size_t a = 0; a < nm; ++a) {
+        double fo = w->materials[a].def.volume_face_omega_dt;
+        if (!(fo >= 0 && fo <= 1)) /* omega dt = 2 is the explicit step's limit; 1 keeps a margin */
+            return sd_error_set(err, SD_ERR_INPUT, "", 0, "volume_face_omega_dt",
+                                "material '%s': expected volume_face_omega_dt in (0, 1] (or 0 for off), got %g",
+                                w->materials[a].name, fo);
+    }
     sd_status st = sd_world_check_volume_shapes(w, used, err);
     if (st != SD_OK)
         return st;
@@ -261,39 +275,94 @@ sd_status sd_world_check_params(const sd_world *w, sd_error *err)
     return SD_OK;
 }
 
-/* Volume laws: a face landing flat, the stiffest contact (F = K d^p with
- * p = 1/3, K = c A^(4/3), seed 000 eqs. 12-13; p = 1, K = k_V A for the
- * linear law), of face area A = R^2 (R the bounding radius: a cube's face
- * is 1.33 R^2, a dodecahedron's 0.88 R^2). c = E_a/R + E_b/R for two
- * bodies, E_a/R against a wall (flat: R infinite). Undamped duration of a
- * power-law impact at speed v:
- *     2 (d_max / v) sqrt(pi) Gamma(1 + 1/q) / Gamma(1/2 + 1/q),
- * q = p + 1, d_max = (q m v^2 / (2 K))^(1/q) (pi / omega for p = 1).
- * For p = 1/3 it grows as v^(1/2): slow impacts are the shorter ones. */
-static double sd_volume_duration(const sd_pair_params *p, double m_star, double r, double v, int wall)
+/* ---- time step of the volume laws (docs/physics.md "Time step") ----------
+ *
+ * The estimates take a face landing flat, the stiffest contact, of area
+ * A = pi R_eq^2 (R_eq the radius of the equal-volume sphere: a cube's face
+ * is 0.83 of it, a dodecahedron's 0.72, a Table 1 cylinder's end 1.02),
+ * against a wall or against a body like itself. */
+
+/* Potential of the 1D face contact at depth x (m): W(A x) of law_volume.h. */
+static double sd_volume_face_u(const sd_pair_params *p, double c, double area, double onset, double x)
 {
-    double area = r * r;
-    double pw = p->law == SD_LAW_VOLUME ? 1.0 / 3.0 : 1.0;
-    double c = ((double)p->young_a + (wall ? 0.0 : (double)p->young_b)) / r;
-    double k = p->law == SD_LAW_VOLUME ? c * pow(area, 4.0 / 3.0) : (double)p->kv * area;
-    double q = pw + 1.0;
-    double dmax = pow(q * m_star * v * v / (2.0 * k), 1.0 / q);
-    return 2.0 * dmax / v * sqrt(SD_PI_D) * tgamma(1.0 + 1.0 / q) / tgamma(0.5 + 1.0 / q);
+    return (double)sd_volume_w(p, (sd_real)c, (sd_real)(area * x), (sd_real)area, (sd_real)onset);
 }
 
-/* The volume law's face contact is stiffest at rest under a small load:
- * F = K d^(1/3) has dF/dd = K^3 / (3 F^2), so a body of mass m resting on
- * a face under its own weight (F = m g) vibrates at omega^2 = K^3 / (3
- * (m g)^2 m). An explicit step needs omega dt < 2; the recommended step
- * keeps omega dt <= 1. Above it lightly loaded resting contacts buzz with a
- * small amplitude (the force-depth curve softens with depth, which bounds
- * it) instead of settling; it is not a stability limit of the run. */
-static double sd_volume_rest_step(const sd_pair_params *p, double m, double r, double g)
+/* A face landing flat at speed v on a contact of effective mass m (kg)
+ * under the law with onset V0 (0: seed 000's law): its deepest overlap
+ * (m) and its duration (s), by energy, t = 2 int_0^dmax dx / sqrt(v^2 -
+ * 2 U(x) / m), in the variable x = dmax - u^2 (no singularity at dmax). */
+static double sd_volume_face_impact(const sd_pair_params *p, double c, double area, double onset, double m, double v,
+                                    double *dmax)
 {
-    double k = (double)p->young_a / r * pow(r * r, 4.0 / 3.0); /* on a wall, face area R^2 */
-    double f = m * g;
-    double omega = sqrt(k * k * k / (3.0 * f * f * m));
-    return 1.0 / omega;
+    double e = 0.5 * m * v * v, lo = 0, hi = 1e-15;
+    while (sd_volume_face_u(p, c, area, onset, hi) < e && hi < 1e3)
+        hi *= 2;
+    for (int k = 0; k < 200 && hi - lo > 1e-14 * hi; ++k) {
+        double mid = 0.5 * (lo + hi);
+        if (sd_volume_face_u(p, c, area, onset, mid) < e)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    double d = 0.5 * (lo + hi);
+    *dmax = d;
+    double su = sqrt(d), f = (double)sd_volume_dw(p, (sd_real)c, (sd_real)(area * d), (sd_real)area, (sd_real)onset) * area;
+    const int n = 400; /* Simpson; the integrand is smooth in u */
+    double sum = 0;
+    for (int k = 0; k <= n; ++k) {
+        double u = su * k / n, g;
+        if (k == 0) {
+            g = f > 0 ? 2.0 / sqrt(2.0 * f / m) : 0.0; /* u -> 0: v^2 - 2U/m ~ 2 F(dmax) u^2 / m */
+        } else {
+            double r = v * v - 2.0 * sd_volume_face_u(p, c, area, onset, d - u * u) / m;
+            g = r > 0 ? 2.0 * u / sqrt(r) : 0.0;
+        }
+        sum += g * (k == 0 || k == n ? 1.0 : (k % 2 ? 4.0 : 2.0));
+    }
+    return 2.0 * sum * su / n / 3.0;
+}
+
+/* What a volume-law pair of one (shape, material) against a partner gives:
+ * the estimates of docs/physics.md, for the report and the step. */
+typedef struct sd_volume_limits {
+    double onset;        /* m^3, V0 at the world's dt */
+    double onset_depth;  /* m, V0 / A: the face depth the regularisation covers */
+    double impact;       /* s, face landing at v under the law as run */
+    double impact_depth; /* m, its deepest overlap */
+    double seed_impact;  /* s, the same under seed 000's unregularised law */
+    double tangential;   /* s, pi / omega_t of the face contact's tangential spring */
+    double rest_depth;   /* m, face resting under the weight, seed's law (0: no gravity) */
+    double rest_dt;      /* s, 1 / omega of that resting face (the resting-face limit) */
+} sd_volume_limits;
+
+static sd_volume_limits sd_volume_pair_limits(const sd_world *w, const sd_pair_params *pp, double mass, double req,
+                                              double rb, double inv_inertia, double v, double g, int wall)
+{
+    sd_volume_limits l;
+    memset(&l, 0, sizeof l);
+    double area = SD_PI_D * req * req, dt = (double)w->dt;
+    double c = ((double)pp->young_a + (wall ? 0.0 : (double)pp->young_b)) / req;
+    double ct = ((double)pp->shear_a + (wall ? 0.0 : (double)pp->shear_b)) / req;
+    double inv = (wall ? 1.0 : 2.0) / mass; /* translational, 1/kg */
+    l.onset = (double)sd_volume_onset(pp, (sd_real)c, (sd_real)(SD_PI_D * rb * rb), (sd_real)inv, (sd_real)dt);
+    l.onset_depth = l.onset / area;
+    l.impact = sd_volume_face_impact(pp, c, area, l.onset, 1.0 / inv, v, &l.impact_depth);
+    double dpure;
+    l.seed_impact = sd_volume_face_impact(pp, c, area, 0.0, 1.0 / inv, v, &dpure);
+    /* tangential spring (eq. 19, k_t = c_t A) on the mass the contact
+     * point sees sideways: 1/m + R_b^2 / I_min for each body */
+    double kt = pp->law == SD_LAW_VOLUME ? ct * area : (double)pp->kt_ratio * (double)pp->kv * area;
+    double inv_t = (wall ? 1.0 : 2.0) * (1.0 / mass + rb * rb * inv_inertia);
+    l.tangential = kt > 0 ? SD_PI_D / sqrt(kt * inv_t) : (double)INFINITY;
+    if (pp->law == SD_LAW_VOLUME && g > 0) {
+        /* F = K d^(1/3), K = c A^(4/3): d = (m g / K)^3, dF/dd = m g / (3 d) */
+        double k = c * pow(area, 4.0 / 3.0), f = mass * g;
+        l.rest_depth = pow(f / k, 3.0);
+        double omega = sqrt(f / (3.0 * l.rest_depth) / mass);
+        l.rest_dt = 1.0 / omega;
+    }
+    return l;
 }
 
 /* Contact duration of one contact between masses meeting at speed v. */
@@ -312,11 +381,24 @@ static double sd_contact_duration(const sd_pair_params *p, double m_star, double
     return 2.87 * pow(m_star * m_star / (r_star * y * y * v), 0.2);
 }
 
-double sd_world_recommended_dt(const sd_world *w, double *contact_duration)
+/* Keeps the smaller of *best and t, and what it is. */
+static void sd_dt_keep(double *best, const char **what, double t, const char *name)
 {
+    if (t < *best) {
+        *best = t;
+        *what = name;
+    }
+}
+
+void sd_world_dt_report(const sd_world *w, sd_dt_report *r)
+{
+    memset(r, 0, sizeof *r);
+    r->recommended = r->contact = INFINITY;
+    r->limit = "no contact can form";
+    r->onset_depth = r->rest_dt = r->seed_impact = INFINITY;
     const sd_particles *p = &w->p;
     size_t nm = w->material_count;
-    double tc_min = INFINITY, rayleigh_min = INFINITY, rest_min = INFINITY;
+    double tc_min = INFINITY, rayleigh_min = INFINITY;
     /* smallest sphere per material; characteristic impact speed from the
      * fastest particle and a fall through the packing's height */
     sd_dt_inputs in;
@@ -334,21 +416,18 @@ double sd_world_recommended_dt(const sd_world *w, double *contact_duration)
      * insert (the grid's own state and its pour: world/solver.h) */
     sd_v3d gd = {(double)gdir.x, (double)gdir.y, (double)gdir.z};
     w->solver->dt_inputs(w, gd, &in);
-    if (!in.any || nm == 0) {
-        if (contact_duration)
-            *contact_duration = INFINITY;
-        return INFINITY;
-    }
+    if (!in.any || nm == 0)
+        return;
     double vmax = in.vmax, zlo = in.zlo, zhi = in.zhi, rsmall = in.rsmall;
     for (size_t k = 0; k < p->n; ++k) {
         int m = p->material[k];
         if (m < 0 || m >= 256)
             continue;
-        double r = (double)p->radius[k];
+        double rr = (double)p->radius[k];
         double mass = p->inv_mass[k] > 0 ? 1.0 / (double)p->inv_mass[k] : (double)INFINITY;
-        if (r < rmin[m])
-            rmin[m] = r;
-        rsmall = fmin(rsmall, r);
+        if (rr < rmin[m])
+            rmin[m] = rr;
+        rsmall = fmin(rsmall, rr);
         if (mass < mmin[m])
             mmin[m] = mass;
         vmax = fmax(vmax, (double)sd_v3_norm(p->v[k]));
@@ -357,6 +436,74 @@ double sd_world_recommended_dt(const sd_world *w, double *contact_duration)
         zhi = fmax(zhi, h);
     }
     double v = fmax(vmax, fmax(sqrt(2 * g * (zhi - zlo + 2 * rsmall)), 1e-3));
+    r->speed = v;
+    /* the volume laws' estimates need each body's shape: per distinct
+     * (shape, material) of the sharp polyhedra, against each partner */
+    double vol_rec = INFINITY;
+    const char *vol_what = "";
+    unsigned char *seen = w->shape_count ? sd_calloc(w->shape_count * (nm ? nm : 1), 1) : NULL;
+    for (size_t k = 0; seen && !w->dim2 && k < p->n; ++k) {
+        int a = p->material[k], s = p->shape[k];
+        if (a < 0 || (size_t)a >= nm || a >= 256 || s < 0 || (size_t)s >= w->shape_count ||
+            seen[(size_t)s * nm + (size_t)a] || w->shapes[s].kind != SD_SHAPE_POLYHEDRON || w->shapes[s].radius != 0 ||
+            !(p->inv_mass[k] > 0))
+            continue;
+        seen[(size_t)s * nm + (size_t)a] = 1;
+        const sd_shape *sh = &w->shapes[s];
+        double mass = 1.0 / (double)p->inv_mass[k], req = (double)w->shape_req[s], rb = (double)sh->bound;
+        double ii = fmax(fmax((double)p->inv_inertia[k].x, (double)p->inv_inertia[k].y), (double)p->inv_inertia[k].z);
+        for (size_t b = 0; b < nm && b < 256; ++b) {
+            const sd_pair_params *pp = &w->mix[(size_t)a * nm + b];
+            if (!(sd_law_traits(pp->law) & SD_LAW_IS_VOLUME) || !sd_law_params_ready(pp))
+                continue;
+            int wall_b = 0;
+            for (size_t q = 0; q < w->wall_count; ++q)
+                wall_b |= w->walls[q].material == (int)b;
+            for (int wall = 0; wall < 2; ++wall) {
+                if (wall ? !wall_b : !isfinite(rmin[b]))
+                    continue;
+                sd_volume_limits l = sd_volume_pair_limits(w, pp, mass, req, rb, ii, v, g, wall);
+                r->volume = 1;
+                tc_min = fmin(tc_min, fmin(l.impact, l.tangential));
+                /* with the regularisation a face contact is resolved by
+                 * construction (omega dt <= face_omega at zero overlap, and
+                 * below face_omega / sqrt 3 beyond V0, at any dt): the
+                 * tangential spring sets the step */
+                sd_dt_keep(&vol_rec, &vol_what, l.tangential / 50.0,
+                           "volume law: tangential spring of a face contact (pi / omega_t over 50)");
+                /* seed 000's law (no regularisation): a face resting under its
+                 * weight is the stiffest contact the load makes */
+                if (l.onset == 0 && l.rest_depth > 0)
+                    sd_dt_keep(&vol_rec, &vol_what, l.rest_dt,
+                               "volume law: the resting-face limit (a face resting under its weight, omega dt <= 1)");
+                int inside = l.impact_depth < l.onset_depth;
+                if (l.onset == 0 && pp->law == SD_LAW_VOLUME_LINEAR)
+                    sd_dt_keep(&vol_rec, &vol_what, l.impact / 50.0, "volume law: face-on landing (its duration over 50)");
+                else if (l.onset == 0)
+                    sd_dt_keep(&vol_rec, &vol_what, l.impact / 50.0,
+                               "volume law: face-on landing under seed 000's law (its duration over 50)");
+                if (l.onset_depth < r->onset_depth) {
+                    r->onset = l.onset;
+                    r->onset_depth = l.onset_depth;
+                    r->onset_radius = req;
+                }
+                if (l.impact < r->impact || r->impact == 0) {
+                    r->impact = l.impact;
+                    r->impact_depth = l.impact_depth;
+                    r->impact_inside = inside;
+                    r->impact_onset_depth = l.onset_depth;
+                }
+                r->seed_impact = fmin(r->seed_impact, l.seed_impact);
+                if (l.rest_depth > 0 && l.rest_dt < r->rest_dt) {
+                    r->rest_dt = l.rest_dt;
+                    r->rest_depth = l.rest_depth;
+                    r->rest_inside = l.rest_depth < l.onset_depth;
+                    r->rest_onset_depth = l.onset_depth;
+                }
+            }
+        }
+    }
+    sd_free(seen);
     for (size_t a = 0; a < nm && a < 256; ++a) {
         if (!isfinite(rmin[a]))
             continue;
@@ -370,26 +517,43 @@ double sd_world_recommended_dt(const sd_world *w, double *contact_duration)
             const sd_pair_params *pp = &w->mix[a * nm + b];
             if (!sd_law_params_ready(pp)) /* sd_world_check_params says why when it meets */
                 continue;
+            if (sd_law_traits(pp->law) & SD_LAW_IS_VOLUME)
+                continue; /* above */
             int wall_b = 0;
             for (size_t k = 0; k < w->wall_count; ++k)
                 wall_b |= w->walls[k].material == (int)b;
-            int vol = (sd_law_traits(pp->law) & SD_LAW_IS_VOLUME) != 0;
-            if (pp->law == SD_LAW_VOLUME && g > 0 && isfinite(rmin[b]) && isfinite(mmin[a]))
-                rest_min = fmin(rest_min, sd_volume_rest_step(pp, mmin[a], fmin(rmin[a], rmin[b]), g));
             if (isfinite(rmin[b])) {
                 double ms = mmin[a] * mmin[b] / (mmin[a] + mmin[b]);
                 double rs = rmin[a] * rmin[b] / (rmin[a] + rmin[b]);
-                tc_min = fmin(tc_min, vol ? sd_volume_duration(pp, ms, fmin(rmin[a], rmin[b]), v, 0)
-                                          : sd_contact_duration(pp, ms, rs, v));
+                tc_min = fmin(tc_min, sd_contact_duration(pp, ms, rs, v));
             }
             if (wall_b)
-                tc_min = fmin(tc_min, vol ? sd_volume_duration(pp, mmin[a], rmin[a], v, 1)
-                                          : sd_contact_duration(pp, mmin[a], rmin[a], v));
+                tc_min = fmin(tc_min, sd_contact_duration(pp, mmin[a], rmin[a], v));
         }
     }
+    r->contact = tc_min;
+    /* resolve a contact in about 50 steps, stay under 20 % of the Rayleigh
+     * time of the materials with a modulus; the volume laws' own limits */
+    double rec = INFINITY;
+    const char *what = r->limit;
+    double other = INFINITY;
+    for (size_t a = 0; a < nm && a < 256; ++a)
+        for (size_t b = 0; b < nm && b < 256; ++b)
+            if (!(sd_law_traits(w->mix[a * nm + b].law) & SD_LAW_IS_VOLUME))
+                other = 0; /* some pair is not a volume pair: tc_min may be its duration */
+    if (other == 0)
+        sd_dt_keep(&rec, &what, tc_min / 50.0, "contact duration over 50");
+    sd_dt_keep(&rec, &what, 0.2 * rayleigh_min, "0.2 x the Rayleigh time");
+    sd_dt_keep(&rec, &what, vol_rec, vol_what);
+    r->recommended = rec;
+    r->limit = what;
+}
+
+double sd_world_recommended_dt(const sd_world *w, double *contact_duration)
+{
+    sd_dt_report r;
+    sd_world_dt_report(w, &r);
     if (contact_duration)
-        *contact_duration = tc_min;
-    /* resolve a contact in about 50 steps, and stay under 20 % of the
-     * Rayleigh time for Hertz materials */
-    return fmin(fmin(tc_min / 50.0, 0.2 * rayleigh_min), rest_min);
+        *contact_duration = r.contact;
+    return r.recommended;
 }

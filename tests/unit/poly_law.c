@@ -146,14 +146,14 @@ static void law(void)
     p.kv = 1e9;
     p.kt_ratio = 0.3;
     double kc = 2e9, V = 3e-9, A = 2e-5;
-    double dw = (double)sd_volume_dw(&p, (sd_real)kc, (sd_real)V, (sd_real)A);
+    double dw = (double)sd_volume_dw(&p, (sd_real)kc, (sd_real)V, (sd_real)A, 0);
     double hV = 1e-6 * V;
-    double fd = ((double)sd_volume_w(&p, (sd_real)kc, (sd_real)(V + hV), (sd_real)A) -
-                 (double)sd_volume_w(&p, (sd_real)kc, (sd_real)(V - hV), (sd_real)A)) / (2 * hV);
+    double fd = ((double)sd_volume_w(&p, (sd_real)kc, (sd_real)(V + hV), (sd_real)A, 0) -
+                 (double)sd_volume_w(&p, (sd_real)kc, (sd_real)(V - hV), (sd_real)A, 0)) / (2 * hV);
     CHECK_REL("volume: W'(V) vs dW/dV", dw, fd, 1e-8);
     CHECK_REL("volume: W'(V) = c V^(1/3)", dw, kc * cbrt(V), 1e-12);
     p.law = SD_LAW_VOLUME_LINEAR;
-    CHECK_REL("volume_linear: W'(V) |S| = k_V V", (double)sd_volume_dw(&p, (sd_real)kc, (sd_real)V, (sd_real)A) * A,
+    CHECK_REL("volume_linear: W'(V) |S| = k_V V", (double)sd_volume_dw(&p, (sd_real)kc, (sd_real)V, (sd_real)A, 0) * A,
               1e9 * V, 1e-12);
     p.law = SD_LAW_VOLUME;
     sd_volume_geom g;
@@ -163,6 +163,7 @@ static void law(void)
     g.point = sd_v3_zero();
     g.twist = SD_R(1e-7);
     g.depth = SD_R(1e-4);
+    g.onset = SD_R(0.0);
     sd_vec3 ds = sd_v3_zero();
     /* sliding: v_t = 1 m/s along x for 10 ms stretches the spring by 1 cm:
      * k_t |s| = 200 N, above mu F_n */
