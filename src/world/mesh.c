@@ -495,9 +495,9 @@ sd_status sd_world_meshes_bins(sd_world *w, sd_real h_min)
         h_min = SD_R(1e-3);
     for (size_t k = 0; k < w->mesh_count; ++k) {
         sd_mesh_store *s = &w->meshes[k];
-        /* cells of at least twice the reach (a query box spans at most 2 x 2 x
-         * 2 cells), at most four times it (few facets per query beyond the
-         * particle's neighbourhood) */
+        /* cells of 2 reach when built (a query box, 2 reach wide, spans at
+         * most 2 x 2 x 2 of them), kept while within [reach, 4 reach]: few
+         * facets per query beyond the particle's neighbourhood */
         if (s->h >= h_min && s->h <= SD_R(4.0) * h_min)
             continue;
         if (s->h >= h_min && s->entry_count > 0 && s->h > SD_R(4.0) * h_min) {

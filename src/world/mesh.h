@@ -36,9 +36,9 @@ typedef struct sd_mesh_store {
 } sd_mesh_store;
 
 struct sd_world;
-/* Builds (or rebuilds) the facet bins of every mesh for cell edge >= h_min
- * (m, twice the largest particle reach), when the bins are coarser than
- * twice that or finer than it; refreshes the views. */
+/* Builds (or rebuilds) the facet bins of every mesh at cell edge 2 h_min
+ * (h_min: m, the largest particle reach, radius plus skin) when their
+ * cells are finer than h_min or coarser than 4 h_min; refreshes the views. */
 sd_status sd_world_meshes_bins(struct sd_world *w, sd_real h_min);
 /* Pose and velocities of every mesh wall at time t (s). */
 void sd_world_meshes_pose(struct sd_world *w, double t);

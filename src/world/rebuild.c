@@ -351,11 +351,13 @@ sd_status sd_world_rebuild(sd_world *w, sd_error *err)
         sd_periodic_wrap(w);
     }
     if (w->mesh_count > 0) {
-        /* facet bins of at least twice the largest reach (world/mesh.c) */
+        /* facet bins of about twice the largest reach (world/mesh.c keeps
+         * cells in [reach, 4 reach], builds them at 2 reach): a query box
+         * (2 reach) spans at most 2 x 2 x 2 cells of 8 reach^3 each */
         sd_real reach = SD_R(0.0);
         for (size_t k = 0; k < p->n; ++k)
             reach = p->radius[k] > reach ? p->radius[k] : reach;
-        sd_status mst = sd_world_meshes_bins(w, SD_R(2.0) * (reach + w->skin));
+        sd_status mst = sd_world_meshes_bins(w, reach + w->skin);
         if (mst != SD_OK)
             return sd_error_set(err, mst, "", 0, "", "out of memory for the facet bins of %zu meshes", w->mesh_count);
     }
