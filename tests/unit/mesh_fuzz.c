@@ -64,8 +64,8 @@ static int sd_try(void)
     if (m.triangle_count) {
         sd_trimesh tm;
         sd_trimesh_report rep;
-        st = sd_trimesh_build(m.vertices, m.vertex_count, (const uint32_t(*)[3])m.triangles, m.triangle_count, 0.0,
-                              0.0, &tm, &rep, &err);
+        st = sd_trimesh_build(m.vertices, m.vertex_count, (const uint32_t(*)[3])m.triangles, m.triangle_count, 0.0, 0.0,
+                              &tm, &rep, &err);
         if (st == SD_OK) {
             ++sd_prepared;
             for (size_t j = 0; j < tm.triangle_count; ++j)
@@ -167,8 +167,8 @@ int main(void)
         int flips = 1 + (int)(sd_rng_uniform(&rng) * 8.0);
         for (int q = 0; q < flips; ++q) {
             double u = sd_rng_uniform(&rng);
-            size_t at = u < 0.2 ? 80 + (size_t)(sd_rng_uniform(&rng) * 4.0)
-                                : (size_t)(sd_rng_uniform(&rng) * (double)size);
+            size_t at =
+                u < 0.2 ? 80 + (size_t)(sd_rng_uniform(&rng) * 4.0) : (size_t)(sd_rng_uniform(&rng) * (double)size);
             if (at >= size)
                 at = size - 1;
             /* whole random bytes, or the exponent bytes of a float (NaN, inf, huge, tiny) */
