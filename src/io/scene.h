@@ -81,6 +81,16 @@ typedef struct sd_scene_shape {
     double *points;               /* m, x0, y0, x1, y1, ... */
     size_t fourier_count;         /* N + 1 values a_0 .. a_N */
     double *fourier_a, *fourier_b;/* m, a_0..a_N and b_1..b_N (zeros when not given) */
+    /* type composite (io/scene_shapes.c): its elements, .shape the scene
+     * index of a convex shape listed before it. Inline and preset elements
+     * are shapes of their own, named NAME.eK (hidden = 1), inserted just
+     * before the composite, so shape indices stay the world's. */
+    size_t element_count;
+    sd_composite_element *elements;
+    int lattice;                  /* points per direction, 0 = the default */
+    int preset;                   /* composite preset (shape/complib.h), or -1 */
+    int hidden;                   /* 1: made here for a composite's inline or preset element */
+    size_t entry;                 /* index of its entry in the file's shapes: list (messages) */
 } sd_scene_shape;
 
 typedef struct sd_scene_material {

@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "io/scene.h"
+#include "shape/complib.h"
 #include "shape/polylib.h"
 #include "shape/shape.h"
 #include "shape/shape2d.h"
@@ -27,6 +28,9 @@
 #define SD_SHAPE_CHOICES SD_SHAPE_KINDS(SD_X_CHOICE) SD_SHAPE2D_KINDS(SD_X_CHOICE)
 /* Built-in polyhedra, from the preset list in shape/polylib.h. */
 #define SD_POLY_CHOICES SD_POLY_PRESETS(SD_X_CHOICE)
+/* Built-in composites, from the preset list in shape/complib.h; they follow
+ * the polyhedra in the choices of shapes[].preset. */
+#define SD_COMP_CHOICES SD_COMP_PRESETS(SD_X_CHOICE)
 
 #define ALL SD_KIND_ALL
 #define LAT (1u << SD_GEN_LATTICE)
@@ -51,6 +55,7 @@
 #define SCONE (1u << SD_SHAPE_CONE)
 #define SELL (1u << SD_SHAPE_ELLIPSOID)
 #define SPOLY (1u << SD_SHAPE_POLYHEDRON)
+#define SCOMP (1u << SD_SHAPE_COMPOSITE)
 /* planar shape types follow the 3D ones in the type choices (scene.h) */
 #define S3D ((1u << SD_SHAPE_KIND_COUNT) - 1u)
 #define S2(k) (1u << (SD_SHAPE_KIND_COUNT + (k)))
@@ -94,6 +99,10 @@ const sd_scene_key sd_scene_keys[] = {
      "3, or 2: the planar mode (every z, velocity z and gravity z is 0, rotation about z "
      "only, masses per unit thickness of 1 m; shapes: circle, ellipse, polygon, polybezier, "
      "fourier)"},
+    {SD_SEC_SIMULATION, "multi_contact", SD_KT_ENUM, SD_KR_ANY, "average|sum", ALL, 0, "", "average",
+     "how the contacts of one pair of composites (several touching element pairs) combine: "
+     "average (model B of [Rakotonirina 2019], eq. 21: each contact's force divided by "
+     "their number, so the contact duration does not depend on it) or sum (model A, eq. 18)"},
     {SD_SEC_SIMULATION, "local_damping", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "", "0",
      "velocity-based local damping coefficient alpha in [0, 1) (§3.2 of [Huang 2021]): each force "
      "and torque component gets -alpha |unbalanced| sign(velocity); 0 = off"},
@@ -197,12 +206,28 @@ const sd_scene_key sd_scene_keys[] = {
      "diameter, -, height], axis z, y ignored (or give diameter and length / height); a number "
      "sets all three. Polyhedron preset: the diameter of its circumscribed sphere (prism and "
      "cylinder presets: [diameter, -, length] like the cylinder)"},
-    {SD_SEC_SHAPE, "diameter", SD_KT_NUMBER, SD_KR_POS, NULL, SCYL | SCONE | SPOLY, 0, "m", "size x",
+    {SD_SEC_SHAPE, "diameter", SD_KT_NUMBER, SD_KR_POS, NULL, SCYL | SCONE | SPOLY | SCOMP, 0, "m", "size x",
      "cylinder diameter or cone base diameter, with length (cylinder) or height (cone) instead "
-     "of size; prism and cylinder presets: the diameter of the circle through the n-gon's corners"},
-    {SD_SEC_SHAPE, "length", SD_KT_NUMBER, SD_KR_POS, NULL, SCYL | SPOLY, 0, "m", "size z",
+     "of size; prism and cylinder presets: the diameter of the circle through the n-gon's corners; "
+     "composite presets: see preset"},
+    {SD_SEC_SHAPE, "length", SD_KT_NUMBER, SD_KR_POS, NULL, SCYL | SPOLY | SCOMP, 0, "m", "size z",
      "cylinder (and prism or cylinder preset) length along its axis z, with diameter instead of "
-     "size"},
+     "size; composite presets: see preset"},
+    {SD_SEC_SHAPE, "width", SD_KT_NUMBER, SD_KR_POS, NULL, SCOMP, 0, "m", "-",
+     "composite presets: arm width (cross2d, lshape, tshape), wall width (ring), bar diameter "
+     "(dumbbell)"},
+    {SD_SEC_SHAPE, "thickness", SD_KT_NUMBER, SD_KR_POS, NULL, SCOMP, 0, "m", "-",
+     "composite presets cross2d, lshape, tshape: thickness along z"},
+    {SD_SEC_SHAPE, "count", SD_KT_INT, SD_KR_POS, NULL, SCOMP, 0, "", "-",
+     "composite preset ring: number of box segments, 3 to 64"},
+    {SD_SEC_SHAPE, "elements", SD_KT_LIST, SD_KR_ANY, NULL, SCOMP, 0, "", "-",
+     "composite (glued convex elements, [Rakotonirina 2019]): its convex elements, each a shape listed "
+     "before it (shape: name) or inline (type and its size keys), with position and orientation "
+     "in the composite's frame; give elements or preset"},
+    {SD_SEC_SHAPE, "lattice", SD_KT_INT, SD_KR_POS, NULL, SCOMP, 0, "", "200",
+     "composite: points per direction of the voxel lattice (4 to 2000) that integrates the volume "
+     "counted twice where elements overlap (§2.3 of [Rakotonirina 2019]); without overlaps "
+     "the mass properties are exact sums"},
     {SD_SEC_SHAPE, "height", SD_KT_NUMBER, SD_KR_POS, NULL, SCONE, 0, "m", "size z",
      "cone height along its axis z (apex up), with diameter instead of size"},
     {SD_SEC_SHAPE, "semi_axes", SD_KT_VEC3, SD_KR_POS, NULL, SELL, SELL, "m", "required",
@@ -216,11 +241,16 @@ const sd_scene_key sd_scene_keys[] = {
     {SD_SEC_SHAPE, "nonconvex", SD_KT_ENUM, SD_KR_ANY, "reject|hull", SPOLY, 0, "", "reject",
      "a mesh file whose faces are not on its convex hull: reject (an error that says how far "
      "from convex it is) or hull (take the convex hull, with a warning)"},
-    {SD_SEC_SHAPE, "preset", SD_KT_ENUM, SD_KR_ANY, SD_POLY_CHOICES, SPOLY, 0, "", "-",
+    {SD_SEC_SHAPE, "preset", SD_KT_ENUM, SD_KR_ANY, SD_POLY_CHOICES SD_COMP_CHOICES, SPOLY | SCOMP, 0, "", "-",
      "a built-in polyhedron, sized by size (circumscribed diameter) or edge: Platonic solids; "
      "prism (sides-gon, axis z); cylinder (the same solid with cap centres, §3.1 of [Xu n.d.]: "
      "sides 20 gives 42 vertices, 80 triangles, 22 faces); random (seeded, faces or "
-     "vertex_count); give one of vertices, file and preset"},
+     "vertex_count); give one of vertices, file and preset. Type composite: a built-in glued "
+     "shape, instead of elements: cross2d (tile spacer; length, width, thickness), cross3d "
+     "(three cylinders; diameter, length), lshape and tshape (length, width, thickness), ring "
+     "(count boxes; diameter, width, length), dumbbell (diameter, length, width), spheres9 and "
+     "spheres54 (glued-sphere cylinders of Fig. 10 of [Rakotonirina 2019]; diameter, length); "
+     "docs/physics.md shows each"},
     {SD_SEC_SHAPE, "edge", SD_KT_NUMBER, SD_KR_POS, NULL, SPOLY, 0, "m", "-",
      "edge length of a Platonic preset, instead of size"},
     {SD_SEC_SHAPE, "sides", SD_KT_INT, SD_KR_POS, NULL, SPOLY, 0, "", "-",
@@ -236,11 +266,32 @@ const sd_scene_key sd_scene_keys[] = {
     {SD_SEC_SHAPE, "rounding", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "m", "0",
      "radius of a sphere swept over the shape: edges are rounded and every outer size grows by "
      "2 x rounding"},
-    {SD_SEC_SHAPE, "margin", SD_KT_NUMBER, SD_KR_NONNEG, NULL, S3D, 0, "m", "0",
+    {SD_SEC_SHAPE, "margin", SD_KT_NUMBER, SD_KR_NONNEG, NULL, S3D & ~SCOMP, 0, "m", "0",
      "the outer size stays as given: the core is shrunk by margin and swept by it, so edges "
      "are rounded by margin; give at most one of rounding and margin"},
     {SD_SEC_SHAPE, "scale", SD_KT_NUMBER, SD_KR_POS, NULL, ALL, 0, "", "1",
      "multiplies every length of the shape (sizes, vertices, rounding, margin)"},
+
+    {SD_SEC_ELEMENT, "shape", SD_KT_STRING, SD_KR_NONEMPTY, NULL, ALL, 0, "", "-",
+     "name of a convex shape listed before the composite in shapes:; or give type and its "
+     "size keys here (an inline element)"},
+    {SD_SEC_ELEMENT, "type", SD_KT_ENUM, SD_KR_ANY, "sphere|box|cylinder|ellipsoid", ALL, 0, "", "-",
+     "inline element: its convex type (sphere: radius; box: size; cylinder: diameter, length; "
+     "ellipsoid: semi_axes)"},
+    {SD_SEC_ELEMENT, "radius", SD_KT_NUMBER, SD_KR_POS, NULL, ALL, 0, "m", "-", "inline sphere radius"},
+    {SD_SEC_ELEMENT, "size", SD_KT_NUM_OR_VEC3, SD_KR_POS, NULL, ALL, 0, "m", "-",
+     "inline box: full edge lengths [x, y, z] (a number sets all three)"},
+    {SD_SEC_ELEMENT, "diameter", SD_KT_NUMBER, SD_KR_POS, NULL, ALL, 0, "m", "-", "inline cylinder diameter"},
+    {SD_SEC_ELEMENT, "length", SD_KT_NUMBER, SD_KR_POS, NULL, ALL, 0, "m", "-",
+     "inline cylinder length along its axis z"},
+    {SD_SEC_ELEMENT, "semi_axes", SD_KT_VEC3, SD_KR_POS, NULL, ALL, 0, "m", "-", "inline ellipsoid semi-axes"},
+    {SD_SEC_ELEMENT, "rounding", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "m", "0",
+     "inline element: radius of a sphere swept over it"},
+    {SD_SEC_ELEMENT, "position", SD_KT_VEC3, SD_KR_ANY, NULL, ALL, 0, "m", "[0, 0, 0]",
+     "the element's centre of mass in the composite's frame"},
+    {SD_SEC_ELEMENT, "orientation", SD_KT_ORIENTATION, SD_KR_ANY, NULL, ALL, 0, "", "identity",
+     "the element's principal frame in the composite's frame: identity or a quaternion "
+     "[w, x, y, z] (not random)"},
 
     {SD_SEC_PARTICLES, "generator", SD_KT_ENUM, SD_KR_ANY, "lattice|random|list|csv", ALL, ALL,
      "", "required", "how the particles are made"},
@@ -549,7 +600,7 @@ const char sd_scene_example[] =
 
 static const char *const sd_section_names[SD_SEC_COUNT] = {
     "(top level)", "simulation", "materials[]", "interactions[]", "shapes[]", "particles[]",
-    "particles[].spheres[]", "walls[]", "output", "pour", "outlet",
+    "particles[].spheres[]", "walls[]", "output", "pour", "outlet", "shapes[].elements[]",
     "insert[]", "insert[].mix[]", "outlets[]", "walls[].motion",
 };
 

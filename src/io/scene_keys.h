@@ -23,6 +23,7 @@ typedef enum sd_scene_section {
     SD_SEC_OUTPUT,      /* output: */
     SD_SEC_POUR,        /* pour: (solver grid) */
     SD_SEC_OUTLET,      /* outlet: (solver grid) */
+    SD_SEC_ELEMENT,     /* shapes: - type: composite, elements: - ... */
     SD_SEC_INSERT,      /* insert: - ... (cells solver) */
     SD_SEC_INSERT_MIX,  /* insert: - mix: - ... */
     SD_SEC_OUTLETS,     /* outlets: - ... (cells solver) */

@@ -98,6 +98,8 @@ static sd_status sd_parse_simulation(sd_parse *p, yaml_node_t *root)
     if (!(v.num < 1.0))
         return sd_fail(p, v.line, "simulation.local_damping", "expected a coefficient in [0, 1), got %g", v.num);
     s->world.local_damping = v.num;
+    sd_yaml_get(&p->y, sim, SD_SEC_SIMULATION, "multi_contact", path, &v);
+    s->world.multi_contact = v.choice == 1 ? SD_MULTI_CONTACT_SUM : SD_MULTI_CONTACT_AVERAGE;
 
     sd_yaml_get(&p->y, sim, SD_SEC_SIMULATION, "dt", path, &v);
     s->world.dt = v.num;
@@ -826,6 +828,7 @@ void sd_scene_free(sd_scene *s)
         sd_free(s->shapes[i].points);
         sd_free(s->shapes[i].fourier_a);
         sd_free(s->shapes[i].fourier_b);
+        sd_free(s->shapes[i].elements);
     }
     sd_free(s->shapes);
     sd_free(s->generators);

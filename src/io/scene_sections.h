@@ -54,6 +54,10 @@ sd_status sd_count_particles(sd_parse *p, double n, int line, const char *key);
 
 /* The shapes: and particles: sections (scene_shapes.c, scene_particles.c). */
 sd_status sd_parse_shapes(sd_parse *p, yaml_node_t *list);
+/* A shapes: entry of type composite at scene index si, with more entries
+ * still to come (scene_composite.c): may insert its element shapes before
+ * it, so the composite ends at s->shapes[s->shape_count - 1]. */
+sd_status sd_parse_composite(sd_parse *p, yaml_node_t *m, const char *path, size_t si, size_t more);
 sd_status sd_parse_particles(sd_parse *p, yaml_node_t *list, int line);
 /* A walls: entry of type mesh, its other keys checked (scene_mesh.c). */
 sd_status sd_parse_mesh_wall(sd_parse *p, yaml_node_t *m, sd_scene_wall *w, const char *path);

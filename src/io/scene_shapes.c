@@ -425,7 +425,11 @@ sd_status sd_parse_shapes(sd_parse *p, yaml_node_t *list)
         yaml_node_t *m;
         if ((st = sd_yaml_entry(&p->y, list, i, "shapes", "(name: ..., type: ..., ...)", path, sizeof path, &m)))
             return st;
-        sd_scene_shape *sh = &s->shapes[i];
+        /* scene index: composites may have put element shapes before it */
+        const size_t si = s->shape_count;
+        sd_scene_shape *sh = &s->shapes[si];
+        sh->entry = i;
+        sh->preset = -1;
         sh->line = sd_yaml_line(m);
         /* The type decides which keys apply, so read it first. */
         yaml_node_t *tn = sd_yaml_map_get(&p->y, m, "type");
@@ -447,16 +451,17 @@ sd_status sd_parse_shapes(sd_parse *p, yaml_node_t *list)
         snprintf(kind_name, sizeof kind_name, "a %s shape", v.str);
         if ((st = sd_yaml_check_map(&p->y, m, SD_SEC_SHAPE, 1u << sh->kind, kind_name, path, sh->line)))
             return st;
-        s->shape_count = i + 1; /* so sd_scene_free sees its vertices */
+        s->shape_count = si + 1; /* so sd_scene_free sees its vertices */
 
         sd_yaml_get(&p->y, m, SD_SEC_SHAPE, "name", path, &v);
         sd_yaml_kp(key, sizeof key, path, "name");
         if (strlen(v.str) >= SD_SCENE_NAME_MAX)
             return sd_fail(p, v.line, key, "name longer than %d characters", SD_SCENE_NAME_MAX - 1);
-        for (size_t j = 0; j < i; ++j)
+        for (size_t j = 0; j < si; ++j)
             if (!strcmp(s->shapes[j].name, v.str))
-                return sd_fail(p, v.line, key, "duplicate shape name '%s' (shapes[%zu], line %d)",
-                               v.str, j, s->shapes[j].line);
+                return sd_fail(p, v.line, key, "duplicate shape name '%s' (shapes[%zu], line %d%s)",
+                               v.str, s->shapes[j].entry, s->shapes[j].line,
+                               s->shapes[j].hidden ? ", an element shape of a composite" : "");
         snprintf(sh->name, sizeof sh->name, "%s", v.str);
 
         sd_yaml_value rv, mv;
@@ -545,6 +550,11 @@ sd_status sd_parse_shapes(sd_parse *p, yaml_node_t *list)
             sh->vertex_count = nv;
             break;
         }
+        case SD_SHAPE_COMPOSITE:
+            /* last: it may move this entry (sh is stale after it) */
+            if ((st = sd_parse_composite(p, m, path, si, n - i - 1)))
+                return st;
+            break;
         default:
             if (sh->kind2d >= 0) {
                 if ((st = sd_parse_shape2d(p, m, sh, path)))

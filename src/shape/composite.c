@@ -300,8 +300,10 @@ static void sd_isum_cell(sd_isum *q, int64_t c, int64_t i, int64_t j, int64_t k)
     q->ss[5] += c * i * k;
 }
 
-sd_status sd_composite_lattice(const sd_composite_pools *pools, const sd_composite_part *parts, size_t n_parts,
-                               int n, int threads, sd_mass *union_mass, sd_mass *excess)
+/* The lattice over the box [lo, hi] (NULL: the parts' bounding box, else
+ * only where parts overlap: the union of the boxes of overlapping pairs). */
+static sd_status sd_lattice_run(const sd_composite_pools *pools, const sd_composite_part *parts, size_t n_parts,
+                                int n, int threads, int overlap_box, sd_mass *union_mass, sd_mass *excess)
 {
     if (n_parts == 0 || n_parts > SD_COMPOSITE_MAX_ELEMENTS || n < 1 || n > SD_COMPOSITE_LATTICE_MAX)
         return SD_ERR_INPUT;
@@ -315,6 +317,29 @@ sd_status sd_composite_lattice(const sd_composite_pools *pools, const sd_composi
     }
     sd_vec3 lo = sd_v3_zero(), hi = sd_v3_zero();
     sd_lattice_prepare(pools, parts, n_parts, le, &lo, &hi);
+    if (overlap_box) {
+        /* the doubly counted volume lies in the boxes of overlapping pairs:
+         * a lattice there has n points across the overlaps, not the body */
+        int any = 0;
+        for (size_t a = 0; a < n_parts; ++a)
+            for (size_t b = a + 1; b < n_parts; ++b) {
+                sd_vec3 l = sd_v3_max(le[a].lo, le[b].lo), h = sd_v3_min(le[a].hi, le[b].hi);
+                if (!(l.x < h.x && l.y < h.y && l.z < h.z) || !sd_composite_parts_overlap(pools, &parts[a], &parts[b]))
+                    continue;
+                lo = any ? sd_v3_min(lo, l) : l;
+                hi = any ? sd_v3_max(hi, h) : h;
+                any = 1;
+            }
+        if (!any) { /* nothing counted twice */
+            sd_free(le);
+            sd_free(slab);
+            if (union_mass)
+                memset(union_mass, 0, sizeof *union_mass);
+            if (excess)
+                memset(excess, 0, sizeof *excess);
+            return SD_OK;
+        }
+    }
     const sd_vec3 h = sd_v3_scale(sd_v3_sub(hi, lo), SD_R(1.0) / (sd_real)n);
     const int np = (int)n_parts;
 #ifdef _OPENMP
@@ -373,6 +398,12 @@ sd_status sd_composite_lattice(const sd_composite_pools *pools, const sd_composi
     sd_free(le);
     sd_free(slab);
     return SD_OK;
+}
+
+sd_status sd_composite_lattice(const sd_composite_pools *pools, const sd_composite_part *parts, size_t n_parts,
+                               int n, int threads, sd_mass *union_mass, sd_mass *excess)
+{
+    return sd_lattice_run(pools, parts, n_parts, n, threads, 0, union_mass, excess);
 }
 
 static sd_raw sd_raw_of_mass(const sd_mass *m)
@@ -443,9 +474,9 @@ sd_status sd_composite_make(const sd_composite_pools *pools, const sd_composite_
     out->mass_error = 0;
     if (overlap) {
         sd_mass ex, ex_half;
-        st = sd_composite_lattice(pools, parts, n, lattice, threads, NULL, &ex);
+        st = sd_lattice_run(pools, parts, n, lattice, threads, 1, NULL, &ex);
         if (st == SD_OK)
-            st = sd_composite_lattice(pools, parts, n, lattice / 2, threads, NULL, &ex_half);
+            st = sd_lattice_run(pools, parts, n, lattice / 2, threads, 1, NULL, &ex_half);
         if (st != SD_OK) {
             sd_free(parts);
             return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory integrating a composite's lattice");

@@ -39,7 +39,8 @@
  * fits many times over; a fixed bound keeps element loops on a GPU finite). */
 #define SD_COMPOSITE_MAX_ELEMENTS 1024
 /* Default points per direction: two crossed cylinders of equal radius come
- * out within 1e-4 of the exact volume and moments (tests/unit/composite.c). */
+ * out within 3e-4 of the exact volume and moments (tests/unit/composite.c:
+ * 2.0e-4 measured; 0.2 % is the seed's target), in about 0.5 s on 2 cores. */
 #define SD_COMPOSITE_LATTICE_DEFAULT 200
 #define SD_COMPOSITE_LATTICE_MAX 2000
 

@@ -172,6 +172,16 @@ sd_status sd_world_get_shape(const sd_world *w, size_t k, sd_shape_info *out)
     out->vertex_count = s->vcount;
     out->face_count = s->fcount;
     out->overlap_face_limit = SD_OVERLAP_MAX_PLANES;
+    for (int a = 0; a < 3; ++a) {
+        /* column a of R(given_q): principal axis a in the given frame */
+        sd_vec3 e = sd_quat_rotate(s->given_q, sd_v3(a == 0, a == 1, a == 2));
+        out->axes[a].x = (double)e.x;
+        out->axes[a].y = (double)e.y;
+        out->axes[a].z = (double)e.z;
+    }
+    out->element_count = s->kind == SD_SHAPE_COMPOSITE ? s->ecount : 0;
+    out->lattice = s->kind == SD_SHAPE_COMPOSITE ? s->mass_lattice : 0;
+    out->lattice_error = s->kind == SD_SHAPE_COMPOSITE ? (double)s->mass_error : 0.0;
     return SD_OK;
 }
 

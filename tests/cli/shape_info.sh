@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # shape_info.sh — `shapedem shape info` prints a shape's mass properties:
 # a box's volume and principal moments against closed forms, a scene's
-# shapes, and exit status 2 for an unknown kind.
+# shapes, exit status 2 for an unknown kind, and composites (exact or lattice).
 set -u
 bin="$1"
 root="$2"
@@ -117,6 +117,25 @@ EOF
 out=$("$bin" shape info "$tmp/crossing.yaml" 2>&1)
 rc=$?
 check "scene that fails to build: exit 2 (got $rc), one line" "$([[ $rc == 2 && $(wc -l <<<"$out") == 1 ]] && echo 1 || echo 0)"
+# composites (seed 004): a flush tile spacer is exact, the 3D cross of three
+# cylinders (R = 0.5 mm, L = 4 mm) goes through the lattice; its volume is
+# 3 pi R^2 L - 3 (16/3) R^3 + 8 (2 - sqrt 2) R^3 = 8.01056e-9 m^3
+cat >"$tmp/comp.yaml" <<'EOF'
+simulation: {dt: 1.0e-6, steps: 5}
+materials: [{name: m, density: 2500, youngs_modulus: 1.0e7}]
+shapes:
+  - {name: spacer, type: composite, preset: cross2d, length: 0.004, width: 0.001, thickness: 0.0005}
+  - {name: c3, type: composite, preset: cross3d, length: 0.004, diameter: 0.001}
+particles: [{generator: list, material: m, shape: c3, spheres: [{position: [0, 0, 0]}]}]
+EOF
+out=$("$bin" shape info "$tmp/comp.yaml")
+sp=$(awk '/^shape .*spacer \(composite\)/ {f = 1} f && /^volume/ {print $2; exit}' <<<"$out")
+check "tile spacer: volume 3.5e-09 m^3 (got $sp)" "$(awk -v v="$sp" 'BEGIN {print (v > 3.4999999e-9 && v < 3.5000001e-9)}')"
+check "tile spacer: exact mass properties, 5 elements" \
+    "$([[ $(grep -c 'mass properties *exact (no two elements' <<<"$out") == 1 && $(grep -c 'elements *5 convex' <<<"$out") == 1 ]] && echo 1 || echo 0)"
+c3=$(awk '/^shape .*c3 \(composite\)/ {f = 1} f && /^volume/ {print $2; exit}' <<<"$out")
+check "3D cross: volume 8.01056e-9 m^3 within 0.2 % (got $c3)" "$(awk -v v="$c3" 'BEGIN {print (v > 7.9945e-9 && v < 8.0266e-9)}')"
+check "3D cross: lattice of 200 points per direction reported" "$(grep -c 'voxel lattice of 200 points' <<<"$out")"
 rm -rf "$tmp"
 echo "$pass passed, $fail failed"
 [[ $fail == 0 ]]

@@ -923,7 +923,7 @@ static const bad_case bad_cases[] = {
      NULL, 13, "particles[0].spheres[1]", "closed xmax face", 0},
     {"unknown shape type", SIM MAT "shapes:\n  - name: a\n    type: torus\n" PARTS, NULL, 10,
      "shapes[0].type",
-     "expected one of sphere, box, cylinder, cone, ellipsoid, polyhedron, circle, ellipse, polygon, polybezier, "
+     "expected one of sphere, box, cylinder, cone, ellipsoid, polyhedron, composite, circle, ellipse, polygon, polybezier, "
      "fourier, got torus",
      0},
     {"shape without a size", SIM MAT "shapes:\n  - name: cube\n    type: box\n" PARTS, NULL, 9,
