@@ -211,6 +211,81 @@ static int sd_h5_write_item(hid_t file, const sd_snap_item *it)
     return ok;
 }
 
+/* ---- the header: a checksum of the whole file, checked before HDF5 reads
+ * a byte. HDF5's metadata checksums do not cover everything (a flipped
+ * byte in a dense link table made libhdf5 1.10.8 free a pointer it never
+ * allocated: tests/fuzz/open), so a damaged file must never reach it.
+ * Layout of the first SD_CKPT_HEADER bytes (an HDF5 user block):
+ *   0..7   "SDCKPT01"
+ *   8..15  uint64 LE, the file's size in bytes
+ *   16..23 uint64 LE, FNV-1a 64 of bytes SD_CKPT_HEADER .. size - 1
+ *   24..   zeros */
+#define SD_CKPT_HEADER 512
+#define SD_CKPT_MAGIC "SDCKPT01"
+
+static void sd_put_u64(unsigned char *b, uint64_t v)
+{
+    for (int k = 0; k < 8; ++k)
+        b[k] = (unsigned char)(v >> (8 * k));
+}
+
+static uint64_t sd_get_u64(const unsigned char *b)
+{
+    uint64_t v = 0;
+    for (int k = 7; k >= 0; --k)
+        v = (v << 8) | b[k];
+    return v;
+}
+
+/* Writes the header into a closed HDF5 file made with the user block. */
+static sd_status sd_ckpt_seal(const char *path, sd_error *err)
+{
+    FILE *fp = fopen(path, "r+b");
+    if (!fp)
+        return sd_error_set(err, SD_ERR_IO, path, 0, "", "cannot reopen the checkpoint: %s", strerror(errno));
+    uint64_t h = SD_FNV_BASIS, size = 0;
+    unsigned char buf[1 << 16];
+    int ok = fseek(fp, SD_CKPT_HEADER, SEEK_SET) == 0;
+    size_t got;
+    while (ok && (got = fread(buf, 1, sizeof buf, fp)) > 0) {
+        h = sd_fnv1a(h, buf, got);
+        size += got;
+    }
+    ok = ok && !ferror(fp) && size > 0;
+    unsigned char head[SD_CKPT_HEADER];
+    memset(head, 0, sizeof head);
+    memcpy(head, SD_CKPT_MAGIC, 8);
+    sd_put_u64(head + 8, size + SD_CKPT_HEADER);
+    sd_put_u64(head + 16, h);
+    ok = ok && fseek(fp, 0, SEEK_SET) == 0 && fwrite(head, 1, sizeof head, fp) == sizeof head;
+    if (fclose(fp) != 0)
+        ok = 0;
+    if (!ok)
+        return sd_error_set(err, SD_ERR_IO, path, 0, "", "cannot write the checkpoint's header");
+    return SD_OK;
+}
+
+/* The header's checks: SD_OK when the bytes are the file that was written. */
+static sd_status sd_ckpt_check_header(const unsigned char *b, size_t size, sd_error *err)
+{
+    if (size < SD_CKPT_HEADER || memcmp(b, SD_CKPT_MAGIC, 8) != 0) {
+        if (size >= 8 && memcmp(b, "\x89HDF\r\n\x1a\n", 8) == 0)
+            return sd_error_set(err, SD_ERR_INPUT, "", 0, "", "an HDF5 file without a shapedem checkpoint header "
+                                "(not a checkpoint, or one of an older format)");
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "", "not a shapedem checkpoint (no SDCKPT01 header%s)",
+                            size < SD_CKPT_HEADER ? "; the file is truncated or damaged" : "");
+    }
+    uint64_t want = sd_get_u64(b + 8);
+    if (want != (uint64_t)size)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "", "the file is truncated or damaged: it has %zu bytes, its "
+                            "header says %llu", size, (unsigned long long)want);
+    uint64_t h = sd_fnv1a(SD_FNV_BASIS, b + SD_CKPT_HEADER, size - SD_CKPT_HEADER);
+    if (h != sd_get_u64(b + 16))
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "", "the file is damaged: its checksum is %016llx, its header "
+                            "says %016llx", (unsigned long long)h, (unsigned long long)sd_get_u64(b + 16));
+    return SD_OK;
+}
+
 /* Writes the snapshot as an HDF5 file at path (truncated when there),
  * closed on return. HDF5 writes the file itself: an image taken from an
  * open in-memory file has a superblock whose checksum a reader refuses. */
@@ -223,9 +298,18 @@ static sd_status sd_h5_write_path(const sd_snapshot *s, const char *path, sd_err
         H5Pclose(fapl);
         fapl = -1;
     }
-    hid_t f = fapl < 0 ? -1 : H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+    /* the first SD_CKPT_HEADER bytes are an HDF5 user block: our header
+     * (sd_ckpt_seal), which h5py and HDF5 skip */
+    hid_t fcpl = H5Pcreate(H5P_FILE_CREATE);
+    if (fcpl >= 0 && H5Pset_userblock(fcpl, SD_CKPT_HEADER) < 0) {
+        H5Pclose(fcpl);
+        fcpl = -1;
+    }
+    hid_t f = fapl < 0 || fcpl < 0 ? -1 : H5Fcreate(path, H5F_ACC_TRUNC, fcpl, fapl);
     if (fapl >= 0)
         H5Pclose(fapl);
+    if (fcpl >= 0)
+        H5Pclose(fcpl);
     if (f < 0)
         return sd_error_set(err, SD_ERR_IO, path, 0, "", "HDF5 cannot create the checkpoint file");
     uint32_t version = s->version;
@@ -250,7 +334,7 @@ static sd_status sd_h5_write_path(const sd_snapshot *s, const char *path, sd_err
     if (!ok)
         return sd_error_set(err, SD_ERR_IO, path, 0, bad ? bad : "", "HDF5 could not write the checkpoint%s%s "
                             "(disk full?)", bad ? ": dataset " : "", bad ? bad : "");
-    return SD_OK;
+    return sd_ckpt_seal(path, err);
 }
 
 static sd_status sd_read_all(const char *path, void **buf, size_t *size, sd_error *err)
@@ -439,8 +523,9 @@ sd_status sd_checkpoint_decode(const void *buf, size_t size, sd_snapshot *out, s
 {
     sd_snapshot_init(out);
     sd_h5_quiet();
-    if (size < 8 || memcmp(buf, "\x89HDF\r\n\x1a\n", 8) != 0)
-        return sd_error_set(err, SD_ERR_INPUT, "", 0, "", "not an HDF5 file (a shapedem checkpoint is HDF5)");
+    sd_status hst = sd_ckpt_check_header(buf, size, err);
+    if (hst != SD_OK)
+        return hst;
     hid_t fapl = sd_h5_core_fapl();
     /* the image is copied by HDF5 (no callbacks): buf stays the caller's */
     if (fapl >= 0 && H5Pset_file_image(fapl, (void *)(uintptr_t)buf, size) < 0) {

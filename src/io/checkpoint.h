@@ -7,8 +7,10 @@
  * Each state array of world/snapshot.h is one dataset "/group/name"
  * ((rows,) or (rows, values per row)); the root's attributes hold the
  * format name and version, the scene's hash, the step, the time and a
- * checksum of every dataset's bytes. The file uses HDF5's newer object
- * formats, whose metadata carry their own checksums; ours covers the data.
+ * checksum of every dataset's bytes. A 512-byte user block before the
+ * HDF5 data holds a header with the file's size and a checksum of all its
+ * bytes, checked before HDF5 reads any of them (HDF5's own metadata checks
+ * miss some damage, and libhdf5 1.10.8 mishandled one such file).
  *
  * The reader is context-free: bytes (a file or a buffer) in, a snapshot or
  * a message out, no world needed (the fuzz target calls

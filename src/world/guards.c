@@ -41,3 +41,73 @@ sd_status sd_world_check_dt(sd_world *w, sd_error *err)
     w->dt_checked_n = n;
     return SD_OK;
 }
+
+/* ---- numerical guards ---------------------------------------------------------
+ * Checked with the step's finite-state check (every 256 steps and at the
+ * end of each sd_world_step call, world/step.c): each names the particle
+ * by its stable id, the step and the likely cause, and stops the run with
+ * SD_ERR_PHYSICS (io/run.c then writes the state for inspection). */
+
+/* The first particle whose state is NaN, infinite or so large that its
+ * squares overflow (the backend's finite check sums squares). */
+sd_status sd_world_guard_nonfinite(sd_world *w, sd_error *err)
+{
+    const sd_particles *p = &w->p;
+    for (size_t k = 0; k < p->n; ++k) {
+        double s = (double)(sd_v3_norm2(p->x[k]) + sd_v3_norm2(p->v[k]) + sd_v3_norm2(p->w[k]) +
+                            p->q[k].w * p->q[k].w + p->q[k].x * p->q[k].x + p->q[k].y * p->q[k].y +
+                            p->q[k].z * p->q[k].z);
+        if (!isfinite(s))
+            return sd_error_set(err, SD_ERR_PHYSICS, "", 0, "",
+                                "particle id %llu: its state became NaN or infinite at step %ld (time step too "
+                                "large for the stiffness?)",
+                                (unsigned long long)p->id[k], w->step);
+    }
+    return SD_OK;
+}
+
+sd_status sd_world_guards(sd_world *w, sd_error *err)
+{
+    const sd_particles *p = &w->p;
+    size_t n = p->n;
+    /* a particle that crosses more than a cell of the broad phase in one
+     * step can pass through a neighbour or a wall unseen */
+    sd_real cell = w->bins.h;
+    if (cell > 0)
+        for (size_t k = 0; k < n; ++k) {
+            sd_real d = sd_v3_norm(p->v[k]) * w->dt;
+            if (d > cell)
+                return sd_error_set(err, SD_ERR_PHYSICS, "", 0, "",
+                                    "particle id %llu moves %g m per step at step %ld (speed %g m/s), more than a "
+                                    "cell of the broad phase (%g m): time step too large, or the particle was shot "
+                                    "out of an overlap (stiffness too low for the load)",
+                                    (unsigned long long)p->id[k], (double)d, w->step, (double)sd_v3_norm(p->v[k]),
+                                    (double)cell);
+        }
+    /* an overlap beyond SD_GUARD_OVERLAP of the smaller size: the contact
+     * law no longer describes it */
+    const sd_pair_list *l = &w->pairs;
+    for (size_t e = 0; e < l->n; ++e) {
+        sd_real r = sd_min(p->radius[l->i[e]], p->radius[l->j[e]]);
+        if (l->delta[e] > SD_GUARD_OVERLAP * r)
+            return sd_error_set(err, SD_ERR_PHYSICS, "", 0, "",
+                                "particles id %llu and id %llu overlap by %g m at step %ld, %.0f %% of the smaller "
+                                "one's radius (the guard's limit is %.0f %%): stiffness too low for the load, or "
+                                "time step too large",
+                                (unsigned long long)p->id[l->i[e]], (unsigned long long)p->id[l->j[e]],
+                                (double)l->delta[e], w->step, 100.0 * (double)(l->delta[e] / r),
+                                100.0 * SD_GUARD_OVERLAP);
+    }
+    const sd_wall_pair_list *wl = &w->wpairs;
+    for (size_t e = 0; e < wl->n; ++e) {
+        sd_real r = p->radius[wl->i[e]];
+        if (wl->delta[e] > SD_GUARD_OVERLAP * r)
+            return sd_error_set(err, SD_ERR_PHYSICS, "", 0, "",
+                                "particle id %llu overlaps wall '%s' by %g m at step %ld, %.0f %% of its radius "
+                                "(the guard's limit is %.0f %%): stiffness too low for the load, or time step too "
+                                "large",
+                                (unsigned long long)p->id[wl->i[e]], w->walls[wl->wall[e]].name, (double)wl->delta[e],
+                                w->step, 100.0 * (double)(wl->delta[e] / r), 100.0 * SD_GUARD_OVERLAP);
+    }
+    return SD_OK;
+}

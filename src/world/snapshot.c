@@ -17,6 +17,7 @@
 
 #include "core/alloc.h"
 #include "core/error.h"
+#include "world/process.h"
 #include "world/solver.h"
 #include "world/view.h"
 #include "world/world.h"
@@ -395,7 +396,9 @@ sd_status sd_cells_resumed(sd_world *w, sd_error *err)
     for (size_t k = 0; k < wkinds; ++k)
         if (wl->kind_start[k] > wl->kind_start[k + 1] || wl->kind_start[wkinds] != wl->n)
             return sd_error_set(err, SD_ERR_INPUT, "", 0, "wall_pairs/kind_start", "kind segments out of order");
-    if (l->gstart && n > 0) {
+    /* particles removed since the last rebuild (world/remove.c): the
+     * gather lists are stale and the next step rebuilds them before use */
+    if (l->gstart && n > 0 && !w->dirty) {
         for (size_t k = 0; k < n; ++k)
             if (l->gstart[k] > l->gstart[k + 1])
                 return sd_error_set(err, SD_ERR_INPUT, "", 0, "pairs/gstart", "gather starts out of order");
@@ -405,7 +408,7 @@ sd_status sd_cells_resumed(sd_world *w, sd_error *err)
             if (l->gidx[e] >= 2 * l->n)
                 return sd_error_set(err, SD_ERR_INPUT, "", 0, "pairs/gidx", "gather entry out of range");
     }
-    if (wl->gstart && n > 0) {
+    if (wl->gstart && n > 0 && !w->dirty) {
         for (size_t k = 0; k < n; ++k)
             if (wl->gstart[k] > wl->gstart[k + 1])
                 return sd_error_set(err, SD_ERR_INPUT, "", 0, "wall_pairs/gstart", "gather starts out of order");
@@ -439,6 +442,9 @@ sd_status sd_world_state_list(sd_world *w, sd_state_table *t, sd_error *err)
 #define SD_X_WORLD(name, ptr, nv) sd_state_add(t, name, SD_ST_OF(ptr), (nv) * SD_ST_COMPS(ptr), 1, (void *)(ptr), 0);
     SD_WORLD_STATE(SD_X_WORLD, w)
 #undef SD_X_WORLD
+    /* insertions and outlets (world/process.h): one plain struct without
+     * pointers (the names are copied in), its streams and counters */
+    sd_state_add(t, "world/process", SD_ST_BYTES, sizeof(struct sd_process), w->process ? 1 : 0, w->process, 0);
     sd_wall *wa = w->walls;
 #define SD_X_WALL(member)                                                                                    \
     sd_state_add(t, "walls/" #member, SD_ST_OF(&wa->member), SD_ST_COMPS(&wa->member), w->wall_count,        \

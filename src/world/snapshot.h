@@ -25,7 +25,8 @@
  *    "particles/<name>" automatically;
  *  - a pair field: SD_PAIR_FIELDS / SD_WALL_PAIR_FIELDS (broad/pairs.h),
  *    saved as "pairs/<name>" and "wall_pairs/<name>" automatically;
- *  - a world-level value: SD_WORLD_STATE in snapshot.c;
+ *  - a world-level value: SD_WORLD_STATE in snapshot.c (the insertions and
+ *    outlets, world/process.h, are one record beside it);
  *  - a per-wall value: SD_WALL_STATE in snapshot.c;
  *  - a solver's own state: its sd_solver_ops.state (world/solver.h; the
  *    grid's in grid/grid_solver.c).

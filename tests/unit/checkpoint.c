@@ -8,7 +8,7 @@
  *    where HDF5 keeps its superblock and root metadata, then every 307th:
  *    about 1,200 files, each a different bit of its byte)
  *    must be refused, or read back as exactly the snapshot written (a flip
- *    in bytes HDF5 never reads);
+ *    in bytes no reader uses, the header's zero padding);
  *  - a snapshot of another format version, and a restore into a world of
  *    another scene, are refused with a message saying why;
  *  - the intact file reads back bit for bit.
@@ -107,7 +107,7 @@ int main(void)
         }
         sd_snapshot_free(&r);
     }
-    printf("flipped: %ld single-byte flips, %ld refused, %ld read back unchanged (bytes HDF5 never reads), "
+    printf("flipped: %ld single-byte flips, %ld refused, %ld read back unchanged (bytes no reader uses: the header's padding), "
            "%ld loaded with other content (expected 0)\n", flips, refused, unchanged, wrong);
     printf("  e.g. a flip in the data: %s\n", first_reason);
     CHECK(wrong == 0);
