@@ -640,7 +640,7 @@ SD_HD static SD_INLINE int sd_item_wall_element_geom(const sd_step_view *v, cons
         *req = r;
         if (wl->g.kind == SD_WALL_PLANE)
             return sd_sphere_plane(c->x, r, wl->g.point, wl->g.normal, g);
-        if (wl->g.kind == SD_WALL_DRUM) { /* the drum's turning speed: not yet for composites */
+        if (wl->g.kind == SD_WALL_DRUM) { /* its turning speed: sd_item_wall_elements */
             sd_vec3 q0, qn;
             return sd_wall_feature_plane(&wl->g, (int)o->sub[e], c->x, &q0, &qn) && sd_sphere_plane(c->x, r, q0, qn, g);
         }
@@ -666,6 +666,10 @@ SD_HD static SD_INLINE int sd_item_wall_elements(const sd_step_view *v, sd_wall_
     const sd_wall_view *wl = &v->walls[o->wall[e0]];
     const sd_pair_params *prm = sd_item_params(v, v->material[i], wl->material);
     sd_body a = sd_item_wall_body(v, wl, i);
+    /* a drum: the composite's motion relative to the turning drum, right
+     * at every contact point of the run (sd_item_drum_relative) */
+    if (wl->g.kind == SD_WALL_DRUM)
+        sd_item_drum_relative(wl, &a);
     int volume = sd_law_is_volume(prm->law);
     sd_contact_geom keep[SD_ITEM_RUN_CAP];
     sd_real keep_r[SD_ITEM_RUN_CAP];
