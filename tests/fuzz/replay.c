@@ -99,7 +99,8 @@ int main(int argc, char **argv)
             }
         }
         closedir(d);
-        qsort(names, count, sizeof *names, sd_replay_cmp);
+        if (count) /* qsort's array must not be NULL, even for 0 items */
+            qsort(names, count, sizeof *names, sd_replay_cmp);
         size_t run = 0;
         for (size_t i = 0; i < count; ++i) {
             char path[4096];
