@@ -525,7 +525,7 @@ static sd_status sd_cells_set_pour(sd_world *w, const sd_pour_def *d, sd_error *
     (void)w;
     (void)d;
     return sd_error_set(err, SD_ERR_INPUT, "", 0, "pour",
-                        "the layer pour is the grid solver's (simulation.solver: grid); the cells solver inserts "
+                        "the layer pour needs solver grid (simulation.solver: grid); the cells solver inserts "
                         "particles with an insert: section (sd_world_add_insertion)");
 }
 
@@ -534,7 +534,7 @@ static sd_status sd_cells_set_outlet(sd_world *w, const sd_outlet_def *d, sd_err
     (void)w;
     (void)d;
     return sd_error_set(err, SD_ERR_INPUT, "", 0, "outlet",
-                        "the floor outlet is the grid solver's (simulation.solver: grid); the cells solver removes "
+                        "the floor outlet needs solver grid (simulation.solver: grid); the cells solver removes "
                         "particles with an outlets: section (sd_world_add_outlet)");
 }
 
