@@ -131,8 +131,10 @@ EOF
 out=$("$bin" shape info "$tmp/comp.yaml")
 sp=$(awk '/^shape .*spacer \(composite\)/ {f = 1} f && /^volume/ {print $2; exit}' <<<"$out")
 check "tile spacer: volume 3.5e-09 m^3 (got $sp)" "$(awk -v v="$sp" 'BEGIN {print (v > 3.4999999e-9 && v < 3.5000001e-9)}')"
+n_exact=$(grep -c 'mass properties *exact (no two elements' <<<"$out")
+n_elem=$(grep -c 'elements *5 convex' <<<"$out")
 check "tile spacer: exact mass properties, 5 elements" \
-    "$([[ $(grep -c 'mass properties *exact (no two elements' <<<"$out") == 1 && $(grep -c 'elements *5 convex' <<<"$out") == 1 ]] && echo 1 || echo 0)"
+    "$([[ $n_exact == 1 && $n_elem == 1 ]] && echo 1 || echo 0)"
 c3=$(awk '/^shape .*c3 \(composite\)/ {f = 1} f && /^volume/ {print $2; exit}' <<<"$out")
 check "3D cross: volume 8.01056e-9 m^3 within 0.2 % (got $c3)" "$(awk -v v="$c3" 'BEGIN {print (v > 7.9945e-9 && v < 8.0266e-9)}')"
 check "3D cross: lattice of 200 points per direction reported" "$(grep -c 'voxel lattice of 200 points' <<<"$out")"
