@@ -90,7 +90,7 @@ const sd_scene_key sd_scene_keys[] = {
      "are counted as discharged (§4.2 of [Naderi 2024])"},
     {SD_SEC_ROOT, "insert", SD_KT_LIST, SD_KR_ANY, NULL, ALL, 0, "", "[]",
      "solver cells: particles inserted in a region at a rate or all at once, from a mix of templates and "
-     "sphere size laws, each where its bounding sphere overlaps nothing present (seed 004 §4.1; "
+     "sphere size laws, each where its bounding sphere overlaps nothing present ([Rakotonirina 2019] §4.1; "
      "docs/physics.md, Insertion and outlets)"},
     {SD_SEC_ROOT, "outlets", SD_KT_LIST, SD_KR_ANY, NULL, ALL, 0, "", "[]",
      "solver cells: regions that remove and count the particles entering them (outlet.csv)"},
@@ -161,7 +161,7 @@ const sd_scene_key sd_scene_keys[] = {
      "polyhedra); 0 = unset, required when a volume_linear contact involves the material"},
     {SD_SEC_MATERIAL, "volume_face_omega_dt", SD_KT_NUMBER, SD_KR_UNIT, NULL, ALL, 0, "", "off",
      "volume law: regularise near zero overlap so a face contact is never stiffer than omega dt = this "
-     "(0.5 runs seed 000's own moduli at its time steps; a pair takes the smaller of its materials'; "
+     "(0.5 runs [Xu n.d.]'s own moduli at its time steps; a pair takes the smaller of its materials'; "
      "docs/physics.md)"},
 
     {SD_SEC_INTERACTION, "between", SD_KT_NAME_PAIR, SD_KR_NONEMPTY, NULL, ALL, ALL, "",
@@ -512,7 +512,7 @@ const sd_scene_key sd_scene_keys[] = {
      "orientation of shaped bodies: uniform over all rotations (about z in 2D), or the template's"},
     {SD_SEC_INSERT, "attempts", SD_KT_INT, SD_KR_ONE, NULL, ALL, 0, "", "100",
      "positions tried per particle before it waits for the next insertion time (or, all at once, is "
-     "given up; seed 004 §4.1)"},
+     "given up; [Rakotonirina 2019] §4.1)"},
 
     {SD_SEC_INSERT_MIX, "material", SD_KT_STRING, SD_KR_NONEMPTY, NULL, ALL, ALL, "", "required",
      "material name"},
