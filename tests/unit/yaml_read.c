@@ -54,7 +54,7 @@ int main(void)
     /* placed: given values, and the table's default for restitution (0.5) */
     static const char *const rules_all[] = {"name", "youngs_modulus", "poisson_ratio", "rolling_friction",
                                             "stiffness", "tangential_stiffness_ratio", "damping",
-                                            "volume_stiffness", NULL};
+                                            "volume_stiffness", "volume_face_omega_dt", NULL};
     const sd_yaml_place place[] = {{"density", offsetof(sd_probe, density)},
                                    {"friction", offsetof(sd_probe, friction)},
                                    {"restitution", offsetof(sd_probe, restitution)}};
@@ -66,7 +66,8 @@ int main(void)
 
     /* a key neither placed nor read by name: a bug, named */
     static const char *const rules_short[] = {"name", "youngs_modulus", "poisson_ratio", "rolling_friction",
-                                              "stiffness", "tangential_stiffness_ratio", "volume_stiffness", NULL};
+                                              "stiffness", "tangential_stiffness_ratio", "volume_stiffness",
+                                              "volume_face_omega_dt", NULL};
     sd_status st = sd_yaml_place_numbers(&y, m, SD_SEC_MATERIAL, ep, place, 3, rules_short, &pr);
     printf("forgotten key: status %s, key '%s': %s\n", sd_status_name(st), err.key, err.msg);
     CHECK(st == SD_ERR_INTERNAL && !strcmp(err.key, "damping"));
