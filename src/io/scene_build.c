@@ -651,7 +651,8 @@ static sd_status sd_build(const sd_scene *s, sd_world *w, sd_scene_spheres *sp, 
         return sd_error_set(err, SD_ERR_INPUT, s->path, s->dt_line, "simulation.dt",
                             "time step above the stability limit: dt = %g s but the shortest "
                             "contact lasts about %g s, so dt must be at most %g s (1/5 of it); "
-                            "recommended dt = %g s",
+                            "recommended dt (for accuracy: about 50 steps per contact, and the "
+                            "volume law's own limits) = %g s",
                             s->world.dt, tc, tc / 5.0, rec);
     return SD_OK;
 }

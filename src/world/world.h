@@ -177,6 +177,8 @@ struct sd_world {
     int dirty;                /* particles added since the last rebuild */
     double dt_checked;        /* s, the time step sd_world_check_dt last passed (guards.c), 0 none */
     size_t dt_checked_n;      /* particles at that check */
+    int guards_off;           /* tests only: sd_world_guards skips the speed and overlap guards (a set-up
+                               * overlapped on purpose, e.g. tests/unit/broad.c); the NaN check stays */
 };
 
 /* Grows the particle arrays to hold at least cap particles. */
