@@ -504,8 +504,13 @@ SD_HD static SD_INLINE int sd_item_elements(const sd_step_view *v, sd_pair_out *
     for (size_t e = e0; e < e1 && k < nc; ++e) {
         if (!(o->delta[e] > SD_R(0.0)))
             continue;
+        /* Zeroed so the Release build sees them set on every path: both
+         * branches below fill them for a touching element pair. */
         sd_contact_geom g;
-        sd_real rs;
+        g.n = sd_v3(SD_R(0.0), SD_R(0.0), SD_R(0.0));
+        g.point = g.n;
+        g.delta = SD_R(0.0);
+        sd_real rs = SD_R(0.0);
         if (k < SD_ITEM_RUN_CAP) {
             g = keep[k];
             rs = keep_r[k];
