@@ -410,39 +410,26 @@ static sd_status sd_build_shapes(const sd_scene *s, sd_world *w, double *bound, 
             bound[i] = info.bounding_radius;
             continue;
         }
+        int idx;
+        sd_error_clear(err);
         if (sh->kind == SD_SHAPE_COMPOSITE) {
             /* its elements are shapes listed before it: scene index = world index */
             sd_composite_desc cd = sd_composite_desc_default();
             cd.elements = sh->elements;
             cd.element_count = sh->element_count;
             cd.lattice = sh->lattice;
-            sd_error_clear(err);
-            int idx = sd_world_add_composite(w, sh->name, &cd, err);
-            if (idx < 0) {
-                if (err->key[0] && sd_scene_key_find(SD_SEC_SHAPE, err->key))
-                    snprintf(key, sizeof key, "shapes[%zu].%.100s", sh->entry, err->key);
-                else
-                    snprintf(key, sizeof key, "shapes[%zu]", sh->entry);
-                err->key[0] = '\0';
-                return sd_where(err, err->code != SD_OK ? err->code : SD_ERR_INPUT, s, sh->line, key);
-            }
-            sd_shape_info info;
-            if (idx != (int)i || sd_world_get_shape(w, i, &info) != SD_OK)
-                return sd_error_set(err, SD_ERR_INTERNAL, s->path, sh->line, key,
-                                    "the world gave shape index %d, expected %zu", idx, i);
-            bound[i] = info.bounding_radius;
-            continue;
+            idx = sd_world_add_composite(w, sh->name, &cd, err);
+        } else {
+            sd_shape_desc d = sd_shape_desc_default();
+            d.kind = sd_shape_type_names[sh->kind];
+            d.size = sh->size;
+            d.rounding = sh->rounding;
+            d.margin = sh->margin;
+            d.scale = sh->scale;
+            d.vertices = sh->vertices;
+            d.vertex_count = sh->vertex_count;
+            idx = sd_world_add_shape(w, sh->name, &d, err);
         }
-        sd_shape_desc d = sd_shape_desc_default();
-        d.kind = sd_shape_type_names[sh->kind];
-        d.size = sh->size;
-        d.rounding = sh->rounding;
-        d.margin = sh->margin;
-        d.scale = sh->scale;
-        d.vertices = sh->vertices;
-        d.vertex_count = sh->vertex_count;
-        sd_error_clear(err);
-        int idx = sd_world_add_shape(w, sh->name, &d, err);
         if (idx < 0) {
             /* The world names its own field ("size", "vertices"): a key of the
              * entry (the file's entry: composites' element shapes are extra). */
