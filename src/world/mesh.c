@@ -514,6 +514,20 @@ sd_status sd_world_meshes_bins(sd_world *w, sd_real h_min)
     return SD_OK;
 }
 
+sd_status sd_world_meshes_resumed(sd_world *w)
+{
+    for (size_t k = 0; k < w->mesh_count; ++k) {
+        sd_mesh_store *s = &w->meshes[k];
+        if (!(s->h > 0))
+            continue; /* never binned: the next rebuild bins it */
+        sd_status st = sd_mesh_bin(s, s->h);
+        if (st != SD_OK)
+            return st;
+        sd_mesh_refresh_view(w, k);
+    }
+    return SD_OK;
+}
+
 void sd_world_meshes_free(sd_world *w)
 {
     for (size_t k = 0; k < w->mesh_count; ++k) {

@@ -46,6 +46,11 @@ void sd_world_meshes_pose(struct sd_world *w, double t);
  * last mark; marks the poses. */
 int sd_world_meshes_moved(const struct sd_world *w, sd_real lim);
 void sd_world_meshes_mark(struct sd_world *w);
+/* After a checkpoint restore (world/snapshot.c), which puts back each
+ * mesh's pose at the last rebuild and its facet bins' cell edge h: bins
+ * the facets again at that h, so the broad phase finds the near facets in
+ * the order the saved run did; SD_ERR_MEMORY when out of memory. */
+sd_status sd_world_meshes_resumed(struct sd_world *w);
 void sd_world_meshes_free(struct sd_world *w);
 
 #endif

@@ -17,6 +17,7 @@
 
 #include "core/alloc.h"
 #include "core/error.h"
+#include "world/mesh.h"
 #include "world/process.h"
 #include "world/solver.h"
 #include "world/view.h"
@@ -229,6 +230,7 @@ uint64_t sd_snapshot_checksum(const sd_snapshot *s)
     X("world/biaxial_ref", &(w)->biaxial_ref, 1)                                                         \
     X("world/rebuilds", &(w)->rebuilds, 1)                                                               \
     X("world/dirty", &(w)->dirty, 1)                                                                     \
+    X("world/has_shapes", &(w)->has_shapes, 1)                                                           \
     X("world/narrow", &(w)->narrow[0][0][0], SD_SHAPE_KIND_COUNT * SD_SHAPE_KIND_COUNT * 3)              \
     X("world/narrow2d", &(w)->narrow2d[0][0][0], SD_SHAPE2D_KIND_COUNT * SD_SHAPE2D_KIND_COUNT * 4)
 
@@ -246,6 +248,16 @@ uint64_t sd_snapshot_checksum(const sd_snapshot *s)
     X(stiffness)                                                                                         \
     X(servo_i)                                                                                           \
     X(omega)
+
+/* Per-mesh state, one row per mesh wall (world/mesh.h): X(member). The
+ * pose at the last rebuild (the skin test of a moving mesh) and the cell
+ * edge of its facet bins, which sd_world_meshes_resumed bins again at that
+ * edge (the near facets come in the saved run's order); the facets, their
+ * plane groups and the motion come from the scene. */
+#define SD_MESH_STATE(X)                                                                                 \
+    X(trans_ref)                                                                                         \
+    X(q_ref)                                                                                             \
+    X(h)
 
 /* The sizes a restore gives the arrays: the saved one-value item name, or
  * 0 and a message. */
@@ -338,8 +350,13 @@ sd_status sd_cells_state(sd_world *w, sd_state_table *t, sd_error *err)
                  (per) * sizeof(type));
     SD_PAIR_FIELDS(SD_X_PAIR)
 #undef SD_X_PAIR
-    /* gather lists: one start per owned particle and one more, once built */
-    size_t gs = t->saved ? sd_saved_rows(t, "pairs/gstart") : (l->gstart ? p->n + 1 : 0);
+    /* gather lists: one start per owned particle and one more, once built
+     * and current. A world changed since its last rebuild (dirty: particles
+     * inserted or removed) has stale lists, shorter than the particle count
+     * after an insertion, that the next step rebuilds before any use: none
+     * are saved (their bytes would be read past the arrays and mean nothing) */
+    int current = !w->dirty;
+    size_t gs = t->saved ? sd_saved_rows(t, "pairs/gstart") : (l->gstart && current ? p->n + 1 : 0);
     sd_state_add(t, "pairs/gstart", SD_ST_U32, 1, gs, l->gstart, 4);
     sd_state_add(t, "pairs/gidx", SD_ST_U32, 1, gs ? 2 * l->n : 0, l->gidx, 4);
 
@@ -350,7 +367,7 @@ sd_status sd_cells_state(sd_world *w, sd_state_table *t, sd_error *err)
                  (per) * sizeof(type));
     SD_WALL_PAIR_FIELDS(SD_X_WPAIR)
 #undef SD_X_WPAIR
-    size_t wgs = t->saved ? sd_saved_rows(t, "wall_pairs/gstart") : (wl->gstart ? p->n + 1 : 0);
+    size_t wgs = t->saved ? sd_saved_rows(t, "wall_pairs/gstart") : (wl->gstart && current ? p->n + 1 : 0);
     sd_state_add(t, "wall_pairs/gstart", SD_ST_U32, 1, wgs, wl->gstart, 4);
     sd_state_add(t, "wall_pairs/gidx", SD_ST_U32, 1, wgs ? wl->n : 0, wl->gidx, 4);
     /* mesh pairs: the near triangles of each pair's plane group */
@@ -358,6 +375,15 @@ sd_status sd_cells_state(sd_world *w, sd_state_table *t, sd_error *err)
     if (t->saved && ((gs != 0 && gs != p->n + 1) || (wgs != 0 && wgs != p->n + 1)))
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "pairs/gstart",
                             "the checkpoint's gather lists have %zu and %zu starts for %zu particles", gs, wgs, p->n);
+    if (t->saved) {
+        /* lists the next step uses as they are must be there (the world's
+         * own, made for the scene's particles, would index past them) */
+        uint64_t dirty = 1;
+        (void)sd_snapshot_get_u64(t->saved, "world/dirty", &dirty);
+        if (!dirty && p->n > 0 && (gs == 0 || wgs == 0))
+            return sd_error_set(err, SD_ERR_INPUT, "", 0, "pairs/gstart",
+                                "the checkpoint lacks the gather lists of its %zu particles", p->n);
+    }
     return SD_OK;
 }
 
@@ -426,6 +452,9 @@ sd_status sd_cells_resumed(sd_world *w, sd_error *err)
                                 "particle %zu has shape %d of %zu and material %d of %zu", k, (int)s, ns, (int)m,
                                 w->material_count);
     }
+    if (sd_world_meshes_resumed(w) != SD_OK)
+        return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory for the facet bins of %zu meshes",
+                            w->mesh_count);
     if (sd_world_views(w) != SD_OK)
         return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory for the views");
     w->prepared = 1;
@@ -451,6 +480,12 @@ sd_status sd_world_state_list(sd_world *w, sd_state_table *t, sd_error *err)
                  wa ? (void *)&wa->member : NULL, sizeof(sd_wall));
     SD_WALL_STATE(SD_X_WALL)
 #undef SD_X_WALL
+    sd_mesh_store *ms = w->meshes;
+#define SD_X_MESH(member)                                                                                    \
+    sd_state_add(t, "meshes/" #member, SD_ST_OF(&ms->member), SD_ST_COMPS(&ms->member), w->mesh_count,       \
+                 ms ? (void *)&ms->member : NULL, sizeof(sd_mesh_store));
+    SD_MESH_STATE(SD_X_MESH)
+#undef SD_X_MESH
     if (t->oom)
         return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory listing the state");
     return SD_OK;

@@ -27,7 +27,8 @@
  *    saved as "pairs/<name>" and "wall_pairs/<name>" automatically;
  *  - a world-level value: SD_WORLD_STATE in snapshot.c (the insertions and
  *    outlets, world/process.h, are one record beside it);
- *  - a per-wall value: SD_WALL_STATE in snapshot.c;
+ *  - a per-wall value: SD_WALL_STATE in snapshot.c; a per-mesh value
+ *    (world/mesh.h's store): SD_MESH_STATE there;
  *  - a solver's own state: its sd_solver_ops.state (world/solver.h; the
  *    grid's in grid/grid_solver.c).
  */
@@ -42,7 +43,7 @@
 /* The checkpoint format's version: a change of what is listed (a field
  * added, renamed or resized) makes old files unreadable by name or count
  * anyway; the version says so in one line. */
-#define SD_SNAPSHOT_VERSION 1
+#define SD_SNAPSHOT_VERSION 2
 
 typedef enum sd_state_type {
     SD_ST_F64,

@@ -9,10 +9,11 @@
  * lists and contact history included, item by item). The
  * scenes cover spheres, convex shapes, sharp polyhedra (volume law), the
  * planar mode with servo walls, the grid solver with its pour and outlet,
- * periodic boundaries and moving walls. Not yet here: insertion with
- * outlets (tests/cli/process_scenes/feed-drain.yaml restarts with one
- * particle fewer after 500 steps: the insertion's state outside the
- * checkpoint is still to be found).
+ * periodic boundaries and moving walls, the cells solver's insertion and
+ * outlets (a checkpoint with particles inserted and removed since the
+ * last rebuild), a fixed and a rotating mesh wall (wall history keyed per
+ * plane group, the mesh's pose at the last rebuild, its facet bins) and
+ * composites (history per element pair).
  */
 #include <stdlib.h>
 #include <string.h>
@@ -20,6 +21,7 @@
 
 #include "test.h"
 
+#include <shapedem/process.h>
 #include <shapedem/scene.h>
 
 #include "broad/pairs.h"
@@ -38,6 +40,10 @@ static const restart_case cases[] = {
     {"examples/biaxial-2d.yaml", 4000, 500},
     {"tests/unit/scenes/restart-grid.yaml", 2500, 500},
     {"examples/periodic-chute.yaml", 1000, 500},
+    {"tests/unit/scenes/restart-feed-drain.yaml", 3000, 500},
+    {"tests/unit/scenes/restart-mesh-hopper.yaml", 6000, 500},
+    {"tests/unit/scenes/restart-mesh-drum.yaml", 6000, 500},
+    {"tests/unit/scenes/restart-composites.yaml", 6000, 500},
 };
 
 static int same_bits(const void *a, const void *b, size_t n) { return memcmp(a, b, n) == 0; }
@@ -130,6 +136,9 @@ static void run_case(const char *src, const restart_case *c)
     sd_test_require(sd_world_step(a, c->half, &err) == SD_OK, c->scene, &err);
     sd_stats st;
     sd_world_stats(a, &st);
+    sd_process_info pi;
+    sd_world_get_process(a, &pi);
+    size_t n_ckpt = sd_world_particle_count(a);
     CHECK(sd_checkpoint_write(a, ckpt, &err) == SD_OK);
     sd_test_require(sd_world_step(a, c->half, &err) == SD_OK, c->scene, &err);
 
@@ -153,10 +162,12 @@ static void run_case(const char *src, const restart_case *c)
             printf("  %s: state '%s' differs\n", c->scene, xa.items[k].name);
             same_state = 0;
         }
-    printf("  %-40s %6zu particles %6ld contacts at the checkpoint (step %ld): %ld particles or walls differ, "
-           "%zu state arrays %s\n",
-           c->scene, sd_world_particle_count(a), st.contacts + st.wall_contacts, c->warm + c->half, bad,
-           xa.n, same_state ? "all equal" : "NOT all equal");
+    printf("  %-44s %6zu particles %6ld contacts (%ld with walls) at the checkpoint (step %ld", c->scene,
+           n_ckpt, st.contacts + st.wall_contacts, st.wall_contacts, c->warm + c->half);
+    if (pi.inserted || pi.removed)
+        printf(", %zu inserted and %zu removed by then", pi.inserted, pi.removed);
+    printf("): %ld particles or walls differ, %zu state arrays %s\n", bad, xa.n,
+           same_state ? "all equal" : "NOT all equal");
     CHECK(bad == 0);
     CHECK(same_state);
     CHECK(sd_world_step_count(a) == sd_world_step_count(b) && sd_world_time(a) == sd_world_time(b));
