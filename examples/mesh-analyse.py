@@ -6,7 +6,8 @@
   python3 examples/mesh-analyse.py silo   out/mesh-silo    -> silo.csv, silo.png
 
 drum: the torque the charge exerts on the drum about its axis (y), from the
-  drum_ty column of stats.csv, and its mean once the drum turns steadily.
+  drum_ty column of walls.csv (the drum's torque_point is on the axis), and
+  its mean once the drum turns steadily.
 hopper: the particles that have passed below the floor (z < 0, through the
   orifice) in each frame, and the discharge rate (particles/s and kg/s from
   the mean particle mass) by a straight fit over the middle of the flow.
@@ -22,8 +23,8 @@ import struct
 import sys
 
 
-def stats(out):
-    with open(os.path.join(out, "stats.csv")) as f:
+def stats(out, name="stats.csv"):
+    with open(os.path.join(out, name)) as f:
         rows = list(csv.DictReader(f))
     return rows
 
@@ -82,7 +83,7 @@ def fit(ts, ys):
 
 
 def drum(out, start=0.5):
-    rows = stats(out)
+    rows = stats(out, "walls.csv")
     t = [float(r["time"]) for r in rows]
     ty = [float(r["drum_ty"]) for r in rows]
     with open(os.path.join(out, "torque.csv"), "w") as f:

@@ -4,10 +4,10 @@
  * Invariants (see output.h): nothing is written into a non-empty directory
  * that lacks the .shapedem-output marker; a directory with the marker loses
  * only files whose names shapedem itself writes (particles_<digits>.vtu,
- * walls_<digits>.vtp, frames.pvd, stats.csv, biaxial.csv, summary.txt and
- * their ".<name>.tmp" temporaries); every file except the CSVs is replaced
- * atomically; stats.csv (and biaxial.csv, 2D boxes) are only ever appended
- * to, one flushed row per call,
+ * walls_<digits>.vtp, frames.pvd, stats.csv, walls.csv, biaxial.csv,
+ * summary.txt and their ".<name>.tmp" temporaries); every file except the
+ * CSVs is replaced atomically; stats.csv, walls.csv (worlds with walls) and
+ * biaxial.csv (2D boxes) are only ever appended to, one flushed row per call,
  * so a crash loses at most the row being written.
  *
  * The world is read only through the public API in shapedem.h.
@@ -46,6 +46,8 @@ struct sd_output {
     size_t stats_solver;  /* the header has this many solver columns (world/solver.h) */
     long stats_rows;
     FILE *biaxial;        /* biaxial.csv (2D worlds with four walls), opened at the first row */
+    FILE *walls;          /* walls.csv (worlds with walls), opened at the first row */
+    int walls_csv;        /* write walls.csv (not in the size estimate's dry run) */
 };
 
 static char *sd_output_strdup(const char *s)
@@ -85,7 +87,7 @@ static int sd_output_is_ours(const char *name)
         s = name + 1; /* a temporary left by an interrupted run */
         n -= 5;
     }
-    static const char *fixed[] = {"frames.pvd", "stats.csv", "summary.txt", "biaxial.csv"};
+    static const char *fixed[] = {"frames.pvd", "stats.csv", "summary.txt", "biaxial.csv", "walls.csv"};
     for (size_t k = 0; k < sizeof fixed / sizeof fixed[0]; ++k)
         if (n == strlen(fixed[k]) && memcmp(s, fixed[k], n) == 0)
             return 1;
@@ -189,7 +191,7 @@ static sd_status sd_output_prepare_dir(const char *dir, sd_error *err)
     fprintf(af.fp,
             "This directory was written by shapedem %s.\n"
             "The next run writing here replaces particles_*.vtu, walls_*.vtp, frames.pvd,\n"
-            "stats.csv, biaxial.csv and summary.txt; any other file is left alone.\n",
+            "stats.csv, walls.csv, biaxial.csv and summary.txt; any other file is left alone.\n",
             SD_VERSION_STRING);
     return sd_fs_atomic_commit(&af, err);
 }
@@ -219,6 +221,7 @@ sd_status sd_output_open(const sd_output_def *def, const sd_world *w, sd_output 
     }
     o->vtk = def->vtk;
     o->csv = def->csv;
+    o->walls_csv = def->csv;
     *out = o;
     return SD_OK;
 }
@@ -420,6 +423,60 @@ done:
     return s;
 }
 
+/* walls.csv: one row per stats row when the world has walls: step, time,
+ * then for each wall (stats.csv's prefixes) the force the particles exert
+ * on it and its torque about the wall's torque point (sd_world_get_wall:
+ * a mesh's torque_point, moved with the mesh; else the reference point).
+ * Appended and flushed like stats.csv. */
+static sd_status sd_output_walls(sd_output *o, const sd_world *w, sd_error *err)
+{
+    size_t nw = sd_world_wall_count(w);
+    if (nw == 0)
+        return SD_OK;
+    sd_status s = SD_OK;
+    char *path = sd_fs_join(o->dir, "walls.csv");
+    if (!path)
+        return sd_error_set(err, SD_ERR_MEMORY, o->dir, 0, "", "out of memory");
+    if (!o->walls) {
+        char *pre = sd_malloc(nw * SD_OUTPUT_PREFIX_MAX);
+        if (!pre) {
+            s = sd_error_set(err, SD_ERR_MEMORY, o->dir, 0, "", "out of memory");
+            goto done;
+        }
+        s = sd_output_wall_prefixes(w, nw, pre, err);
+        /* created, never opened through a link (fsutil.h) */
+        if (s == SD_OK)
+            s = sd_fs_create_append(path, &o->walls, err);
+        if (s == SD_OK) {
+            fputs("step,time", o->walls);
+            for (size_t i = 0; i < nw; ++i) {
+                const char *p = pre + i * SD_OUTPUT_PREFIX_MAX;
+                fprintf(o->walls, ",%s_fx,%s_fy,%s_fz,%s_tx,%s_ty,%s_tz", p, p, p, p, p, p);
+            }
+            fputc('\n', o->walls);
+        }
+        sd_free(pre);
+        if (s != SD_OK)
+            goto done;
+    }
+    fprintf(o->walls, "%ld,%.10g", sd_world_step_count(w), sd_world_time(w));
+    for (size_t i = 0; i < nw; ++i) {
+        sd_wall_info wi;
+        if (sd_world_get_wall(w, i, &wi) != SD_OK) {
+            memset(&wi, 0, sizeof wi); /* keep the column count */
+            s = sd_error_set(err, SD_ERR_INTERNAL, "", 0, "", "cannot read wall %zu", i);
+        }
+        fprintf(o->walls, ",%.10g,%.10g,%.10g,%.10g,%.10g,%.10g", wi.force.x, wi.force.y, wi.force.z, wi.torque.x,
+                wi.torque.y, wi.torque.z);
+    }
+    fputc('\n', o->walls);
+    if (fflush(o->walls) != 0 || ferror(o->walls))
+        s = sd_error_set(err, SD_ERR_IO, path, 0, "", "cannot write: %s", strerror(errno));
+done:
+    sd_free(path);
+    return s;
+}
+
 sd_status sd_output_stats(sd_output *o, const sd_world *w, sd_error *err)
 {
     if (!o || !w)
@@ -486,6 +543,8 @@ sd_status sd_output_stats(sd_output *o, const sd_world *w, sd_error *err)
     }
     o->stats_rows++;
     s = sd_output_biaxial(o, w, err);
+    if (s == SD_OK && o->walls_csv)
+        s = sd_output_walls(o, w, err);
 done:
     sd_free(path);
     return s;
@@ -609,6 +668,11 @@ sd_status sd_output_close(sd_output *o, const sd_world *w, const sd_run_summary 
             s = sd_error_set(err, SD_ERR_IO, o->dir, 0, "", "cannot close biaxial.csv: %s", strerror(errno));
         o->biaxial = NULL;
     }
+    if (o->walls) {
+        if (fclose(o->walls) != 0 && s == SD_OK)
+            s = sd_error_set(err, SD_ERR_IO, o->dir, 0, "", "cannot close walls.csv: %s", strerror(errno));
+        o->walls = NULL;
+    }
     /* The first error is the one reported. */
     sd_error err2;
     sd_error *e2 = (s == SD_OK) ? err : &err2;
@@ -644,11 +708,11 @@ sd_status sd_output_estimate(const sd_output_def *def, const sd_world *w, size_t
     o.vtk = def ? def->vtk : 1;
     o.csv = def ? def->csv : 1;
     o.frames = frames;
-    char *buf[3] = {NULL, NULL, NULL};
-    size_t len[3] = {0, 0, 0};
-    FILE *fp[3] = {NULL, NULL, NULL};
+    char *buf[4] = {NULL, NULL, NULL, NULL};
+    size_t len[4] = {0, 0, 0, 0};
+    FILE *fp[4] = {NULL, NULL, NULL, NULL};
     sd_status s = SD_OK;
-    for (int k = 0; k < 3; ++k)
+    for (int k = 0; k < 4; ++k)
         if (!(fp[k] = open_memstream(&buf[k], &len[k])))
             s = sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory");
     if (s == SD_OK && o.vtk) {
@@ -681,6 +745,16 @@ sd_status sd_output_estimate(const sd_output_def *def, const sd_world *w, size_t
             out->biaxial_row = (double)brow;
         }
     }
+    if (s == SD_OK && o.csv && sd_world_wall_count(w) > 0) {
+        /* walls.csv: its header with the first row, then a second row */
+        o.walls = fp[3];
+        s = sd_output_walls(&o, w, err);
+        double first = (double)ftell(fp[3]);
+        if (s == SD_OK)
+            s = sd_output_walls(&o, w, err);
+        out->walls_row = (double)ftell(fp[3]) - first;
+        out->walls_header = first - out->walls_row;
+    }
     if (s == SD_OK) {
         rewind(fp[0]);
         o.stats_rows = rows;
@@ -689,7 +763,7 @@ sd_status sd_output_estimate(const sd_output_def *def, const sd_world *w, size_t
         sd_output_summary_text(fp[0], &o, w, &sum);
         out->summary = (double)ftell(fp[0]);
     }
-    for (int k = 0; k < 3; ++k) {
+    for (int k = 0; k < 4; ++k) {
         if (fp[k])
             fclose(fp[k]);
         free(buf[k]);
@@ -699,6 +773,7 @@ sd_status sd_output_estimate(const sd_output_def *def, const sd_world *w, size_t
     double nf = o.vtk ? (double)frames : 0.0, nr = o.csv ? (double)rows : 0.0;
     out->total = nf * (out->frame_particles + out->frame_walls) + out->pvd + out->stats_header +
                  nr * out->stats_row + (out->biaxial_row > 0 ? out->biaxial_header + nr * out->biaxial_row : 0.0) +
+                 (out->walls_row > 0 ? out->walls_header + nr * out->walls_row : 0.0) +
                  out->summary + (double)sizeof "This directory was written by shapedem" + 160.0;
     return SD_OK;
 }

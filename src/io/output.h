@@ -1,5 +1,5 @@
 /* output.h — what a run writes: VTK XML frames (.vtu particles, .vtp
- * walls) gathered in frames.pvd, stats.csv and summary.txt.
+ * walls) gathered in frames.pvd, stats.csv, walls.csv and summary.txt.
  *
  * Invariant: every file is written to a temporary name in the same
  * directory and renamed into place, so an interrupted run never leaves a
@@ -36,12 +36,14 @@ sd_status sd_output_stats(sd_output *o, const sd_world *w, sd_error *err);
 /* What a run of the world w would write (shapedem check), in bytes: one
  * particle frame at `particles` particles, one walls frame, frames.pvd
  * after `frames` frames, the stats.csv header and a row, biaxial.csv's
- * (0 unless the world is a biaxial box), summary.txt, and the total for
+ * (0 unless the world is a biaxial box), walls.csv's (0 without walls),
+ * summary.txt, and the total for
  * `frames` frames and `rows` stats rows. Reads w as it is now; writes
  * nothing to disk. def gives the formats (NULL: both). */
 typedef struct sd_output_size {
     double frame_particles, frame_walls, pvd;
     double stats_header, stats_row, biaxial_header, biaxial_row;
+    double walls_header, walls_row;   /* walls.csv (0 without walls) */
     double summary, total;
 } sd_output_size;
 sd_status sd_output_estimate(const sd_output_def *def, const sd_world *w, size_t particles, long frames,

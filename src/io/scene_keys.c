@@ -396,7 +396,11 @@ const sd_scene_key sd_scene_keys[] = {
      "length of one file unit, e.g. 0.001 for a file in mm; applied first"},
     {SD_SEC_WALL, "orientation", SD_KT_ORIENTATION, SD_KR_ANY, NULL, MESH, 0, "", "identity",
      "rotation of the (scaled) file about its origin, identity or a quaternion [w, x, y, z] as for "
-     "particles (not random); applied after scale"},
+     "particles (not random); applied after scale; not together with rotation"},
+    {SD_SEC_WALL, "rotation", SD_KT_VEC3, SD_KR_ANY, NULL, MESH, 0, "degrees", "[0, 0, 0]",
+     "rotation of the (scaled) file about its origin by angles [rx, ry, rz]: rx about x first, then ry "
+     "about y, then rz about z, each right-handed about the fixed world axis (R = Rz Ry Rx); "
+     "e.g. [90, 0, 0] turns a file's y axis onto z; not together with orientation"},
     {SD_SEC_WALL, "position", SD_KT_VEC3, SD_KR_ANY, NULL, MESH, 0, "m", "[0, 0, 0]",
      "translation applied last: world = position + R (scale x_file), the pose at t = 0"},
     {SD_SEC_WALL, "side", SD_KT_ENUM, SD_KR_ANY, "inside|outside", MESH, 0, "", "inside",
@@ -409,7 +413,7 @@ const sd_scene_key sd_scene_keys[] = {
      "neighbouring facets whose normals agree within this angle form one plane group (one contact); "
      "0 = 1e-6"},
     {SD_SEC_WALL, "torque_point", SD_KT_VEC3, SD_KR_ANY, NULL, MESH, 0, "m", "reference point",
-     "point the mesh's torque (the wall's stats.csv columns, summary.txt) is taken about, e.g. on a "
+     "point the mesh's torque (its walls.csv and stats.csv columns, summary.txt) is taken about, e.g. on a "
      "drum's axis; it moves with the mesh's translation; default: a rotating mesh's axis_point, else "
      "the centre of the mesh's bounding box"},
     {SD_SEC_WALL, "motion", SD_KT_MAP, SD_KR_ANY, NULL, MESH, 0, "", "{type: fixed}",

@@ -2,7 +2,7 @@
  *
  * Reads the mesh file (io/mesh.c: format checks), places it in the world
  * frame (world = position + R (scale x_file), R from the quaternion
- * `orientation`), prepares it once (geom/trimesh.c: weld, clean, orient)
+ * `orientation` or the angles `rotation` in degrees), prepares it once (geom/trimesh.c: weld, clean, orient)
  * so that a broken mesh is refused at load with the scene line and key,
  * and reads the motion: section and its CSV time table. The world
  * prepares the same vertices again when the scene is built
@@ -24,6 +24,26 @@
 #include "geom/trimesh.h"
 #include "io/mesh.h"
 #include "io/scene_sections.h"
+
+/* The unit quaternion (w, x, y, z) of `rotation: [rx, ry, rz]` (degrees):
+ * rx about x, then ry about y, then rz about z, all about the fixed world
+ * axes, so R = Rz Ry Rx and q = qz qy qx. */
+static void sd_mesh_rotation_quat(const double deg[3], double q[4])
+{
+    const double pi = 3.14159265358979323846;
+    double h[3], c[3], s[3];
+    for (int k = 0; k < 3; ++k) {
+        h[k] = 0.5 * deg[k] * pi / 180.0;
+        c[k] = cos(h[k]);
+        s[k] = sin(h[k]);
+    }
+    /* qy qx, then qz (qy qx); each factor (cos, sin * axis) */
+    double yx[4] = {c[1] * c[0], c[1] * s[0], s[1] * c[0], -s[1] * s[0]};
+    q[0] = c[2] * yx[0] - s[2] * yx[3];
+    q[1] = c[2] * yx[1] - s[2] * yx[2];
+    q[2] = c[2] * yx[2] + s[2] * yx[1];
+    q[3] = c[2] * yx[3] + s[2] * yx[0];
+}
 
 /* The motion's time table: rows of 5 numbers, t strictly increasing. */
 static sd_status sd_mesh_table_read(sd_parse *p, sd_scene_wall *w, const char *file, int line, const char *key)
@@ -187,6 +207,15 @@ sd_status sd_parse_mesh_wall(sd_parse *p, yaml_node_t *m, sd_scene_wall *w, cons
                            "a mesh wall needs identity or a quaternion [w, x, y, z], not random");
         if (v.choice == SD_ORIENT_FIXED)
             memcpy(q, v.q, sizeof q);
+    }
+    if (sd_yaml_get(&p->y, m, SD_SEC_WALL, "rotation", path, &v)) {
+        sd_yaml_value ov;
+        if (sd_yaml_get(&p->y, m, SD_SEC_WALL, "orientation", path, &ov))
+            return sd_fail(p, v.line, sd_yaml_kp(key, sizeof key, path, "rotation"),
+                           "give either rotation (angles in degrees) or orientation (a quaternion), not both "
+                           "(orientation is on line %d)",
+                           ov.line);
+        sd_mesh_rotation_quat(v.v, q);
     }
     sd_yaml_get(&p->y, m, SD_SEC_WALL, "position", path, &v);
     sd_v3d pos = sd_parse_v3(v.v);
