@@ -73,11 +73,22 @@ typedef struct sd_size_def {
 
 #define SD_INSERT_MIX_MAX 8
 
+/* Scaled copies a template entry's size law may take (size_classes). */
+#define SD_SIZE_SCALES_MAX 32
+
 typedef struct sd_insert_entry {
     int shape;          /* template index (sd_world_add_shape, _shape2d, _composite), -1: a sphere */
     int material;
-    sd_size_def size;   /* spheres: their radius */
+    sd_size_def size;   /* spheres: their radius. A template: its equivalent radius (of the sphere of
+                           equal volume; 2D: the circle of equal area), the template scaled to it;
+                           kind SD_SIZE_FIXED with a = 0 (all zero): the template as it is */
     double fraction;    /* share of the mix, by number or (mix_by_mass) by mass; the fractions sum to 1 */
+    int size_classes;   /* a template with a size law: the law is cut into this many classes, one
+                           scaled copy of the template each (sd_world_add_scaled_shape); 0 = 16, at
+                           most SD_SIZE_SCALES_MAX. Continuous laws: classes of equal probability;
+                           a sieve table: each class cut into size_classes / classes of equal width.
+                           A class's copy has the radius (E[r^3 | class])^(1/3) (2D: r^2, ^(1/2)), so
+                           the mean volume, and the mix by mass, are the law's */
 } sd_insert_entry;
 
 typedef struct sd_insert_def {
@@ -104,8 +115,17 @@ sd_size_def sd_size_def_fixed(double radius);
 /* Adds an insertion (before or between steps); its index, or -1 with err
  * filled: a region that is empty or not inside the periodic box, a mix
  * whose fractions do not sum to 1, a negative or empty size range, an
- * unknown template or material. */
+ * unknown template or material. A template entry with a size law adds
+ * its scaled copies now (named TEMPLATE_iIeEsK: insertion I, entry E,
+ * class K), so add such an insertion before the first step (between
+ * steps the new templates make the world prepare again). */
 int sd_world_add_insertion(sd_world *w, const sd_insert_def *def, sd_error *err);
+
+/* A copy of template `shape` with every length times scale (volume
+ * scale^3, moments scale^5; 2D: area scale^2, polar moment scale^4),
+ * any kind: convex, polyhedron, composite (its element templates scaled
+ * too, named NAME.eJ) or 2D. Its index, or -1 with err filled. */
+int sd_world_add_scaled_shape(sd_world *w, int shape, double scale, const char *name, sd_error *err);
 
 typedef struct sd_insert_info {
     const char *name;

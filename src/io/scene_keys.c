@@ -525,9 +525,16 @@ const sd_scene_key sd_scene_keys[] = {
     {SD_SEC_INSERT_MIX, "fraction", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "", "1",
      "share of the mix (by number or mass, mix_by); the fractions sum to 1"},
     {SD_SEC_INSERT_MIX, "radius", SD_KT_NUM_OR_RANGE, SD_KR_ANY, NULL, ALL, 0, "m", "-",
-     "spheres: a radius, or {min, max} uniform; for normal and lognormal the truncation {min, max}"},
+     "spheres: a radius, or {min, max} uniform; for normal and lognormal the truncation {min, max}; "
+     "with shape: the template's equivalent radius (of the sphere of equal volume, 2D the circle of "
+     "equal area), the template scaled to it; without radius and distribution a template keeps its size"},
     {SD_SEC_INSERT_MIX, "distribution", SD_KT_ENUM, SD_KR_ANY, "fixed|uniform|normal|lognormal|table", ALL, 0,
-     "", "from radius", "the radius law of the spheres"},
+     "", "from radius", "the radius law of the spheres, or of a template's equivalent radius"},
+    {SD_SEC_INSERT_MIX, "size_classes", SD_KT_INT, SD_KR_ONE, NULL, ALL, 0, "", "16",
+     "a template with a size law: the law is cut into this many classes (at most 32), one scaled copy of "
+     "the template each, named TEMPLATE_iIeEsK: continuous laws in classes of equal probability, a table's "
+     "classes each cut into size_classes / classes of equal width; a class's copy has the radius of the "
+     "class's mean volume, so the mix by mass is the law's (docs/physics.md)"},
     {SD_SEC_INSERT_MIX, "mean", SD_KT_NUMBER, SD_KR_ANY, NULL, ALL, 0, "m", "-", "normal: mean radius"},
     {SD_SEC_INSERT_MIX, "std", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "m", "-",
      "normal: standard deviation of the radius"},

@@ -105,20 +105,29 @@ static sd_status sd_parse_mix(sd_parse *p, yaml_node_t *list, const char *ipath,
         sd_yaml_value dist, rad;
         int has_dist = sd_yaml_get(&p->y, m, SD_SEC_INSERT_MIX, "distribution", path, &dist);
         int has_rad = sd_yaml_get(&p->y, m, SD_SEC_INSERT_MIX, "radius", path, &rad);
-        if (has_shape) {
-            if (has_dist || has_rad)
-                return sd_fail(p, has_dist ? dist.line : rad.line, sd_yaml_kp(key, sizeof key, path,
-                                                                            has_dist ? "distribution" : "radius"),
-                               "a shape entry takes its template's size; give radius or distribution to spheres only");
-            continue;
+        sd_yaml_value cls;
+        if (sd_yaml_get(&p->y, m, SD_SEC_INSERT_MIX, "size_classes", path, &cls)) {
+            if (!has_shape || !(has_dist || has_rad))
+                return sd_fail(p, cls.line, sd_yaml_kp(key, sizeof key, path, "size_classes"),
+                               "size_classes cuts a template's size law into scaled copies: give it with shape and "
+                               "radius or distribution");
+            if (cls.integer > SD_SIZE_SCALES_MAX)
+                return sd_fail(p, cls.line, sd_yaml_kp(key, sizeof key, path, "size_classes"),
+                               "expected 1 to %d size classes, got %lld", SD_SIZE_SCALES_MAX,
+                               (long long)cls.integer);
+            e->size_classes = (int)cls.integer;
         }
+        /* a template without a size law keeps its own size (size all zero);
+         * with one, the law is its equivalent radius' (shapedem/process.h) */
+        if (has_shape && !has_dist && !has_rad)
+            continue;
         sd_size_def *s = &e->size;
         int kind = has_dist ? dist.choice : (has_rad && rad.lo < rad.hi ? SD_SIZE_UNIFORM : SD_SIZE_FIXED);
         s->kind = kind;
         if (kind == SD_SIZE_FIXED || kind == SD_SIZE_UNIFORM) {
             if (!has_rad)
                 return sd_fail(p, sd_yaml_line(m), sd_yaml_kp(key, sizeof key, path, "radius"),
-                               "a sphere entry needs radius (a number or {min, max}) or a distribution");
+                               "a sphere entry (or a template with a size law) needs radius (a number or {min, max}) or a distribution");
             s->a = rad.lo;
             s->b = rad.hi;
             if (!(rad.lo > 0))

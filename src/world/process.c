@@ -339,6 +339,89 @@ static double sd_size_draw(const sd_insertion *ins, int e, sd_rng *rng)
     }
 }
 
+/* The classes of a template entry's size law (sd_insert_entry.size_classes):
+ * their probabilities p (by number) and radii rep, (E[r^d | class])^(1/d)
+ * so that the mean volume (d = 3; the area, d = 2, in the planar mode) is
+ * the law's. A continuous law is cut into k classes of equal probability
+ * on a fine grid of its density (midpoints, each cell's weight split at the
+ * class edges); a sieve table (number fractions f) cuts each class into
+ * k / classes of equal width, the radius uniform in each. Returns how many. */
+static int sd_size_classes(const sd_size_def *s, int k, int d, const double *f, double *p, double *rep)
+{
+    if (s->kind == SD_SIZE_FIXED || (s->kind == SD_SIZE_UNIFORM && !(s->b > s->a)) ||
+        ((s->kind == SD_SIZE_NORMAL || s->kind == SD_SIZE_LOGNORMAL) && !(s->b > 0))) {
+        p[0] = 1.0;
+        rep[0] = s->a;
+        return 1;
+    }
+    if (s->kind == SD_SIZE_TABLE) {
+        int m = k / s->classes > 1 ? k / s->classes : 1, n = 0;
+        for (int c = 0; c < s->classes && n + m <= SD_SIZE_SCALES_MAX; ++c)
+            for (int j = 0; j < m; ++j) {
+                double h = (s->hi[c] - s->lo[c]) / m, lo = s->lo[c] + j * h, hi = lo + h;
+                /* E[r^d] of r uniform in [lo, hi] */
+                double md = h > 0 ? (pow(hi, d + 1) - pow(lo, d + 1)) / ((d + 1) * h) : pow(lo, d);
+                p[n] = f[c] / m;
+                rep[n++] = pow(md, 1.0 / d);
+            }
+        return n;
+    }
+    /* the density on a grid of y (r, or ln r for the log-normal law) */
+    int ln = s->kind == SD_SIZE_LOGNORMAL;
+    double lo, hi, mu = ln ? log(s->a) : s->a, sg = s->b;
+    if (s->kind == SD_SIZE_UNIFORM) {
+        lo = s->a;
+        hi = s->b;
+    } else {
+        double tlo = fmax(s->min, 0.0), thi = sd_size_hi(s);
+        lo = mu - 8 * sg;
+        hi = mu + 8 * sg;
+        if (ln) {
+            lo = tlo > 0 ? fmax(lo, log(tlo)) : lo;
+            hi = isfinite(thi) ? fmin(hi, log(thi)) : hi;
+        } else {
+            lo = fmax(lo, tlo);
+            hi = fmin(hi, thi);
+        }
+    }
+    enum { cells = 1 << 14 };
+    double h = (hi - lo) / cells, total = 0;
+    for (int c = 0; c < cells; ++c) {
+        double z = (lo + (c + 0.5) * h - mu) / (sg > 0 ? sg : 1);
+        total += s->kind == SD_SIZE_UNIFORM ? 1.0 : exp(-0.5 * z * z);
+    }
+    double acc_p[SD_SIZE_SCALES_MAX] = {0}, acc_m[SD_SIZE_SCALES_MAX] = {0};
+    double need = total / k;
+    int b = 0;
+    for (int c = 0; c < cells; ++c) {
+        double y = lo + (c + 0.5) * h, z = (y - mu) / (sg > 0 ? sg : 1);
+        double wgt = s->kind == SD_SIZE_UNIFORM ? 1.0 : exp(-0.5 * z * z);
+        double rd = pow(ln ? exp(y) : y, d);
+        while (wgt > 0) {
+            double take = b == k - 1 ? wgt : fmin(wgt, need);
+            acc_p[b] += take;
+            acc_m[b] += take * rd;
+            wgt -= take;
+            need -= take;
+            if (need <= 0 && b < k - 1) {
+                ++b;
+                need = total / k;
+            }
+        }
+    }
+    for (int c = 0; c < k; ++c) {
+        p[c] = acc_p[c] / total;
+        rep[c] = pow(acc_m[c] / acc_p[c], 1.0 / d);
+    }
+    return k;
+}
+
+/* A template entry takes a size law unless its size is all zero. */
+static int sd_entry_scaled(const sd_insert_entry *en)
+{
+    return en->shape >= 0 && !(en->size.kind == SD_SIZE_FIXED && en->size.a == 0);
+}
+
 /* ---- adding an insertion -------------------------------------------------- */
 
 static double sd_material_density(const sd_world *w, int m) { return w->materials[m].def.density; }
@@ -397,6 +480,14 @@ int sd_world_add_insertion(sd_world *w, const sd_insert_def *d, sd_error *err)
     ins.def.name = NULL;
     snprintf(ins.name, sizeof ins.name, "%s", d->name && d->name[0] ? d->name : "insert");
     double sum = 0, weight[SD_INSERT_MIX_MAX];
+    /* the mix's sum first: nothing (no scaled template) is added for a mix refused */
+    for (int e = 0; e < d->entry_count; ++e)
+        sum += d->entries[e].fraction;
+    if (!(fabs(sum - 1.0) <= 1e-6)) {
+        sd_error_set(err, SD_ERR_INPUT, "", 0, "insert.mix", "the mix fractions sum to %.9g, not 1", sum);
+        return -1;
+    }
+    sum = 0;
     int dpow = w->def.dimension == 2 ? 2 : 3;
     double vol_c = w->def.dimension == 2 ? sd_pi : 4.0 / 3.0 * sd_pi;
     for (int e = 0; e < d->entry_count; ++e) {
@@ -417,6 +508,57 @@ int sd_world_add_insertion(sd_world *w, const sd_insert_def *d, sd_error *err)
             ins.bound[e] = si.bounding_radius;
             ins.body_mass[e] = sd_material_density(w, en->material) * si.volume;
             mean_mass = ins.body_mass[e];
+            if (sd_entry_scaled(en)) {
+                /* scaled copies, one per class of the law (sd_size_classes) */
+                if (sd_size_check(&en->size, "insert.mix.radius", err) != SD_OK)
+                    return -1;
+                int k = en->size_classes ? en->size_classes : 16;
+                if (k < 1 || k > SD_SIZE_SCALES_MAX) {
+                    sd_error_set(err, SD_ERR_INPUT, "", 0, "insert.mix.size_classes",
+                                 "entry %d: expected 1 to %d size classes, got %d", e, SD_SIZE_SCALES_MAX, k);
+                    return -1;
+                }
+                double f[SD_SIZE_CLASSES_MAX], p[SD_SIZE_SCALES_MAX], rep[SD_SIZE_SCALES_MAX], norm = 0, cum = 0;
+                int table = en->size.kind == SD_SIZE_TABLE;
+                if (table && k < en->size.classes) {
+                    sd_error_set(err, SD_ERR_INPUT, "", 0, "insert.mix.size_classes",
+                                 "entry %d: size_classes %d is fewer than the table's %d classes", e, k,
+                                 en->size.classes);
+                    return -1;
+                }
+                for (int c = 0; en->size.kind == SD_SIZE_TABLE && c < en->size.classes; ++c) {
+                    sd_size_def u = sd_size_def_fixed(en->size.lo[c]);
+                    u.kind = SD_SIZE_UNIFORM;
+                    u.b = en->size.hi[c];
+                    f[c] = en->size.by_mass ? en->size.fraction[c] / sd_size_moment(&u, dpow) : en->size.fraction[c];
+                    norm += f[c];
+                }
+                for (int c = 0; table && c < en->size.classes; ++c) {
+                    f[c] /= norm;
+                    cum += f[c];
+                    ins.class_cum[e][c] = cum;
+                }
+                int n = sd_size_classes(&en->size, k, dpow, f, p, rep);
+                mean_mass = 0;
+                for (int c = 0; c < n; ++c) {
+                    char name[64];
+                    double sc = rep[c] / si.equivalent_radius;
+                    snprintf(name, sizeof name, "%.40s_i%zue%ds%d", si.name,
+                             w->process ? w->process->insertion_count : (size_t)0, e, c);
+                    int idx = sd_world_add_scaled_shape(w, en->shape, sc, name, err);
+                    if (idx < 0) {
+                        snprintf(err->key, sizeof err->key, "insert.mix.shape");
+                        return -1;
+                    }
+                    if (c == 0)
+                        ins.scaled_first[e] = idx;
+                    else if (c == 1)
+                        ins.scaled_stride[e] = idx - ins.scaled_first[e];
+                    mean_mass += p[c] * sd_material_density(w, en->material) * si.volume * pow(sc, dpow);
+                }
+                ins.scaled_count[e] = n;
+                ins.scaled_per[e] = table ? n / en->size.classes : n;
+            }
         } else {
             if (sd_size_check(&en->size, "insert.mix.radius", err) != SD_OK)
                 return -1;
@@ -773,6 +915,32 @@ static size_t sd_insert_due(const sd_world *w, const sd_insertion *ins, long s)
     return ins->inserted + 1; /* all at once: until the mass is in */
 }
 
+/* Class c's copy's bounding radius (m). */
+static double sd_scaled_bound(const sd_world *w, const sd_insertion *ins, int e, int c)
+{
+    sd_shape_info si;
+    if (sd_world_get_shape(w, (size_t)(ins->scaled_first[e] + c * ins->scaled_stride[e]), &si) != SD_OK)
+        return 0.0;
+    return si.bounding_radius;
+}
+
+/* The class of uniform u: equally likely classes, or for a sieve table
+ * its sieve class by class_cum and then one of its `per` equal ones. */
+static int sd_scaled_class(const sd_insertion *ins, int e, double u)
+{
+    int n = ins->scaled_count[e], per = ins->scaled_per[e];
+    if (per == n) {
+        int c = (int)(u * n);
+        return c < n ? c : n - 1;
+    }
+    int k = 0, classes = n / per;
+    while (k + 1 < classes && u >= ins->class_cum[e][k])
+        ++k;
+    double lo = k ? ins->class_cum[e][k - 1] : 0.0, hi = ins->class_cum[e][k];
+    int j = hi > lo ? (int)((u - lo) / (hi - lo) * per) : 0;
+    return k * per + (j < per ? (j < 0 ? 0 : j) : per - 1);
+}
+
 /* Places what insertion ins owes now; records why some did not fit. */
 static sd_status sd_insert_run(sd_world *w, sd_insertion *ins, sd_error *err)
 {
@@ -784,6 +952,8 @@ static sd_status sd_insert_run(sd_world *w, sd_insertion *ins, sd_error *err)
     for (int e = 0; e < d->entry_count; ++e) {
         const sd_insert_entry *en = &d->entries[e];
         double b = en->shape >= 0 ? ins->bound[e] : 0;
+        for (int c = 0; c < ins->scaled_count[e]; ++c)
+            b = c == 0 ? sd_scaled_bound(w, ins, e, c) : fmax(b, sd_scaled_bound(w, ins, e, c));
         if (en->shape < 0) {
             const sd_size_def *s = &en->size;
             b = s->kind == SD_SIZE_FIXED ? s->a : s->kind == SD_SIZE_UNIFORM ? s->b : 0;
@@ -814,8 +984,17 @@ static sd_status sd_insert_run(sd_world *w, sd_insertion *ins, sd_error *err)
         while (e + 1 < d->entry_count && u >= ins->entry_cum[e])
             ++e;
         const sd_insert_entry *en = &d->entries[e];
-        double r = sd_size_draw(ins, e, &ins->rng);
-        double b = en->shape >= 0 ? ins->bound[e] : r;
+        int shape = en->shape;
+        double r, b;
+        if (ins->scaled_count[e] > 0) {
+            /* a class of the law: one draw, as sd_size_draw takes for a template as it is */
+            int c = sd_scaled_class(ins, e, sd_rng_uniform(&ins->rng));
+            shape = ins->scaled_first[e] + c * ins->scaled_stride[e];
+            r = b = sd_scaled_bound(w, ins, e, c);
+        } else {
+            r = sd_size_draw(ins, e, &ins->rng);
+            b = en->shape >= 0 ? ins->bound[e] : r;
+        }
         double q[4];
         sd_place_orient(&ins->rng, d->random_orientation, dim2, q);
         sd_v3d v = d->velocity;
@@ -852,7 +1031,7 @@ static sd_status sd_insert_run(sd_world *w, sd_insertion *ins, sd_error *err)
             bd.position = x;
             bd.velocity = v;
             memcpy(bd.orientation, q, sizeof q);
-            bd.shape = en->shape;
+            bd.shape = shape;
             bd.material = en->material;
             ast = sd_world_add_bodies(w, 1, &bd, err);
         } else {

@@ -22,6 +22,13 @@ typedef struct sd_insertion {
     double class_cum[SD_INSERT_MIX_MAX][SD_SIZE_CLASSES_MAX]; /* table classes, by number */
     double bound[SD_INSERT_MIX_MAX];      /* m, bounding radius (shaped entries) */
     double body_mass[SD_INSERT_MIX_MAX];  /* kg, mass of a shaped entry's body */
+    /* a template entry with a size law: its scaled copies, one per class,
+     * template indices first + k stride (a composite's element copies sit
+     * between its own); a continuous law's classes are equally likely, a
+     * sieve table's are `per` equally likely ones in each sieve class
+     * (class_cum). Kept small: this struct is a checkpoint dataset. */
+    int scaled_count[SD_INSERT_MIX_MAX];  /* 0: the template as it is */
+    int scaled_first[SD_INSERT_MIX_MAX], scaled_stride[SD_INSERT_MIX_MAX], scaled_per[SD_INSERT_MIX_MAX];
     size_t asked, inserted;       /* due so far; in */
     double mass;                  /* kg in */
     long next_step;               /* the next step at which it runs */
