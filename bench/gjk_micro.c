@@ -8,7 +8,7 @@
  * Seed 004 §2.5 (shrink / GJK / swell), seed 002 Table 1 (support calls).
  *
  * Build (header-only numerics; needs no library):
- *   cc -std=c17 -O2 -march=native -Isrc -Iinclude bench/gjk_micro.c -lm -o build-release/gjk_micro
+ *   cc -std=c17 -O2 -ffp-contract=off -Isrc -Iinclude bench/gjk_micro.c -lm -o build-release/gjk_micro
  * or in CMake: add_executable(gjk_micro bench/gjk_micro.c) with
  *   target_include_directories(gjk_micro PRIVATE src include) and target_link_libraries(gjk_micro m).
  * Run: gjk_micro [--json] [pairs per type, default 4096] [repeats, default 5]

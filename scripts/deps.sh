@@ -19,8 +19,10 @@ set -euo pipefail
 # tracked files it checks. clang with libclang-rt-dev (which brings
 # libclang-rt-14-dev, the libFuzzer and sanitizer runtimes): `make fuzz`
 # (tests/fuzz). valgrind: the memcheck.run_short test (skipped without it).
+# libmpfr-dev: the correctly rounded oracle of unit.math, which checks the
+# engine's own elementary functions (core/math.h) to 1 ulp.
 need_pkgs=(build-essential cmake pkg-config libyaml-dev libhdf5-dev libccd-dev libqhull-dev
-  python3 python3-matplotlib git clang libclang-rt-dev valgrind)
+  python3 python3-matplotlib git clang libclang-rt-dev valgrind libmpfr-dev)
 if [[ "${SHAPEDEM_WITH_BENCH:-0}" == 1 ]]; then
   need_pkgs+=(liggghts)
 fi

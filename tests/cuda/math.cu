@@ -1,0 +1,35 @@
+/* math.cu — compile-only proof that the engine's own elementary functions
+ * (src/core/math.h) are single source: they compile as CUDA C++ with nvcc
+ * (device code, where their error-free products use __dmul_rn) and as C++
+ * with the host compiler. bench/gpu/math_bits.cu runs them on a device and
+ * compares the bits with the CPU's. */
+#include "core/math.h"
+
+#if defined(__CUDACC__)
+#define SD_KERNEL __global__
+#else
+#define SD_KERNEL static
+#endif
+
+/* One argument per thread: every function, every path (the reductions
+ * included), written to out[4 i .. 4 i + 3]. */
+SD_KERNEL void sd_check_math(const double *x, const double *y, double *out, int n)
+{
+#if defined(__CUDACC__)
+    int i = (int)(blockIdx.x * blockDim.x + threadIdx.x);
+#else
+    int i = 0;
+#endif
+    if (i >= n)
+        return;
+    out[4 * i] = sd_math_sin(x[i]);
+    out[4 * i + 1] = sd_math_cos(x[i]);
+    out[4 * i + 2] = sd_math_atan2(y[i], x[i]);
+    out[4 * i + 3] = sd_math_cbrt(x[i]);
+}
+
+#if !defined(__CUDACC__)
+/* keep the host compiler from warning about an unused static */
+void sd_math_keep(void);
+void sd_math_keep(void) { (void)&sd_check_math; }
+#endif
