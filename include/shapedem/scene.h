@@ -57,11 +57,13 @@ void sd_scene_free(sd_scene *s);
  * caller destroys *out with sd_world_destroy. */
 sd_status sd_scene_build(const sd_scene *s, sd_world **out, sd_error *err);
 
-/* Overrides, applied before sd_scene_build (the CLI's --threads and
- * --steps): threads >= 1 replaces simulation.threads; steps >= 0 replaces
- * the run length. */
+/* Overrides, applied before sd_scene_build (the CLI's --threads, --steps
+ * and --backend): threads >= 1 replaces simulation.threads; steps >= 0
+ * replaces the run length; a backend below SD_BACKEND_COUNT replaces
+ * simulation.backend. */
 void sd_scene_set_threads(sd_scene *s, int threads);
 void sd_scene_set_steps(sd_scene *s, long steps);
+void sd_scene_set_backend(sd_scene *s, sd_backend_kind backend);
 
 /* Steps of the run: simulation.steps, or duration / dt rounded up. */
 long sd_scene_steps(const sd_scene *s);

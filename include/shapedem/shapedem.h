@@ -158,6 +158,27 @@ typedef enum sd_multi_contact {
     SD_MULTI_CONTACT_SUM = 1      /* model A (seed 004 eq. 18) */
 } sd_multi_contact;
 
+/* Backends: where the cells solver's stages run, sd_world_def.backend.
+ * X(enum, scene name, description): the list behind the enum, the scene's
+ * simulation.backend names and the CLI's --backend. */
+#define SD_BACKENDS(X)                                                                             \
+    X(SD_BACKEND_AUTO, "auto", "CUDA when the library was built with it and a usable device is "   \
+                               "present, else the CPU; the run says which it chose")               \
+    X(SD_BACKEND_CPU, "cpu", "the CPU's OpenMP loops")                                            \
+    X(SD_BACKEND_CUDA, "cuda", "an NVIDIA GPU; the world is refused (SD_ERR_INPUT, saying why) "   \
+                               "when none is usable")
+
+typedef enum sd_backend_kind {
+#define SD_X_ENUM(e, name, doc) e,
+    SD_BACKENDS(SD_X_ENUM)
+#undef SD_X_ENUM
+    SD_BACKEND_COUNT
+} sd_backend_kind;
+
+const char *sd_backend_kind_name(sd_backend_kind kind);
+/* Returns SD_BACKEND_COUNT when the name is unknown. */
+sd_backend_kind sd_backend_kind_from_name(const char *name);
+
 /* Periodic axes of sd_world_def.periodic. */
 enum { SD_PERIODIC_X = 1 << 0, SD_PERIODIC_Y = 1 << 1, SD_PERIODIC_Z = 1 << 2 };
 
@@ -179,6 +200,7 @@ typedef struct sd_world_def {
     sd_v3d domain_lo, domain_hi; /* m, the periodic box; read on the periodic axes only */
     int multi_contact;      /* SD_MULTI_CONTACT_AVERAGE (model B, default, seed 004 eq. 21) or
                                SD_MULTI_CONTACT_SUM (model A, eq. 18): composite pairs */
+    sd_backend_kind backend; /* SD_BACKEND_AUTO by default; the grid solver runs on the CPU */
     int cookie;
 } sd_world_def;
 
@@ -510,6 +532,11 @@ long sd_world_step_count(const sd_world *w);
 double sd_world_time(const sd_world *w);
 double sd_world_dt(const sd_world *w);
 int sd_world_threads(const sd_world *w);
+/* The backend the world runs on ("cpu" or "cuda"), chosen at creation, and
+ * why or on what: "not compiled with CUDA", "no CUDA device", the device's
+ * name, ... (never NULL). */
+const char *sd_world_backend(const sd_world *w);
+const char *sd_world_backend_note(const sd_world *w);
 
 typedef struct sd_particle_state {
     uint64_t id;              /* stable id, fixed for the particle's life */

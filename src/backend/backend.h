@@ -11,6 +11,8 @@
  * cost nothing, and DESIGN.md rule 6 forbids function pointers in device
  * code only. Stages run in the order step.c gives; each one writes only
  * its own outputs, so the results do not depend on the thread count.
+ * Stages return no status: a failure (only a device can fail) sticks in
+ * the backend until step.c asks `status` at its next check.
  */
 #ifndef SD_BACKEND_BACKEND_H
 #define SD_BACKEND_BACKEND_H
@@ -53,12 +55,25 @@ typedef struct sd_backend {
     int (*check_finite)(sd_stage *s);
     /* smallest particle radius (m; +inf without particles): the default skin */
     sd_real (*min_radius)(sd_stage *s);
-    /* the state is wanted on the host (output, queries): copies it back
-     * (the CPU's state is the host's: nothing to do) */
+    /* the state is wanted on the host (output, queries, the guards, a
+     * rebuild): copies the particle state, the pairs' history and results
+     * and the narrow-phase tallies back (the CPU's state is the host's:
+     * nothing to do) */
     void (*read_back)(sd_stage *s);
+    /* the wall pairs' overlaps only: what the host's wall motion reads
+     * each step (servo stiffness, world/servo.c) */
+    void (*read_back_wall_pairs)(sd_stage *s);
+    /* the world is destroyed: frees what the backend keeps (s->device) */
+    void (*release)(sd_stage *s);
+    /* SD_OK, or the first error since the last call (a device backend's
+     * calls fail asynchronously: out of device memory with the bytes it
+     * needed, a kernel fault; the message names the stage); step.c asks
+     * after every upload and at every finite check */
+    sd_status (*status)(sd_stage *s, sd_error *err);
 } sd_backend;
 
-/* The CPU backend (backend/cpu/). */
+/* The CPU backend (backend/cpu/); the CUDA backend's table comes from
+ * sd_cuda_backend() (backend/cuda/cuda.h), NULL when not compiled in. */
 extern const sd_backend sd_backend_cpu;
 
 #endif

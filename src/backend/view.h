@@ -134,6 +134,7 @@ typedef struct sd_stage {
     sd_wall_view *walls;           /* the copies v.walls points at */
     sd_vec3 *wall_force, *wall_torque; /* N, N m: per wall, summed by the wall totals stage */
     size_t wall_cap;
+    struct sd_cuda_state *device;  /* the CUDA backend's device copies (backend/cuda/), NULL on the CPU */
 } sd_stage;
 
 #endif

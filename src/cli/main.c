@@ -46,7 +46,7 @@ static void sd_usage(FILE *f)
 {
     fprintf(f,
             "usage: shapedem run SCENE.yaml [-o DIR] [--threads N] [--steps N] [--quiet] [--bench NAME]\n"
-            "                  [--profile] [--restart CHECKPOINT.h5]\n"
+            "                  [--profile] [--restart CHECKPOINT.h5] [--backend auto|cpu|cuda]\n"
             "       shapedem info CHECKPOINT.h5\n"
             "       shapedem check SCENE.yaml [--threads N]\n"
             "       shapedem shape info KIND --size X[,Y,Z] [--rounding R] [--margin M] [--density RHO]\n"
@@ -64,6 +64,8 @@ static void sd_usage(FILE *f)
             "\n"
             "  -o DIR       output directory\n"
             "  --threads N  OpenMP threads (default: simulation.threads, else OMP_NUM_THREADS)\n"
+            "  --backend B  where the step runs: auto (a GPU when usable, else the CPU), cpu or\n"
+            "               cuda (default: simulation.backend, else auto)\n"
             "  --steps N    run N steps instead of the scene's (short runs)\n"
             "  --quiet      no progress line and no summary on the terminal\n"
             "  --bench NAME write no files; print one JSON line of timings for case NAME\n"
@@ -97,6 +99,7 @@ typedef struct sd_cli {
     const char *restart;  /* --restart: the checkpoint to continue */
     long threads;
     long steps;
+    int backend;          /* --backend: an sd_backend_kind, SD_BACKEND_COUNT when not given */
     int quiet;
     int markdown;
     int profile;
@@ -118,6 +121,7 @@ static int sd_parse_args(int argc, char **argv, sd_cli *c)
     memset(c, 0, sizeof *c);
     c->threads = -1;
     c->steps = -1;
+    c->backend = SD_BACKEND_COUNT;
     if (argc < 2)
         return sd_usage_error("%s", "no command given");
     c->command = argv[1];
@@ -133,6 +137,10 @@ static int sd_parse_args(int argc, char **argv, sd_cli *c)
                 return sd_usage_error("--threads needs a whole number from 1 to " SD_XSTR(SD_SCENE_MAX_THREADS)
                                       ", got '%s'",
                                       next ? next : "");
+            ++k;
+        } else if (!strcmp(a, "--backend")) {
+            if (!next || (c->backend = sd_backend_kind_from_name(next)) == SD_BACKEND_COUNT)
+                return sd_usage_error("--backend needs auto, cpu or cuda, got '%s'", next ? next : "");
             ++k;
         } else if (!strcmp(a, "--steps")) {
             if (!next || sd_parse_long(next, 0, &c->steps))
@@ -176,6 +184,7 @@ static int sd_load_world(const sd_cli *c, sd_scene **scene, sd_world **world)
         sd_scene_set_threads(*scene, (int)c->threads);
     if (c->steps >= 0)
         sd_scene_set_steps(*scene, c->steps);
+    sd_scene_set_backend(*scene, (sd_backend_kind)c->backend); /* SD_BACKEND_COUNT: the scene's */
     if (sd_scene_build(*scene, world, &err) != SD_OK) {
         sd_scene_free(*scene);
         *scene = NULL;
@@ -345,6 +354,7 @@ static int sd_cmd_run(const sd_cli *c)
                pr.threads, pr.threads == 1 ? "" : "s");
         printf("          kinetic energy %.6g J, %ld contacts, max overlap %.3g %% of radius; output in %s\n",
                st.kinetic_translational + st.kinetic_rotational, st.contacts, 100 * st.max_overlap_ratio, dir);
+        printf("          backend %s (%s)\n", sd_world_backend(w), sd_world_backend_note(w));
     }
     /* insertions that fell short: one line each (also in summary.txt) */
     for (size_t k = 0; k < sd_world_insertion_count(w); ++k) {
@@ -405,6 +415,7 @@ static int sd_cmd_check(const sd_cli *c)
     printf("contact      shortest estimated contact duration %.4g s (%.1f steps)\n", tc, tc / dt);
     printf("time step    %.4g s recommended; stability limit %.4g s\n", rec, tc / 5);
     printf("threads      %d\n", sd_world_threads(w));
+    printf("backend      %s (%s)\n", sd_world_backend(w), sd_world_backend_note(w));
     const char *unit2d = info.dimension == 2 ? " per 1 m of thickness" : "";
     printf("mass         %.6g kg%s", cnt.mass_now + cnt.mass_poured, unit2d);
     if (cnt.poured)

@@ -573,6 +573,8 @@ static void sd_output_summary_text(FILE *fp, const sd_output *o, const sd_world 
         fprintf(fp, "wall_seconds: %.6g\n", sum->wall_seconds);
         fprintf(fp, "particle_steps_per_second: %.6g\n", sum->particle_steps_per_second);
         fprintf(fp, "threads: %d\n", sum->threads);
+        if (w) /* which backend ran the step, and why (world/backend.c) */
+            fprintf(fp, "backend: %s (%s)\n", sd_world_backend(w), sd_world_backend_note(w));
         fprintf(fp, "peak_memory_MiB: %.3f\n", (double)sum->peak_memory / mib);
         fprintf(fp, "peak_rss_MiB: %.3f\n", (double)sum->peak_rss / mib);
     }

@@ -16,6 +16,12 @@ void sd_scene_set_threads(sd_scene *s, int threads)
         s->world.threads = threads;
 }
 
+void sd_scene_set_backend(sd_scene *s, sd_backend_kind backend)
+{
+    if (backend >= 0 && backend < SD_BACKEND_COUNT)
+        s->world.backend = backend;
+}
+
 void sd_scene_set_steps(sd_scene *s, long steps)
 {
     if (steps >= 0)

@@ -37,12 +37,12 @@ _Static_assert(SD_PROFILE_SPHERES + SD_PAIR_SPHERES == SD_PROFILE_SPHERES &&
                    SD_PROFILE_SPHERES + SD_PAIR_KIND_COUNT == SD_PROFILE_WALLS,
                "SD_PROFILE_STAGES lists the pair kinds of contact/kinds.h in their order");
 
-/* The stages' backend: the CPU's OpenMP loops (the CUDA backend will be
- * chosen here). */
+/* The stages' backend: the CPU's OpenMP loops or the CUDA kernels, chosen
+ * when the world was created (world/backend.c: sd_world_def.backend and
+ * the device probe). */
 static const sd_backend *sd_backend_of(const sd_world *w)
 {
-    (void)w;
-    return &sd_backend_cpu;
+    return w->backend ? w->backend : &sd_backend_cpu;
 }
 
 /* Broad phase: new pair lists when the skin is used up, a wall moved
@@ -59,6 +59,8 @@ static sd_status sd_stage_rebuild(sd_world *w, const sd_backend *be, sd_error *e
             return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory for the views of %zu walls",
                                 w->wall_count);
         be->upload(&w->stage);
+        if ((st = be->status(&w->stage, err)) != SD_OK)
+            return st;
     }
     be->exchange_ghosts(&w->stage);
     sd_profile_lap(w, SD_PROFILE_REBUILD, &t, 1);
@@ -94,6 +96,11 @@ static sd_status sd_stage_walls_drift(sd_world *w, const sd_backend *be, double 
 {
     if (w->wall_count == 0)
         return SD_OK;
+    /* a servo wall's gain reads the wall pairs' overlaps on the host: a
+     * device backend brings them back first (the wall totals are already
+     * there: the wall totals stage leaves them in s->wall_force) */
+    if (w->walls_moving)
+        be->read_back_wall_pairs(&w->stage);
     sd_status st = sd_world_walls_drift(w, t, err);
     if (st != SD_OK)
         return st;
@@ -107,7 +114,14 @@ static sd_status sd_stage_walls_drift(sd_world *w, const sd_backend *be, double 
  * overlap). */
 static sd_status sd_stage_check_finite(sd_world *w, const sd_backend *be, sd_error *err)
 {
-    if (be->check_finite(&w->stage)) {
+    int bad = be->check_finite(&w->stage);
+    /* the guards (and the NaN report's particle) read the state on the
+     * host: a device backend copies it back first */
+    be->read_back(&w->stage);
+    sd_status st = be->status(&w->stage, err);
+    if (st != SD_OK)
+        return st;
+    if (bad) {
         if (sd_world_guard_nonfinite(w, err) != SD_OK)
             return SD_ERR_PHYSICS;
         return sd_error_set(err, SD_ERR_PHYSICS, "", 0, "", "a particle state became NaN or infinite at step %ld "
@@ -129,6 +143,8 @@ sd_status sd_cells_prepare(sd_world *w, sd_error *err)
         return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory for the views of %zu walls",
                             w->wall_count);
     be->upload(&w->stage);
+    if ((st = be->status(&w->stage, err)) != SD_OK)
+        return st;
     if (w->def.skin > 0)
         w->skin = (sd_real)w->def.skin;
     else if (w->p.n > 0)
@@ -141,7 +157,10 @@ sd_status sd_cells_prepare(sd_world *w, sd_error *err)
         return st;
     double t = sd_profile_now();
     be->gather(&w->stage);
+    be->read_back(&w->stage); /* the step-0 frame shows these forces */
     sd_profile_lap(w, SD_PROFILE_INTEGRATION, &t, 0);
+    if ((st = be->status(&w->stage, err)) != SD_OK)
+        return st;
     w->prepared = 1;
     return SD_OK;
 }
@@ -156,7 +175,14 @@ sd_status sd_cells_step(sd_world *w, long nsteps, sd_error *err)
     const sd_backend *be = sd_backend_of(w);
     sd_stage *s = &w->stage;
     sd_world_views_params(w);
+    /* between calls the host may have changed the state (insertions and
+     * outlets, a restore, the public setters; the last call ended with a
+     * read back): a device backend takes the host's copy again */
+    be->upload(s);
     be->upload_walls(s);
+    sd_status st0 = be->status(s, err);
+    if (st0 != SD_OK)
+        return st0;
     double t = sd_profile_now();
     if (nsteps > 0) {
         be->kick_drift(s);                                  /* v(t + dt/2), x(t + dt) */
@@ -183,6 +209,6 @@ sd_status sd_cells_step(sd_world *w, long nsteps, sd_error *err)
             return st;
         sd_profile_lap(w, SD_PROFILE_INTEGRATION, &t, 1);
     }
-    be->read_back(s);
+    /* the finite check reads the state back: output and queries see it */
     return sd_stage_check_finite(w, be, err);
 }

@@ -13,6 +13,7 @@
 #include <omp.h>
 #endif
 
+#include "backend/backend.h"
 #include "core/alloc.h"
 #include "core/error.h"
 #include "world/mesh.h"
@@ -36,6 +37,7 @@ sd_world_def sd_world_def_default(void)
     d.threads = 0;
     d.law = SD_LAW_HERTZ_MINDLIN;
     d.skin = 0;
+    d.backend = SD_BACKEND_AUTO;
     d.cookie = SD_COOKIE;
     return d;
 }
@@ -205,6 +207,12 @@ sd_status sd_world_create(const sd_world_def *def, sd_world **out, sd_error *err
     w->local_damping = (sd_real)def->local_damping;
     /* the one place that asks which engine runs (world/solver.h) */
     w->solver = def->solver == SD_SOLVER_GRID ? &sd_solver_grid : &sd_solver_cells;
+    /* and the one place that asks where its stages run (world/backend.c) */
+    sd_status backend_st = sd_world_choose_backend(w, err);
+    if (backend_st != SD_OK) {
+        sd_free(w);
+        return backend_st;
+    }
     *out = w;
     return SD_OK;
 }
@@ -215,6 +223,8 @@ void sd_world_destroy(sd_world *w)
         return;
     sd_particles_free(&w->p);
     sd_world_broad_free(w);
+    if (w->backend)
+        w->backend->release(&w->stage); /* its device copies */
     sd_world_views_free(w);
     sd_free(w->materials);
     sd_free(w->interactions);

@@ -169,6 +169,8 @@ struct sd_world {
     sd_vec3 *ghost_shift;
     struct sd_grid_state *grid_state; /* solver grid (src/grid), NULL otherwise */
     const struct sd_solver_ops *solver; /* the engine, chosen at creation (world/solver.h) */
+    const struct sd_backend *backend; /* the cells solver's stages, chosen at creation (world/backend.c) */
+    char backend_note[128];   /* why that backend, or its device's name (sd_world_backend_note) */
     sd_stage stage;           /* the backend's views of all the above (world/view.c) */
     sd_profile profile;       /* s per stage of the step (world/profile.c) */
     long rebuilds;
@@ -214,6 +216,9 @@ sd_status sd_world_check_dt(sd_world *w, sd_error *err);
 #define SD_GUARD_OVERLAP SD_R(0.5)
 sd_status sd_world_guard_nonfinite(sd_world *w, sd_error *err);
 sd_status sd_world_guards(sd_world *w, sd_error *err);
+/* backend.c: sets w->backend and w->backend_note from def.backend and the
+ * device probe (SD_ERR_INPUT when cuda was asked for and cannot run). */
+sd_status sd_world_choose_backend(sd_world *w, sd_error *err);
 
 /* A new shape's name is valid and free (bodies.c). */
 sd_status sd_world_check_shape_name(const sd_world *w, const char *name, sd_error *err);

@@ -13,6 +13,14 @@ static void sd_cpu_nothing(sd_stage *s)
     (void)s;
 }
 
+/* the CPU's stages cannot fail */
+static sd_status sd_cpu_status(sd_stage *s, sd_error *err)
+{
+    (void)s;
+    (void)err;
+    return SD_OK;
+}
+
 const sd_backend sd_backend_cpu = {
     .name = "cpu",
     .upload = sd_cpu_nothing,
@@ -30,4 +38,7 @@ const sd_backend sd_backend_cpu = {
     .check_finite = sd_cpu_check_finite,
     .min_radius = sd_cpu_min_radius,
     .read_back = sd_cpu_nothing,
+    .read_back_wall_pairs = sd_cpu_nothing,
+    .release = sd_cpu_nothing,
+    .status = sd_cpu_status,
 };
