@@ -769,15 +769,18 @@ static sd_status sd_bins_pairs(sd_bins *b, const sd_bins_input *in, sd_pair_list
 
 /* ---- mesh walls (dynamics/meshwall.h) ----------------------------------------- */
 
-/* Most triangles of one mesh within reach of one particle (a fixed
- * workspace; beyond it the farthest cells' facets are left out). */
+/* Triangles of one mesh within reach of one particle that fit the stack
+ * workspace; a particle with more (a large body on a fine mesh) queries
+ * again into a heap buffer of the size it needs (sd_bins_mesh_near), so no
+ * facet is ever left out. */
 enum { SD_BINS_MESH_MAXT = 2048 };
 
 static void sd_bins_sort_u64(uint64_t *a, uint32_t n)
 {
-    /* Shell sort (Ciura's gaps): small lists, no allocation, a total order */
-    static const uint32_t gaps[] = {701, 301, 132, 57, 23, 10, 4, 1};
-    for (int g = 0; g < 8; ++g) {
+    /* Shell sort (Ciura's gaps, extended by 2.25 for the long lists of a
+     * large body on a fine mesh): no allocation, a total order */
+    static const uint32_t gaps[] = {90927, 40412, 17961, 7983, 3548, 1577, 701, 301, 132, 57, 23, 10, 4, 1};
+    for (int g = 0; g < 14; ++g) {
         uint32_t h = gaps[g];
         for (uint32_t i = h; i < n; ++i) {
             uint64_t v = a[i];
@@ -793,10 +796,11 @@ static void sd_bins_sort_u64(uint64_t *a, uint32_t n)
 
 /* The triangles of mesh wall wg within distance r of x (the particle
  * mapped into the mesh frame: the facet bins never move), as (group << 32
- * | triangle), sorted and unique, in buf (room for SD_BINS_MESH_MAXT);
- * returns how many. Cells of edge h >= 2 r: at most 2 x 2 x 2 cells. */
+ * | triangle), the first cap of them in buf; returns how many there are
+ * (a triangle met in several cells counted each time). Cells of edge
+ * h >= 2 r: at most 2 x 2 x 2 cells. */
 static uint32_t sd_bins_mesh_query(const sd_bins_input *in, const sd_wall_geom *wg, sd_vec3 x, sd_real r,
-                                   uint64_t *buf)
+                                   uint64_t *buf, uint32_t cap)
 {
     if (!in->meshes || (size_t)wg->mesh >= in->mesh_count)
         return 0;
@@ -819,16 +823,47 @@ static uint32_t sd_bins_mesh_query(const sd_bins_input *in, const sd_wall_geom *
                     const uint32_t *tv = mv->tris[t];
                     int feature;
                     sd_vec3 c = sd_clip_closest(xm, mv->verts[tv[0]], mv->verts[tv[1]], mv->verts[tv[2]], &feature);
-                    if (sd_v3_norm2(sd_v3_sub(xm, c)) >= r2 || n >= SD_BINS_MESH_MAXT)
+                    if (sd_v3_norm2(sd_v3_sub(xm, c)) >= r2)
                         continue;
-                    buf[n++] = ((uint64_t)mv->group[t] << 32) | t;
+                    if (n < cap)
+                        buf[n] = ((uint64_t)mv->group[t] << 32) | t;
+                    ++n;
                 }
             }
+    return n;
+}
+
+/* A particle's near triangles of one mesh (sd_bins_mesh_query) sorted and
+ * unique, in stack (SD_BINS_MESH_MAXT entries) or, when more are near,
+ * in *heap (grown to *heap_cap entries; the caller frees it); *out points
+ * to them. Returns how many; sets *oom and returns 0 when the heap
+ * buffer cannot grow. */
+static uint32_t sd_bins_mesh_near(const sd_bins_input *in, const sd_wall_geom *wg, sd_vec3 x, sd_real r,
+                                  uint64_t *stack, uint64_t **heap, size_t *heap_cap, const uint64_t **out,
+                                  int *oom)
+{
+    uint64_t *buf = stack;
+    uint32_t n = sd_bins_mesh_query(in, wg, x, r, stack, SD_BINS_MESH_MAXT);
+    if (n > SD_BINS_MESH_MAXT) {
+        if (n > *heap_cap) {
+            uint64_t *h = sd_realloc(*heap, (size_t)n * sizeof *h);
+            if (!h) {
+                *oom = 1;
+                *out = stack;
+                return 0;
+            }
+            *heap = h;
+            *heap_cap = n;
+        }
+        buf = *heap;
+        n = sd_bins_mesh_query(in, wg, x, r, buf, n);
+    }
     sd_bins_sort_u64(buf, n);
     uint32_t u = 0;
     for (uint32_t q = 0; q < n; ++q)
         if (u == 0 || buf[q] != buf[u - 1])
             buf[u++] = buf[q];
+    *out = buf;
     return u;
 }
 
@@ -839,12 +874,15 @@ static sd_status sd_bins_mesh_tris(sd_bins *b, const sd_bins_input *in, sd_wall_
 {
     size_t n = in->n_owned;
     uint32_t *ptot = b->count; /* free again after the pair placement: n + 1 entries */
+    int oom = 0;
     for (int pass = 0; pass < 2; ++pass) {
-        SD_BINS_FOR(in)
+        SD_PRAGMA(omp parallel for schedule(static) num_threads(in->threads) if (in->parallel) reduction(| : oom))
         for (size_t a = 0; a < n; ++a) {
             uint32_t g0 = l->gstart[a], g1 = l->gstart[a + 1];
             uint32_t off = pass ? ptot[a] : 0, tot = 0;
-            uint64_t buf[SD_BINS_MESH_MAXT];
+            uint64_t stack[SD_BINS_MESH_MAXT], *heap = NULL;
+            size_t heap_cap = 0;
+            const uint64_t *buf = stack;
             uint32_t nt = 0, q = 0;
             int cur = -1;
             for (uint32_t g = g0; g < g1; ++g) {
@@ -854,7 +892,8 @@ static sd_status sd_bins_mesh_tris(sd_bins *b, const sd_bins_input *in, sd_wall_
                     continue;
                 if ((int)l->wall[e] != cur) {
                     cur = (int)l->wall[e];
-                    nt = sd_bins_mesh_query(in, wg, in->x[a], in->radius[a] + in->skin, buf);
+                    nt = sd_bins_mesh_near(in, wg, in->x[a], in->radius[a] + in->skin, stack, &heap, &heap_cap, &buf,
+                                           &oom);
                     q = 0;
                 }
                 while (q < nt && (uint32_t)(buf[q] >> 32) < l->sub[e])
@@ -873,7 +912,10 @@ static sd_status sd_bins_mesh_tris(sd_bins *b, const sd_bins_input *in, sd_wall_
             }
             if (!pass)
                 ptot[a] = tot;
+            sd_free(heap);
         }
+        if (oom)
+            return SD_ERR_MEMORY;
         if (!pass) {
             size_t sum = 0;
             for (size_t a = 0; a < n; ++a) {
@@ -900,7 +942,7 @@ static sd_status sd_bins_mesh_tris(sd_bins *b, const sd_bins_input *in, sd_wall_
  * element, kind) there; counts them all per kind into kind_count. */
 static uint32_t sd_bins_wall_candidates(const sd_bins_input *in, size_t a, uint32_t skip, uint32_t cap,
                                         uint16_t *out_w, uint32_t *out_f, uint32_t *out_e, uint8_t *out_k,
-                                        uint32_t *kind_count)
+                                        uint32_t *kind_count, int *oom)
 {
     sd_vec3 x = in->x[a];
     sd_real reach = in->radius[a] + in->skin;
@@ -917,8 +959,10 @@ static uint32_t sd_bins_wall_candidates(const sd_bins_input *in, size_t a, uint3
             int kind = sd_bins_mesh_pair_kind(ca, sd_bins_volume(in, ma, in->wall_material[wi]));
             if (kind < 0)
                 continue; /* composites against meshes: not yet */
-            uint64_t buf[SD_BINS_MESH_MAXT];
-            uint32_t nt = sd_bins_mesh_query(in, wg, x, reach, buf);
+            uint64_t stack[SD_BINS_MESH_MAXT], *heap = NULL;
+            size_t heap_cap = 0;
+            const uint64_t *buf;
+            uint32_t nt = sd_bins_mesh_near(in, wg, x, reach, stack, &heap, &heap_cap, &buf, oom);
             for (uint32_t q = 0; q < nt; ++q) {
                 uint32_t g = (uint32_t)(buf[q] >> 32);
                 if (q > 0 && (uint32_t)(buf[q - 1] >> 32) == g)
@@ -933,6 +977,7 @@ static uint32_t sd_bins_wall_candidates(const sd_bins_input *in, size_t a, uint3
                 }
                 ++m;
             }
+            sd_free(heap);
             continue;
         }
         int nf = sd_wall_feature_count(wg);
@@ -978,14 +1023,19 @@ static sd_status sd_bins_wall_pairs(sd_bins *b, const sd_bins_input *in, sd_wall
         return SD_ERR_MEMORY;
     uint32_t *cnt = b->count; /* cnt[kind * n + particle], then its offsets */
     unsigned present = 0;
-    SD_PRAGMA(omp parallel for schedule(static) num_threads(in->threads) if (in->parallel) reduction(| : present))
+    int oom = 0;
+    SD_PRAGMA(omp parallel for schedule(static) num_threads(in->threads) if (in->parallel) reduction(| : present, oom))
     for (size_t a = 0; a < n; ++a) {
         uint32_t ck[K] = {0};
-        l->gstart[a + 1] = sd_bins_wall_candidates(in, a, 0, 0, NULL, NULL, NULL, NULL, ck);
+        l->gstart[a + 1] = sd_bins_wall_candidates(in, a, 0, 0, NULL, NULL, NULL, NULL, ck, &oom);
         for (int k = 0; k < K; ++k) {
             cnt[(size_t)k * n + a] = ck[k];
             present |= (unsigned)(ck[k] != 0) << k;
         }
+    }
+    if (oom) {
+        sd_free(hist);
+        return SD_ERR_MEMORY;
     }
     l->gstart[0] = 0;
     for (size_t a = 0; a < n; ++a)
@@ -1008,7 +1058,7 @@ static sd_status sd_bins_wall_pairs(sd_bins *b, const sd_bins_input *in, sd_wall
         return SD_ERR_MEMORY;
     }
     l->n = total;
-    SD_BINS_FOR(in)
+    SD_PRAGMA(omp parallel for schedule(static) num_threads(in->threads) if (in->parallel) reduction(| : oom))
     for (size_t a = 0; a < n; ++a) {
         uint32_t g0 = l->gstart[a], m = l->gstart[a + 1] - g0;
         if (m == 0)
@@ -1023,7 +1073,7 @@ static sd_status sd_bins_wall_pairs(sd_bins *b, const sd_bins_input *in, sd_wall
         /* MAXF candidates at a time (a particle near many features, or a
          * composite with many elements near one, walks them again) */
         for (uint32_t t0 = 0; t0 < m; t0 += MAXF) {
-            (void)sd_bins_wall_candidates(in, a, t0, MAXF, ow, of, oe, ok, NULL);
+            (void)sd_bins_wall_candidates(in, a, t0, MAXF, ow, of, oe, ok, NULL, &oom);
             uint32_t got = m - t0 < MAXF ? m - t0 : MAXF;
             for (uint32_t t = 0; t < got; ++t) {
                 size_t e = cur[ok[t]]++;
@@ -1034,6 +1084,10 @@ static sd_status sd_bins_wall_pairs(sd_bins *b, const sd_bins_input *in, sd_wall
                 l->gidx[g0 + t0 + t] = (uint32_t)e;
             }
         }
+    }
+    if (oom) {
+        sd_free(hist);
+        return SD_ERR_MEMORY;
     }
     SD_BINS_FOR(in)
     for (size_t e = 0; e < total; ++e) {
