@@ -24,6 +24,7 @@
 #include "core/error.h"
 #include "io/output.h"
 #include "io/scene.h"
+#include "io/scene_analysis.h"
 #include "io/scene_process.h"
 
 struct sd_run {
@@ -42,6 +43,7 @@ struct sd_run {
     char ckpt_last[SD_SCENE_PATH_MAX + 48];
     FILE *outlet;                /* outlet.csv (cells outlets; io/scene_process.c), NULL when none */
     double outlet_t, outlet_m;   /* s, kg: time and mass removed at its last row */
+    sd_analysis_run *an;         /* the scene's analysis: CSV series (io/scene_analysis.c), NULL when none */
 };
 
 /* outlet.csv: a row with each stats row, when the world has outlets. */
@@ -109,6 +111,13 @@ sd_status sd_run_open(const sd_scene *s, sd_world *w, const char *dir, sd_run **
             }
             sd_outlet_csv_header(r->outlet, w);
         }
+        if ((st = sd_analysis_run_open(s, r->dir, &r->an, err)) != SD_OK) {
+            if (r->outlet)
+                fclose(r->outlet);
+            sd_output_close(r->out, w, NULL, NULL);
+            sd_free(r);
+            return st;
+        }
     }
     *out = r;
     return SD_OK;
@@ -124,6 +133,9 @@ long sd_run_steps_to_output(const sd_run *r)
         next = r->done + to_stats;
     if (r->ckpt_every > 0 && r->done + (r->ckpt_every - r->done % r->ckpt_every) < next)
         next = r->done + (r->ckpt_every - r->done % r->ckpt_every);
+    long to_an = sd_analysis_run_next(r->an, r->done); /* LONG_MAX: none */
+    if (to_an < next - r->done)
+        next = r->done + to_an;
     return next - r->done;
 }
 
@@ -182,6 +194,10 @@ sd_status sd_run_advance(sd_run *r, long steps, sd_error *err)
             return st;
         }
         sd_run_outlet_row(r);
+        if ((st = sd_analysis_run_rows(r->an, r->w, r->done, r->steps, err)) != SD_OK) {
+            r->failed = 1;
+            return st;
+        }
         if (r->out) /* the output stage of the world's profile (sd_profile) */
             sd_world_profile_add(r->w, SD_PROFILE_OUTPUT, sd_run_now() - t0);
     }
@@ -212,6 +228,8 @@ sd_status sd_run_advance(sd_run *r, long steps, sd_error *err)
             r->failed = 1;
         if (r->out && !r->failed && sd_run_checkpoint_due(r) && (st = sd_run_checkpoint(r, err)) != SD_OK)
             r->failed = 1;
+        if (!r->failed && (st = sd_analysis_run_rows(r->an, r->w, r->done, r->steps, err)) != SD_OK)
+            r->failed = 1;
         if (r->out)
             sd_world_profile_add(r->w, SD_PROFILE_OUTPUT, sd_run_now() - t1);
         if (r->failed)
@@ -240,6 +258,7 @@ sd_status sd_run_close(sd_run *r, sd_error *err)
     sd_status st = SD_OK;
     if (r->outlet)
         fclose(r->outlet);
+    sd_analysis_run_close(r->an);
     if (r->out) {
         sd_run_summary sum;
         memset(&sum, 0, sizeof sum);

@@ -182,6 +182,7 @@ struct sd_scene {
     sd_scene_pour pour;
     sd_scene_outlet outlet;
     struct sd_scene_process *process; /* insert: and outlets: (io/scene_process.h), NULL when none */
+    struct sd_scene_analysis *analysis; /* analysis: (io/scene_analysis.h), NULL when none */
 };
 
 /* sd_scene_load, sd_scene_free and sd_scene_build are declared in

@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "io/scene.h"
+#include "io/scene_analysis.h"
 #include "shape/complib.h"
 #include "shape/polylib.h"
 #include "shape/shape.h"
@@ -58,6 +59,19 @@
 #define SCOMP (1u << SD_SHAPE_COMPOSITE)
 /* planar shape types follow the 3D ones in the type choices (scene.h) */
 #define S3D ((1u << SD_SHAPE_KIND_COUNT) - 1u)
+/* analysis types, the bit order of their type choices (io/scene_analysis.h) */
+#define SD_X_AN_CHOICE(e, name, doc) name "|"
+#define SD_AN_TYPE_CHOICES SD_ANALYSIS_TYPES(SD_X_AN_CHOICE)
+#define AN(t) (1u << (t))
+#define AN_VOX (AN(SD_AN_POROSITY) | AN(SD_AN_RADIAL_POROSITY))
+#define AN_NEEDS_REGION (AN_VOX | AN(SD_AN_VELOCITY_FIELD) | AN(SD_AN_SURFACE_ANGLE))
+/* the region keys are read for every type (io/scene_analysis.c refuses a
+ * region for coordination and repose_angle by name), so their section
+ * column stays short */
+#define AN_REGION ALL
+#define AN_BOX ALL
+#define AN_CYL ALL
+#define AN_BINS (AN(SD_AN_RADIAL_POROSITY) | AN(SD_AN_SPEED_PDF) | AN(SD_AN_SURFACE_ANGLE) | AN(SD_AN_REPOSE_ANGLE))
 #define S2(k) (1u << (SD_SHAPE_KIND_COUNT + (k)))
 #define SCIRC S2(SD_SHAPE2D_CIRCLE)
 #define SELL2 S2(SD_SHAPE2D_ELLIPSE)
@@ -94,6 +108,10 @@ const sd_scene_key sd_scene_keys[] = {
      "docs/physics.md, Insertion and outlets)"},
     {SD_SEC_ROOT, "outlets", SD_KT_LIST, SD_KR_ANY, NULL, ALL, 0, "", "[]",
      "solver cells: regions that remove and count the particles entering them (outlet.csv)"},
+    {SD_SEC_ROOT, "analysis", SD_KT_LIST, SD_KR_ANY, NULL, ALL, 0, "", "[]",
+     "analyses written as CSV files of the output directory at their own cadence: porosity by voxels "
+     "of the true shapes, coordination, velocity fields, speeds, energies, bed height, drum and heap "
+     "angles (docs/analysis.md)"},
 
     {SD_SEC_SIMULATION, "dimension", SD_KT_INT, SD_KR_ANY, NULL, ALL, 0, "", "3",
      "3, or 2: the planar mode (every z, velocity z and gravity z is 0, rotation about z "
@@ -332,7 +350,13 @@ const sd_scene_key sd_scene_keys[] = {
      "z, and radius (a sphere) or shape (a name from shapes; one of the two per row), "
      "optionally vx, vy, vz, qw, qx, qy, qz (orientation, all four or none, normalised), wx, "
      "wy, wz and material (a name; default the generator's); an empty optional cell takes the "
-     "generator's value; scripts/frame_to_csv.py writes one from a frame (docs/output.md)"},
+     "generator's value; scripts/frame_to_csv.py writes one from a frame (docs/output.md). Or "
+     "a checkpoint of another run (a name ending in .h5, cells solver, same dimension): its "
+     "particles of every kind as they were (positions, orientations, velocities, spins), each "
+     "template found in shapes by name and of the same kind, each material by name (else the "
+     "generator's); docs/checkpoints.md"},
+    {SD_SEC_PARTICLES, "shift", SD_KT_VEC3, SD_KR_ANY, NULL, CSV, 0, "m", "[0, 0, 0]",
+     "added to every position the file gives (a settled bed moved into new equipment)"},
     {SD_SEC_PARTICLES, "velocity", SD_KT_VEC3, SD_KR_ANY, NULL, ALL, 0, "m/s", "[0, 0, 0]",
      "initial velocity (list entries and CSV columns override it)"},
     {SD_SEC_PARTICLES, "velocity_jitter", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "m/s", "0",
@@ -564,6 +588,52 @@ const sd_scene_key sd_scene_keys[] = {
     {SD_SEC_OUTLETS, "open_at", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "s", "0", "time the outlet opens"},
     {SD_SEC_OUTLETS, "check_every", SD_KT_INT, SD_KR_ONE, NULL, ALL, 0, "", "1",
      "steps between removals (a particle may pass a thin region between checks)"},
+
+    /* analysis: - ... (io/scene_analysis.c, docs/analysis.md); the kinds are the types */
+    {SD_SEC_ANALYSIS, "type", SD_KT_ENUM, SD_KR_ANY, SD_AN_TYPE_CHOICES, ALL, ALL, "", "required",
+     "what to measure (docs/analysis.md): porosity, radial_porosity, coordination, velocity_field, "
+     "speed_pdf, energy, bed_height, surface_angle (a drum), repose_angle (a heap)"},
+    {SD_SEC_ANALYSIS, "name", SD_KT_STRING, SD_KR_NONEMPTY, NULL, ALL, 0, "", "the type",
+     "name in messages and of the default file (a second entry of a type: TYPE_1, ...)"},
+    {SD_SEC_ANALYSIS, "file", SD_KT_STRING, SD_KR_NONEMPTY, NULL, ALL, 0, "", "NAME.csv",
+     "the CSV file, a plain name in the output directory"},
+    {SD_SEC_ANALYSIS, "every", SD_KT_INT, SD_KR_ONE, NULL, ALL, 0, "", "output.stats_every",
+     "steps between rows (a row is also written at step 0 and at the last step)"},
+    {SD_SEC_ANALYSIS, "interval", SD_KT_NUMBER, SD_KR_POS, NULL, ALL, 0, "s", "-",
+     "simulated time between rows instead of every (rounded to whole steps)"},
+    {SD_SEC_ANALYSIS, "region", SD_KT_ENUM, SD_KR_ANY, "box|cylinder", AN_REGION, AN_NEEDS_REGION, "", "all particles",
+     "where: the voxels of porosity, the annuli of radial_porosity (cylinder), the slab of velocity_field "
+     "(box), the drum of surface_angle (cylinder); speed_pdf, energy, bed_height: the particles whose centre "
+     "lies in it; not for coordination and repose_angle"},
+    {SD_SEC_ANALYSIS, "min", SD_KT_VEC3, SD_KR_ANY, NULL, AN_BOX, 0, "m", "-", "box region: lower corner"},
+    {SD_SEC_ANALYSIS, "max", SD_KT_VEC3, SD_KR_ANY, NULL, AN_BOX, 0, "m", "-",
+     "box region: upper corner, > min on every axis (2D: x and y)"},
+    {SD_SEC_ANALYSIS, "center", SD_KT_VEC3, SD_KR_ANY, NULL, AN_CYL, 0, "m", "-",
+     "cylinder region: the middle of its axis; repose_angle: a point of the heap's vertical axis (default: "
+     "the particles' centre of mass)"},
+    {SD_SEC_ANALYSIS, "axis", SD_KT_VEC3, SD_KR_ANY, NULL, AN_CYL, 0, "", "[0, 0, 1]",
+     "cylinder region: its axis (normalised; 2D: z, the region is a disc of the plane)"},
+    {SD_SEC_ANALYSIS, "radius", SD_KT_NUMBER, SD_KR_POS, NULL, AN_CYL, 0, "m", "-", "cylinder region: radius"},
+    {SD_SEC_ANALYSIS, "length", SD_KT_NUMBER, SD_KR_POS, NULL, AN_CYL, 0, "m", "- (required in 3D)",
+     "cylinder region: length along the axis"},
+    {SD_SEC_ANALYSIS, "voxel", SD_KT_NUMBER, SD_KR_POS, NULL, AN_VOX, AN_VOX, "m", "required",
+     "voxel edge (2D: pixel); the fraction converges as it shrinks: a tenth of the smallest particle size "
+     "gives about 1 % (docs/analysis.md)"},
+    {SD_SEC_ANALYSIS, "bins", SD_KT_INT, SD_KR_ONE, NULL, AN_BINS, 0, "", "10 radial, else 20",
+     "annuli of radial_porosity, speed classes of speed_pdf, surface columns of surface_angle and "
+     "repose_angle (at least 2 there)"},
+    {SD_SEC_ANALYSIS, "cells", SD_KT_VEC2, SD_KR_ONE, NULL, AN(SD_AN_VELOCITY_FIELD), 0, "", "[10, 10]",
+     "velocity_field: cells along the plane's two axes (integers)"},
+    {SD_SEC_ANALYSIS, "plane", SD_KT_ENUM, SD_KR_ANY, "xy|xz|yz", AN(SD_AN_VELOCITY_FIELD), 0, "", "xz (2D: xy)",
+     "velocity_field: the plane of the grid; the box's third axis is the slab's thickness"},
+    {SD_SEC_ANALYSIS, "max_speed", SD_KT_NUMBER, SD_KR_POS, NULL, AN(SD_AN_SPEED_PDF), 0, "m/s",
+     "the fastest particle", "speed_pdf: top of the last class (faster particles count in it)"},
+    {SD_SEC_ANALYSIS, "fraction", SD_KT_NUMBER, SD_KR_UNIT, NULL, AN(SD_AN_BED_HEIGHT), 0, "", "0.95",
+     "bed_height: the mass fraction below fraction_height"},
+    {SD_SEC_ANALYSIS, "fit", SD_KT_VEC2, SD_KR_NONNEG, NULL, AN(SD_AN_SURFACE_ANGLE) | AN(SD_AN_REPOSE_ANGLE), 0, "",
+     "[0.2, 0.8]",
+     "the columns fitted: fractions of the drum's diameter (surface_angle) or of the heap's radius "
+     "(repose_angle)"},
 };
 
 const size_t sd_scene_key_count = sizeof sd_scene_keys / sizeof sd_scene_keys[0];
@@ -616,7 +686,7 @@ const char sd_scene_example[] =
 static const char *const sd_section_names[SD_SEC_COUNT] = {
     "(top level)", "simulation", "materials[]", "interactions[]", "shapes[]", "particles[]",
     "particles[].spheres[]", "walls[]", "output", "pour", "outlet", "shapes[].elements[]",
-    "insert[]", "insert[].mix[]", "outlets[]", "walls[].motion",
+    "insert[]", "insert[].mix[]", "outlets[]", "walls[].motion", "analysis[]",
 };
 
 const char *sd_scene_section_name(sd_scene_section sec)
@@ -638,6 +708,8 @@ const char *sd_scene_section_kinds(sd_scene_section sec)
         return "box|cylinder|disc";
     if (sec == SD_SEC_OUTLETS)
         return "box|cylinder";
+    if (sec == SD_SEC_ANALYSIS) /* the type choices, in SD_ANALYSIS_TYPES order */
+        return SD_AN_TYPE_CHOICES;
     if (sec == SD_SEC_SHAPE)
         return SD_SHAPE_CHOICES;
     return NULL;

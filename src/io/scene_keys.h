@@ -28,6 +28,7 @@ typedef enum sd_scene_section {
     SD_SEC_INSERT_MIX,  /* insert: - mix: - ... */
     SD_SEC_OUTLETS,     /* outlets: - ... (cells solver) */
     SD_SEC_MESH_MOTION, /* walls: - type: mesh, motion: */
+    SD_SEC_ANALYSIS,    /* analysis: - ... (io/scene_analysis.c) */
     SD_SEC_COUNT
 } sd_scene_section;
 

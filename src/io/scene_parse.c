@@ -34,6 +34,7 @@
 #include "core/error.h"
 #include "io/scene.h"
 #include "io/scene_keys.h"
+#include "io/scene_analysis.h"
 #include "io/scene_process.h"
 #include "io/scene_sections.h"
 #include "io/yaml_read.h"
@@ -779,6 +780,8 @@ static sd_status sd_parse_root(sd_parse *p, yaml_node_t *root)
         return st;
     if ((st = sd_parse_process(p, root))) /* insert: and outlets: (scene_process.c) */
         return st;
+    if ((st = sd_parse_analysis(p, root))) /* analysis: (scene_analysis.c) */
+        return st;
     return sd_check_laws(p);
 }
 
@@ -820,6 +823,7 @@ void sd_scene_free(sd_scene *s)
     if (!s)
         return;
     sd_scene_process_free(s);
+    sd_scene_analysis_free(s);
     for (size_t i = 0; i < s->generator_count; ++i) {
         sd_free(s->generators[i].list);
         sd_free(s->generators[i].list_lines);

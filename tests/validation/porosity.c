@@ -1,0 +1,308 @@
+/* porosity.c — the voxel porosity of shapedem/analysis.h (seed 004 §4.1)
+ * against packings with known answers, each at 2-3 lattice resolutions:
+ *  - spheres on a simple cubic lattice fill pi/6 of their cells
+ *    (porosity 1 - pi/6): the error at the finest lattice (64 voxels per
+ *    diameter) is below 2e-3 and below that of the coarsest;
+ *  - cubes face to face fill their box: porosity 0 at every resolution;
+ *  - a single regular tetrahedron (randomly turned): solid voxels x voxel
+ *    volume converges to a^3 / (6 sqrt 2);
+ *  - a composite of two overlapping spheres: the union's volume (the lens
+ *    counted once), against the closed form;
+ *  - 2D circles on a square lattice: area fraction pi/4;
+ *  - the radial profile of a cylinder region around a coaxial cylinder of
+ *    half its radius: solid inside, empty outside;
+ *  - a periodic box: a sphere across the boundary counts with its image;
+ *  - 1 and 2 threads: the same counts.
+ */
+#include <math.h>
+#include <string.h>
+
+#include "test.h"
+
+#include <shapedem/analysis.h>
+
+static const double PI = 3.14159265358979323846;
+
+static sd_world *new_world(int dim, int threads, int *mat)
+{
+    sd_error err;
+    sd_world *w;
+    sd_world_def d = sd_world_def_default();
+    d.threads = threads;
+    d.dimension = dim;
+    d.dt = 1e-6;
+    if (dim == 2)
+        d.gravity = sd_test_v(0, -9.81, 0);
+    sd_test_require(sd_world_create(&d, &w, &err) == SD_OK, "world", &err);
+    sd_material_def m = sd_material_def_default();
+    m.name = "m";
+    m.youngs_modulus = 1e7;
+    *mat = sd_world_add_material(w, &m, &err);
+    return w;
+}
+
+static sd_porosity box_porosity(const sd_world *w, sd_v3d lo, sd_v3d hi, double voxel, int threads)
+{
+    sd_error err;
+    sd_porosity_def d = sd_porosity_def_default();
+    d.region.kind = SD_REGION_BOX;
+    d.region.lo = lo;
+    d.region.hi = hi;
+    d.voxel = voxel;
+    d.threads = threads;
+    sd_porosity po;
+    sd_test_require(sd_world_porosity(w, &d, &po, NULL, NULL, &err) == SD_OK, "porosity", &err);
+    return po;
+}
+
+static void spheres_lattice(void)
+{
+    printf("-- spheres on a simple cubic lattice, 4 x 4 x 4 (expected porosity 1 - pi/6)\n");
+    int mat;
+    sd_world *w = new_world(3, 2, &mat);
+    const double r = 0.001, d = 2 * r;
+    sd_sphere_def s[64];
+    memset(s, 0, sizeof s);
+    for (int k = 0; k < 64; ++k) {
+        s[k].position = sd_test_v((k % 4 + 0.5) * d, (k / 4 % 4 + 0.5) * d, (k / 16 + 0.5) * d);
+        s[k].radius = r;
+        s[k].material = mat;
+    }
+    sd_error err;
+    sd_test_require(sd_world_add_spheres(w, 64, s, &err) == SD_OK, "spheres", &err);
+    const double expect = 1 - PI / 6;
+    const int per_d[3] = {16, 32, 64}; /* voxels per diameter */
+    double e[3];
+    for (int k = 0; k < 3; ++k) {
+        sd_porosity po = box_porosity(w, sd_test_v(0, 0, 0), sd_test_v(4 * d, 4 * d, 4 * d), d / per_d[k], 0);
+        e[k] = fabs(po.porosity - expect);
+        printf("   %2d voxels per diameter (%lld voxels): porosity %.6f, expected %.6f, error %.2e\n", per_d[k],
+               po.voxels, po.porosity, expect, e[k]);
+    }
+    CHECK(e[2] < e[0]);
+    CHECK_NEAR("porosity, 64 voxels per diameter", e[2] + expect, expect, 2e-3);
+    /* the same counts on 1 and 2 threads */
+    sd_porosity p1 = box_porosity(w, sd_test_v(0, 0, 0), sd_test_v(4 * d, 4 * d, 4 * d), d / 16, 1);
+    sd_porosity p2 = box_porosity(w, sd_test_v(0, 0, 0), sd_test_v(4 * d, 4 * d, 4 * d), d / 16, 2);
+    printf("   1 thread %lld solid of %lld, 2 threads %lld of %lld\n", p1.solid, p1.voxels, p2.solid, p2.voxels);
+    CHECK(p1.solid == p2.solid && p1.voxels == p2.voxels);
+    sd_world_destroy(w);
+}
+
+static void cubes_face_to_face(void)
+{
+    printf("-- 27 cubes face to face, turned by 90 degrees about z (expected porosity 0)\n");
+    int mat;
+    sd_world *w = new_world(3, 2, &mat);
+    const double a = 0.002;
+    sd_error err;
+    sd_shape_desc sd = sd_shape_desc_default();
+    sd.kind = "box";
+    sd.size = sd_test_v(a, a, a);
+    int cube = sd_world_add_shape(w, "cube", &sd, &err);
+    sd_test_require(cube >= 0, "cube", &err);
+    sd_body_def b[27];
+    memset(b, 0, sizeof b);
+    for (int k = 0; k < 27; ++k) {
+        b[k].position = sd_test_v((k % 3 + 0.5) * a, (k / 3 % 3 + 0.5) * a, (k / 9 + 0.5) * a);
+        b[k].shape = cube;
+        b[k].material = mat;
+        b[k].orientation[0] = cos(PI / 4); /* a quarter turn: the faces stay on the lattice */
+        b[k].orientation[3] = sin(PI / 4);
+    }
+    sd_test_require(sd_world_add_bodies(w, 27, b, &err) == SD_OK, "cubes", &err);
+    const int per_a[3] = {4, 10, 20};
+    for (int k = 0; k < 3; ++k) {
+        sd_porosity po = box_porosity(w, sd_test_v(0, 0, 0), sd_test_v(3 * a, 3 * a, 3 * a), a / per_a[k], 0);
+        char label[96];
+        snprintf(label, sizeof label, "porosity, %d voxels per edge (%lld)", per_a[k], po.voxels);
+        CHECK_NEAR(label, po.porosity, 0.0, 0.0);
+    }
+    /* a box twice as tall: half empty */
+    sd_porosity po = box_porosity(w, sd_test_v(0, 0, 0), sd_test_v(3 * a, 3 * a, 6 * a), a / 10, 0);
+    CHECK_NEAR("porosity of a box twice the height", po.porosity, 0.5, 0.0);
+    sd_world_destroy(w);
+}
+
+static void tetrahedron(void)
+{
+    printf("-- one regular tetrahedron, turned (expected volume a^3 / (6 sqrt 2))\n");
+    int mat;
+    sd_world *w = new_world(3, 2, &mat);
+    const double s = 0.001; /* vertices (+-s, +-s, +-s) with an even number of minus signs */
+    const sd_v3d v[4] = {{s, s, s}, {s, -s, -s}, {-s, s, -s}, {-s, -s, s}};
+    const double edge = 2 * sqrt(2.0) * s, vol = edge * edge * edge / (6 * sqrt(2.0));
+    sd_error err;
+    sd_shape_desc sd = sd_shape_desc_default();
+    sd.kind = "polyhedron";
+    sd.vertices = v;
+    sd.vertex_count = 4;
+    int tet = sd_world_add_shape(w, "tet", &sd, &err);
+    sd_test_require(tet >= 0, "tetrahedron", &err);
+    sd_body_def b;
+    memset(&b, 0, sizeof b);
+    b.position = sd_test_v(0.0101, 0.0203, 0.0302);
+    double q[4] = {0.9, 0.3, -0.2, 0.25}, qn = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    for (int k = 0; k < 4; ++k)
+        b.orientation[k] = q[k] / qn;
+    b.shape = tet;
+    b.material = mat;
+    sd_test_require(sd_world_add_bodies(w, 1, &b, &err) == SD_OK, "body", &err);
+    const int per_edge[3] = {10, 20, 40};
+    double e[3];
+    const double h = 1.2 * edge; /* the box around it: its bounding sphere fits */
+    for (int k = 0; k < 3; ++k) {
+        sd_porosity po = box_porosity(w, sd_test_v(b.position.x - h, b.position.y - h, b.position.z - h),
+                                      sd_test_v(b.position.x + h, b.position.y + h, b.position.z + h),
+                                      edge / per_edge[k], 0);
+        double got = (double)po.solid * po.voxel[0] * po.voxel[1] * po.voxel[2];
+        e[k] = fabs(got - vol) / vol;
+        printf("   %2d voxels per edge: volume %.6e m^3, expected %.6e, relative error %.2e\n", per_edge[k], got, vol,
+               e[k]);
+    }
+    CHECK(e[2] < e[0]);
+    CHECK_NEAR("tetrahedron volume, relative error at 40 per edge", e[2], 0.0, 5e-3);
+    sd_world_destroy(w);
+}
+
+static void composite_union(void)
+{
+    printf("-- a composite of two spheres overlapping by half a radius (expected the union's volume)\n");
+    int mat;
+    sd_world *w = new_world(3, 2, &mat);
+    const double r = 0.001, c = 0.75 * r; /* centres at +-c: a lens of height 2r - 2c */
+    sd_error err;
+    sd_shape_desc sd = sd_shape_desc_default();
+    sd.kind = "sphere";
+    sd.size = sd_test_v(r, 0, 0);
+    int sph = sd_world_add_shape(w, "ball", &sd, &err);
+    sd_test_require(sph >= 0, "sphere template", &err);
+    sd_composite_element el[2];
+    memset(el, 0, sizeof el);
+    el[0].shape = el[1].shape = sph;
+    el[0].position = sd_test_v(-c, 0, 0);
+    el[1].position = sd_test_v(c, 0, 0);
+    sd_composite_desc cd = sd_composite_desc_default();
+    cd.elements = el;
+    cd.element_count = 2;
+    int comp = sd_world_add_composite(w, "pair", &cd, &err);
+    sd_test_require(comp >= 0, "composite", &err);
+    sd_body_def b;
+    memset(&b, 0, sizeof b);
+    b.shape = comp;
+    b.material = mat;
+    b.orientation[0] = cos(0.3);
+    b.orientation[2] = sin(0.3);
+    sd_test_require(sd_world_add_bodies(w, 1, &b, &err) == SD_OK, "body", &err);
+    const double hcap = r - c, lens = 2 * PI * hcap * hcap * (3 * r - hcap) / 3;
+    const double vol = 2 * (4 * PI * r * r * r / 3) - lens;
+    sd_porosity po = box_porosity(w, sd_test_v(-2 * r, -2 * r, -2 * r), sd_test_v(2 * r, 2 * r, 2 * r), r / 25, 0);
+    double got = (double)po.solid * po.voxel[0] * po.voxel[1] * po.voxel[2];
+    CHECK_REL("composite union volume (m^3), 50 voxels per diameter", got, vol, 5e-3);
+    sd_world_destroy(w);
+}
+
+static void circles_2d(void)
+{
+    printf("-- 2D: circles on a square lattice (expected area fraction pi/4)\n");
+    int mat;
+    sd_world *w = new_world(2, 2, &mat);
+    const double r = 0.001, d = 2 * r;
+    sd_sphere_def s[25];
+    memset(s, 0, sizeof s);
+    for (int k = 0; k < 25; ++k) {
+        s[k].position = sd_test_v((k % 5 + 0.5) * d, (k / 5 + 0.5) * d, 0);
+        s[k].radius = r;
+        s[k].material = mat;
+    }
+    sd_error err;
+    sd_test_require(sd_world_add_spheres(w, 25, s, &err) == SD_OK, "circles", &err);
+    const int per_d[3] = {10, 40, 160};
+    double e[3];
+    for (int k = 0; k < 3; ++k) {
+        sd_porosity po = box_porosity(w, sd_test_v(0, 0, 0), sd_test_v(5 * d, 5 * d, 0), d / per_d[k], 0);
+        e[k] = fabs(po.solid_fraction - PI / 4);
+        printf("   %2d pixels per diameter (%lld): area fraction %.6f, expected %.6f, error %.2e\n", per_d[k],
+               po.voxels, po.solid_fraction, PI / 4, e[k]);
+    }
+    CHECK(e[2] < e[0]);
+    CHECK_NEAR("2D area fraction, 160 pixels per diameter", e[2] + PI / 4, PI / 4, 2e-3);
+    sd_world_destroy(w);
+}
+
+static void radial_profile(void)
+{
+    printf("-- radial profile: a cylinder region about a coaxial cylinder of half its radius\n");
+    int mat;
+    sd_world *w = new_world(3, 2, &mat);
+    const double R = 0.01, L = 0.01;
+    sd_error err;
+    sd_shape_desc sd = sd_shape_desc_default();
+    sd.kind = "cylinder";
+    sd.size = sd_test_v(R, 0, 2 * L); /* diameter R: radius R/2; longer than the region */
+    int cyl = sd_world_add_shape(w, "rod", &sd, &err);
+    sd_test_require(cyl >= 0, "cylinder", &err);
+    sd_body_def b;
+    memset(&b, 0, sizeof b);
+    b.shape = cyl;
+    b.material = mat;
+    /* the rod along x (a quarter turn about y), the region's axis too */
+    b.orientation[0] = cos(PI / 4);
+    b.orientation[2] = sin(PI / 4);
+    sd_test_require(sd_world_add_bodies(w, 1, &b, &err) == SD_OK, "rod", &err);
+    sd_porosity_def d = sd_porosity_def_default();
+    d.region.kind = SD_REGION_CYLINDER;
+    d.region.axis = sd_test_v(1, 0, 0);
+    d.region.radius = R;
+    d.region.length = L;
+    d.voxel = R / 40;
+    d.radial_bins = 4;
+    long long rs[4], rv[4];
+    sd_porosity po;
+    sd_test_require(sd_world_porosity(w, &d, &po, rs, rv, &err) == SD_OK, "radial", &err);
+    for (int k = 0; k < 4; ++k) {
+        char label[64];
+        snprintf(label, sizeof label, "solid fraction of annulus %d (%lld voxels)", k, rv[k]);
+        CHECK_NEAR(label, (double)rs[k] / (double)rv[k], k < 2 ? 1.0 : 0.0, 0.0);
+    }
+    CHECK_NEAR("solid fraction of the cylinder region", po.solid_fraction, 0.25, 0.01);
+    sd_world_destroy(w);
+}
+
+static void periodic_image(void)
+{
+    printf("-- periodic box: a sphere across x = 0 counts with its image\n");
+    sd_error err;
+    sd_world *w;
+    sd_world_def wd = sd_world_def_default();
+    wd.dt = 1e-6;
+    wd.periodic = SD_PERIODIC_X;
+    wd.domain_lo = sd_test_v(0, 0, 0);
+    wd.domain_hi = sd_test_v(0.01, 0.01, 0.01);
+    sd_test_require(sd_world_create(&wd, &w, &err) == SD_OK, "world", &err);
+    sd_material_def m = sd_material_def_default();
+    m.youngs_modulus = 1e7;
+    int mat = sd_world_add_material(w, &m, &err);
+    sd_sphere_def s;
+    memset(&s, 0, sizeof s);
+    s.position = sd_test_v(0.0002, 0.005, 0.005);
+    s.radius = 0.001;
+    s.material = mat;
+    sd_test_require(sd_world_add_spheres(w, 1, &s, &err) == SD_OK, "sphere", &err);
+    sd_porosity po = box_porosity(w, sd_test_v(0, 0.0035, 0.0035), sd_test_v(0.01, 0.0065, 0.0065), 0.00004, 0);
+    double got = (double)po.solid * po.voxel[0] * po.voxel[1] * po.voxel[2], vol = 4 * PI * 1e-9 / 3;
+    CHECK_REL("sphere volume across the periodic boundary (m^3)", got, vol, 5e-3);
+    sd_world_destroy(w);
+}
+
+int main(void)
+{
+    spheres_lattice();
+    cubes_face_to_face();
+    tetrahedron();
+    composite_union();
+    circles_2d();
+    radial_profile();
+    periodic_image();
+    return sd_test_summary();
+}
