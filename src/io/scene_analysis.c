@@ -17,6 +17,7 @@
 #include <string.h>
 
 #include "core/alloc.h"
+#include "io/fsutil.h"
 
 static const char *const sd_an_type_names[SD_AN_TYPE_COUNT] = {
 #define SD_X_AN_NAME(e, name, doc) name,
@@ -349,14 +350,23 @@ sd_status sd_analysis_run_open(const sd_scene *s, const char *dir, sd_analysis_r
         const sd_scene_analysis_entry *e = &a->sa->e[k];
         char path[SD_SCENE_PATH_MAX + 96];
         snprintf(path, sizeof path, "%s/%s", dir, e->file);
-        a->f[k] = fopen(path, "w");
         a->last[k] = -1;
-        a->count = k + 1;
-        if (!a->f[k]) {
-            a->count = k;
+        /* as the run's own CSV files (io/output.c): a plain file of an
+         * earlier run is replaced; a link or a directory under the name is
+         * refused, never written through */
+        const char *what = sd_fs_not_regular(path);
+        if (what) {
             sd_analysis_run_close(a);
-            return sd_error_set(err, SD_ERR_IO, path, 0, "", "cannot write the analysis file");
+            return sd_error_set(err, SD_ERR_IO, path, 0, "", "%s has the name of analysis '%s''s file; shapedem "
+                                                             "will not write through it", what, e->name);
         }
+        remove(path);
+        sd_status st = sd_fs_create_append(path, &a->f[k], err);
+        if (st != SD_OK) {
+            sd_analysis_run_close(a);
+            return st;
+        }
+        a->count = k + 1;
         sd_an_header(a->f[k], e);
         fflush(a->f[k]);
     }

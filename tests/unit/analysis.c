@@ -13,7 +13,7 @@
  *  - a bed in a drum with its surface tilted at 30 degrees (a lattice
  *    turned by 30 degrees, positions jittered by 0.3 and 0.1 spacings
  *    along and across the surface): the surface angle within 1 degree; a conical heap of slope 30 degrees: the angle of repose
- *    within 1 degree;
+ *    within 1 degree; the same two in 2D (a disc drum, a heap's two flanks);
  *  - the analysis: section of a scene, run: each CSV file exists with its
  *    header and a row per cadence.
  */
@@ -305,6 +305,66 @@ static void heap(void)
     sd_world_destroy(w);
 }
 
+static void planar(void)
+{
+    printf("-- 2D: a disc drum's bed with its surface at 30 degrees; a heap of flanks at 30 degrees\n");
+    sd_error err;
+    sd_world *w;
+    sd_world_def d = sd_world_def_default();
+    d.dimension = 2;
+    d.dt = 1e-7;
+    d.gravity = sd_test_v(0, -9.81, 0);
+    sd_test_require(sd_world_create(&d, &w, &err) == SD_OK, "world", &err);
+    sd_material_def m = sd_material_def_default();
+    m.youngs_modulus = 1e7;
+    int mat = sd_world_add_material(w, &m, &err);
+    const double R = 0.05, r = 0.0014, sp = 0.003, t = 30 * PI / 180;
+    static sd_sphere_def s[4000];
+    memset(s, 0, sizeof s);
+    int n = 0;
+    /* in the disc drum about z, up is +y and across is e = up x z = +x */
+    for (int j = 0; j < 12; ++j)
+        for (int i = -40; i <= 40; ++i) {
+            double a = i * sp + 0.3 * sp * jitter((unsigned)(n + 5)), b = -j * sp + 0.1 * sp * jitter((unsigned)n);
+            double x = a * cos(t) - b * sin(t), y = a * sin(t) + b * cos(t);
+            if (x * x + y * y > (R - r) * (R - r))
+                continue;
+            s[n].position = sd_test_v(x, y, 0);
+            s[n].radius = r;
+            s[n].material = mat;
+            n++;
+        }
+    sd_test_require(sd_world_add_spheres(w, (size_t)n, s, &err) == SD_OK, "discs", &err);
+    sd_region_def drum;
+    memset(&drum, 0, sizeof drum);
+    drum.kind = SD_REGION_CYLINDER;
+    drum.axis = sd_test_v(0, 0, 1);
+    drum.radius = R;
+    const double fit[2] = {0.2, 0.8};
+    sd_surface_fit f;
+    sd_test_require(sd_world_drum_surface(w, &drum, 20, fit, &f, &err) == SD_OK, "drum", &err);
+    CHECK_NEAR("2D drum free-surface angle (deg)", f.angle, 30.0, 1.0);
+    sd_world_destroy(w);
+
+    sd_test_require(sd_world_create(&d, &w, &err) == SD_OK, "world", &err);
+    mat = sd_world_add_material(w, &m, &err);
+    n = 0;
+    for (int i = -30; i <= 30; ++i)
+        for (int j = 0; j < 3; ++j) {
+            double x = 0.02 + i * sp, y = 0.05 - tan(t) * fabs(i * sp) - j * 2 * sp;
+            if (y < r)
+                continue;
+            s[n].position = sd_test_v(x, y, 0);
+            s[n].radius = r;
+            s[n].material = mat;
+            n++;
+        }
+    sd_test_require(sd_world_add_spheres(w, (size_t)n, s, &err) == SD_OK, "discs", &err);
+    sd_test_require(sd_world_heap_angle(w, NULL, 20, fit, &f, &err) == SD_OK, "heap", &err);
+    CHECK_NEAR("2D heap angle of repose (deg)", f.angle, 30.0, 1.0);
+    sd_world_destroy(w);
+}
+
 static int count_lines(const char *path, char *first, size_t size)
 {
     FILE *f = fopen(path, "r");
@@ -413,6 +473,7 @@ int main(void)
     speeds_and_heights();
     drum_surface();
     heap();
+    planar();
     scene_section();
     return sd_test_summary();
 }
