@@ -42,20 +42,20 @@ typedef struct sd_porosity_def {
 sd_porosity_def sd_porosity_def_default(void);
 
 typedef struct sd_porosity {
-    long long voxels;     /* voxel centres in the region */
-    long long solid;      /* of those, inside a particle */
-    double solid_fraction;/* solid / voxels (packing fraction) */
-    double porosity;      /* 1 - solid_fraction */
-    double voxel[3];      /* m, the edges used (the cylinder's: u, v, axis) */
-    double volume;        /* m^3 (m^2 in 2D): voxels x voxel volume */
+    long long voxels;      /* voxel centres in the region */
+    long long solid;       /* of those, inside a particle */
+    double solid_fraction; /* solid / voxels (packing fraction) */
+    double porosity;       /* 1 - solid_fraction */
+    double voxel[3];       /* m, the edges used (the cylinder's: u, v, axis) */
+    double volume;         /* m^3 (m^2 in 2D): voxels x voxel volume */
 } sd_porosity;
 
 /* radial_solid, radial_voxels: radial_bins counts each (bin k spans radii
  * [k, k + 1) R / bins), or NULL. SD_ERR_INPUT for a bad def or more than
  * SD_POROSITY_MAX_VOXELS voxels. */
 #define SD_POROSITY_MAX_VOXELS 4000000000LL
-sd_status sd_world_porosity(const sd_world *w, const sd_porosity_def *def, sd_porosity *out,
-                            long long *radial_solid, long long *radial_voxels, sd_error *err);
+sd_status sd_world_porosity(const sd_world *w, const sd_porosity_def *def, sd_porosity *out, long long *radial_solid,
+                            long long *radial_voxels, sd_error *err);
 
 /* ---- coordination ------------------------------------------------------------
  * From the current contact list (cells solver): two particles are in
@@ -66,12 +66,12 @@ sd_status sd_world_porosity(const sd_world *w, const sd_porosity_def *def, sd_po
 #define SD_COORDINATION_MAX 24
 
 typedef struct sd_coordination {
-    size_t particles;     /* counted (all the solver holds) */
-    long contacts;        /* particle-particle contacts */
-    long wall_contacts;   /* particle-wall-feature contacts */
-    double mean;          /* 2 contacts / particles */
-    double mean_with_walls; /* (2 contacts + wall_contacts) / particles */
-    size_t rattlers;      /* particles touching neither a particle nor a wall */
+    size_t particles;                          /* counted (all the solver holds) */
+    long contacts;                             /* particle-particle contacts */
+    long wall_contacts;                        /* particle-wall-feature contacts */
+    double mean;                               /* 2 contacts / particles */
+    double mean_with_walls;                    /* (2 contacts + wall_contacts) / particles */
+    size_t rattlers;                           /* particles touching neither a particle nor a wall */
     size_t histogram[SD_COORDINATION_MAX + 1]; /* particles with Z = k; the last entry: Z >= MAX */
 } sd_coordination;
 
@@ -81,15 +81,14 @@ sd_status sd_world_coordination(const sd_world *w, sd_coordination *out, sd_erro
  * region: only particles whose centre lies in it (NULL or kind NONE: all). */
 typedef struct sd_motion_stats {
     size_t particles;
-    double mass;                   /* kg */
-    double kinetic_translational;  /* J, sum m v^2 / 2 */
-    double kinetic_rotational;     /* J, sum w_b . I w_b / 2, body frame */
-    double mean_speed, max_speed;  /* m/s */
-    sd_v3d mean_velocity;          /* m/s, by number */
+    double mass;                  /* kg */
+    double kinetic_translational; /* J, sum m v^2 / 2 */
+    double kinetic_rotational;    /* J, sum w_b . I w_b / 2, body frame */
+    double mean_speed, max_speed; /* m/s */
+    sd_v3d mean_velocity;         /* m/s, by number */
 } sd_motion_stats;
 
-sd_status sd_world_motion_stats(const sd_world *w, const sd_region_def *region, sd_motion_stats *out,
-                                sd_error *err);
+sd_status sd_world_motion_stats(const sd_world *w, const sd_region_def *region, sd_motion_stats *out, sd_error *err);
 
 /* Histogram of speeds: bins of equal width over [0, max_speed) (max_speed
  * <= 0: the fastest particle's speed; a speed at or above the top goes in
@@ -110,28 +109,28 @@ typedef struct sd_velocity_field_def {
 
 sd_velocity_field_def sd_velocity_field_def_default(void);
 /* count, mean: cells[0] * cells[1] entries (mean 0 where count is 0). */
-sd_status sd_world_velocity_field(const sd_world *w, const sd_velocity_field_def *def, size_t *count,
-                                  sd_v3d *mean, sd_error *err);
+sd_status sd_world_velocity_field(const sd_world *w, const sd_velocity_field_def *def, size_t *count, sd_v3d *mean,
+                                  sd_error *err);
 
 /* ---- bed and surfaces -------------------------------------------------------- */
 typedef struct sd_bed_height {
     size_t particles;
-    double top;           /* m, the highest point of any particle's true shape, along up */
+    double top;             /* m, the highest point of any particle's true shape, along up */
     double fraction_height; /* m, height below which `fraction` of the mass lies (centres) */
-    double mean;          /* m, mass-weighted mean height of the centres */
+    double mean;            /* m, mass-weighted mean height of the centres */
 } sd_bed_height;
 
-sd_status sd_world_bed_height(const sd_world *w, const sd_region_def *region, double fraction,
-                              sd_bed_height *out, sd_error *err);
+sd_status sd_world_bed_height(const sd_world *w, const sd_region_def *region, double fraction, sd_bed_height *out,
+                              sd_error *err);
 
 /* A free surface fitted by least squares: the surface height in each of
  * `bins` columns is the highest point of the particles in it; the line
  * through the columns within the fit range gives the angle. */
 typedef struct sd_surface_fit {
-    double angle;         /* degrees, >= 0: the surface's inclination from horizontal */
-    double slope;         /* -, dh/ds of the fitted line (signed) */
-    double rms;           /* m, root mean square of the columns about the line */
-    int columns;          /* columns in the fit (at least 2 for an angle; 0: none) */
+    double angle; /* degrees, >= 0: the surface's inclination from horizontal */
+    double slope; /* -, dh/ds of the fitted line (signed) */
+    double rms;   /* m, root mean square of the columns about the line */
+    int columns;  /* columns in the fit (at least 2 for an angle; 0: none) */
 } sd_surface_fit;
 
 /* Drum (a cylinder region: the drum's inside; its axis not vertical): in

@@ -18,17 +18,17 @@
 
 /* A particle as the analyses see it. */
 typedef struct sd_an_body {
-    sd_vec3 x, v, w;   /* m, m/s, rad/s (world frame) */
-    sd_quat q;         /* principal frame to world */
-    sd_real mass;      /* kg (0: fixed, taken as massless in the sums) */
-    sd_real bound;     /* m, bounding radius (a sphere's radius) */
-    int shape;         /* template (3D: w->shapes, 2D: w->shapes2d), -1 a sphere (a circle in 2D) */
+    sd_vec3 x, v, w; /* m, m/s, rad/s (world frame) */
+    sd_quat q;       /* principal frame to world */
+    sd_real mass;    /* kg (0: fixed, taken as massless in the sums) */
+    sd_real bound;   /* m, bounding radius (a sphere's radius) */
+    int shape;       /* template (3D: w->shapes, 2D: w->shapes2d), -1 a sphere (a circle in 2D) */
 } sd_an_body;
 
 typedef struct sd_an_set {
     size_t n;
     sd_an_body *b;
-    sd_vec3 up;        /* unit: -gravity, or +z (+y in 2D) without gravity */
+    sd_vec3 up; /* unit: -gravity, or +z (+y in 2D) without gravity */
     int dim2;
 } sd_an_set;
 
@@ -39,11 +39,11 @@ void sd_an_free(sd_an_set *s);
 /* A region as the tests need it: box, or cylinder with its unit axis and
  * two unit vectors e1, e2 completing a right-handed frame (e1 x e2 = a). */
 typedef struct sd_an_region {
-    int kind;          /* SD_REGION_NONE (all), _BOX, _CYLINDER */
+    int kind; /* SD_REGION_NONE (all), _BOX, _CYLINDER */
     sd_vec3 lo, hi;
     sd_vec3 c, a, e1, e2;
     sd_real radius, half; /* m; half length (2D: unbounded along the axis) */
-    sd_vec3 blo, bhi;  /* m, its bounding box */
+    sd_vec3 blo, bhi;     /* m, its bounding box */
 } sd_an_region;
 
 /* SD_ERR_INPUT (key "region") for an empty region or a zero axis. */

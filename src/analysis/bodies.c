@@ -47,8 +47,7 @@ sd_status sd_an_gather(const sd_world *w, sd_an_set *out, sd_error *err)
         sd_an_body *b = &out->b[out->n++];
         b->x = sd_v3((sd_real)ps.position.x, (sd_real)ps.position.y, (sd_real)ps.position.z);
         b->v = sd_v3((sd_real)ps.velocity.x, (sd_real)ps.velocity.y, (sd_real)ps.velocity.z);
-        b->w = sd_v3((sd_real)ps.angular_velocity.x, (sd_real)ps.angular_velocity.y,
-                     (sd_real)ps.angular_velocity.z);
+        b->w = sd_v3((sd_real)ps.angular_velocity.x, (sd_real)ps.angular_velocity.y, (sd_real)ps.angular_velocity.z);
         b->q = sd_quat_make((sd_real)ps.quat[0], (sd_real)ps.quat[1], (sd_real)ps.quat[2], (sd_real)ps.quat[3]);
         b->mass = isfinite(ps.mass) ? (sd_real)ps.mass : SD_R(0.0); /* a fixed body: no mass in the sums */
         b->bound = (sd_real)ps.radius;
@@ -121,7 +120,8 @@ int sd_an_region_has(const sd_an_region *r, sd_vec3 x)
         sd_vec3 rad = sd_v3_sub(d, sd_v3_scale(r->a, s));
         return sd_v3_dot(rad, rad) <= r->radius * r->radius;
     }
-    default: return 1;
+    default:
+        return 1;
     }
 }
 

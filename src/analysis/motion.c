@@ -122,7 +122,8 @@ sd_status sd_world_velocity_field(const sd_world *w, const sd_velocity_field_def
         if (!sd_an_region_has(&r, b->x))
             continue;
         const double x[3] = {b->x.x, b->x.y, b->x.z};
-        long i = (long)((x[au] - lo[au]) / (hi[au] - lo[au]) * nu), j = (long)((x[av] - lo[av]) / (hi[av] - lo[av]) * nv);
+        long i = (long)((x[au] - lo[au]) / (hi[au] - lo[au]) * nu),
+             j = (long)((x[av] - lo[av]) / (hi[av] - lo[av]) * nv);
         i = i < 0 ? 0 : i >= nu ? nu - 1 : i;
         j = j < 0 ? 0 : j >= nv ? nv - 1 : j;
         size_t c = (size_t)i + (size_t)nu * (size_t)j;

@@ -46,11 +46,11 @@ sd_porosity_def sd_porosity_def_default(void)
  * region's box, binned. */
 typedef struct sd_an_bin {
     size_t n;
-    sd_an_body *b;       /* bodies (images shifted) */
-    sd_vec3 lo;          /* m, corner of cell (0, 0, 0) */
-    sd_real cs;          /* m, cell edge */
+    sd_an_body *b; /* bodies (images shifted) */
+    sd_vec3 lo;    /* m, corner of cell (0, 0, 0) */
+    sd_real cs;    /* m, cell edge */
     int nc[3];
-    uint32_t *start;     /* nc[0] nc[1] nc[2] + 1 offsets into idx */
+    uint32_t *start; /* nc[0] nc[1] nc[2] + 1 offsets into idx */
     uint32_t *idx;
 } sd_an_bin;
 
@@ -75,9 +75,9 @@ static sd_status sd_an_bin_make(const sd_world *w, const sd_an_set *set, const s
     memset(g, 0, sizeof *g);
     /* periodic shifts on the periodic axes: -1, 0, +1 periods */
     const unsigned per = w->def.periodic;
-    const sd_vec3 L = sd_v3((sd_real)(w->def.domain_hi.x - w->def.domain_lo.x),
-                            (sd_real)(w->def.domain_hi.y - w->def.domain_lo.y),
-                            (sd_real)(w->def.domain_hi.z - w->def.domain_lo.z));
+    const sd_vec3 L =
+        sd_v3((sd_real)(w->def.domain_hi.x - w->def.domain_lo.x), (sd_real)(w->def.domain_hi.y - w->def.domain_lo.y),
+              (sd_real)(w->def.domain_hi.z - w->def.domain_lo.z));
     int sx = (per & SD_PERIODIC_X) ? 1 : 0, sy = (per & SD_PERIODIC_Y) ? 1 : 0, sz = (per & SD_PERIODIC_Z) ? 1 : 0;
     size_t cap = set->n * (size_t)((2 * sx + 1) * (2 * sy + 1) * (2 * sz + 1));
     g->b = sd_calloc(cap ? cap : 1, sizeof *g->b);
@@ -161,12 +161,13 @@ static int sd_an_solid(const sd_world *w, const sd_an_bin *g, sd_vec3 p)
     return 0;
 }
 
-sd_status sd_world_porosity(const sd_world *w, const sd_porosity_def *def, sd_porosity *out,
-                            long long *radial_solid, long long *radial_voxels, sd_error *err)
+sd_status sd_world_porosity(const sd_world *w, const sd_porosity_def *def, sd_porosity *out, long long *radial_solid,
+                            long long *radial_voxels, sd_error *err)
 {
     memset(out, 0, sizeof *out);
     if (!def || def->cookie != SD_COOKIE_ANALYSIS)
-        return sd_error_set(err, SD_ERR_INPUT, "", 0, "", "sd_porosity_def not initialised with sd_porosity_def_default");
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "",
+                            "sd_porosity_def not initialised with sd_porosity_def_default");
     if (def->region.kind != SD_REGION_BOX && def->region.kind != SD_REGION_CYLINDER)
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "region", "porosity needs a box or a cylinder region");
     if (!(def->voxel > 0))

@@ -143,8 +143,8 @@ static sd_status sd_an_fit_check(int bins, const double fit[2], sd_error *err)
     if (bins < 2)
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "bins", "expected at least 2 columns, got %d", bins);
     if (!(fit[0] >= 0 && fit[1] <= 1 && fit[1] > fit[0]))
-        return sd_error_set(err, SD_ERR_INPUT, "", 0, "fit", "expected 0 <= fit[0] < fit[1] <= 1, got [%g, %g]",
-                            fit[0], fit[1]);
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "fit", "expected 0 <= fit[0] < fit[1] <= 1, got [%g, %g]", fit[0],
+                            fit[1]);
     return SD_OK;
 }
 
@@ -166,8 +166,9 @@ sd_status sd_world_drum_surface(const sd_world *w, const sd_region_def *drum, in
     sd_vec3 e = sd_v3_cross(set.up, r.a);
     if (!(sd_v3_norm(u) > SD_R(1e-6)) || !(sd_v3_norm(e) > SD_R(1e-6))) {
         sd_an_free(&set);
-        return sd_error_set(err, SD_ERR_INPUT, "", 0, "axis", "the drum's axis is vertical: its cross section has no "
-                                                              "free-surface angle");
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "axis",
+                            "the drum's axis is vertical: its cross section has no "
+                            "free-surface angle");
     }
     u = sd_v3_normalize(u);
     e = sd_v3_normalize(e);

@@ -27,7 +27,10 @@ static const char *const sd_an_type_names[SD_AN_TYPE_COUNT] = {
 
 /* Defaults the key table cannot hold as numbers (its default column says
  * the same words): bins per type, the fit range, the velocity cells. */
-static int sd_an_default_bins(int type) { return type == SD_AN_RADIAL_POROSITY ? 10 : 20; }
+static int sd_an_default_bins(int type)
+{
+    return type == SD_AN_RADIAL_POROSITY ? 10 : 20;
+}
 
 /* The region's bounding box (cylinder: the box around its two end discs). */
 static void sd_an_region_bounds(const sd_region_def *r, double lo[3], double hi[3])
@@ -57,24 +60,27 @@ static sd_status sd_an_parse_region(sd_parse *p, yaml_node_t *m, const char *pat
     if (!has_region) {
         for (int k = 0; k < 2; ++k)
             if (sd_yaml_map_get(&p->y, m, box_keys[k]))
-                return sd_fail(p, sd_yaml_key_line(&p->y, m, box_keys[k]), sd_yaml_kp(key, sizeof key, path, box_keys[k]),
+                return sd_fail(p, sd_yaml_key_line(&p->y, m, box_keys[k]),
+                               sd_yaml_kp(key, sizeof key, path, box_keys[k]),
                                "'%s' belongs to a region: give region: box with it", box_keys[k]);
         for (int k = 0; k < 4; ++k)
             if (sd_yaml_map_get(&p->y, m, cyl_keys[k]) && !(k == 0 && e->type == SD_AN_REPOSE_ANGLE))
-                return sd_fail(p, sd_yaml_key_line(&p->y, m, cyl_keys[k]), sd_yaml_kp(key, sizeof key, path, cyl_keys[k]),
+                return sd_fail(p, sd_yaml_key_line(&p->y, m, cyl_keys[k]),
+                               sd_yaml_kp(key, sizeof key, path, cyl_keys[k]),
                                "'%s' belongs to a region: give region: cylinder with it", cyl_keys[k]);
         return SD_OK;
     }
     int line = v.line;
     if (e->type == SD_AN_COORDINATION || e->type == SD_AN_REPOSE_ANGLE)
-        return sd_fail(p, line, sd_yaml_kp(key, sizeof key, path, "region"),
-                       "%s takes no region (%s)", sd_an_type_names[e->type],
+        return sd_fail(p, line, sd_yaml_kp(key, sizeof key, path, "region"), "%s takes no region (%s)",
+                       sd_an_type_names[e->type],
                        e->type == SD_AN_COORDINATION ? "it counts every contact"
                                                      : "the heap is found about center, default its centre of mass");
     if (v.choice == 0) { /* box */
         for (int k = 0; k < 4; ++k)
             if (sd_yaml_map_get(&p->y, m, cyl_keys[k]))
-                return sd_fail(p, sd_yaml_key_line(&p->y, m, cyl_keys[k]), sd_yaml_kp(key, sizeof key, path, cyl_keys[k]),
+                return sd_fail(p, sd_yaml_key_line(&p->y, m, cyl_keys[k]),
+                               sd_yaml_kp(key, sizeof key, path, cyl_keys[k]),
                                "'%s' is a cylinder key; a box region takes min and max", cyl_keys[k]);
         if (!sd_yaml_get(&p->y, m, SD_SEC_ANALYSIS, "min", path, &lo) ||
             !sd_yaml_get(&p->y, m, SD_SEC_ANALYSIS, "max", path, &hi))
@@ -89,9 +95,9 @@ static sd_status sd_an_parse_region(sd_parse *p, yaml_node_t *m, const char *pat
     } else {
         for (int k = 0; k < 2; ++k)
             if (sd_yaml_map_get(&p->y, m, box_keys[k]))
-                return sd_fail(p, sd_yaml_key_line(&p->y, m, box_keys[k]), sd_yaml_kp(key, sizeof key, path, box_keys[k]),
-                               "'%s' is a box key; a cylinder region takes center, axis, radius and length",
-                               box_keys[k]);
+                return sd_fail(
+                    p, sd_yaml_key_line(&p->y, m, box_keys[k]), sd_yaml_kp(key, sizeof key, path, box_keys[k]),
+                    "'%s' is a box key; a cylinder region takes center, axis, radius and length", box_keys[k]);
         sd_yaml_value c, ax, r, len;
         if (!sd_yaml_get(&p->y, m, SD_SEC_ANALYSIS, "center", path, &c) ||
             !sd_yaml_get(&p->y, m, SD_SEC_ANALYSIS, "radius", path, &r))
@@ -107,8 +113,8 @@ static sd_status sd_an_parse_region(sd_parse *p, yaml_node_t *m, const char *pat
                            "expected a non-zero axis");
         if (planar && (ax.v[0] != 0 || ax.v[1] != 0))
             return sd_fail(p, ax.line, sd_yaml_kp(key, sizeof key, path, "axis"),
-                           "in 2D a cylinder region is the disc of the plane: its axis is z, got [%g, %g, %g]",
-                           ax.v[0], ax.v[1], ax.v[2]);
+                           "in 2D a cylinder region is the disc of the plane: its axis is z, got [%g, %g, %g]", ax.v[0],
+                           ax.v[1], ax.v[2]);
         e->region.kind = SD_REGION_CYLINDER;
         e->region.center = sd_parse_v3(c.v);
         e->region.axis = sd_parse_v3(ax.v);
@@ -125,7 +131,8 @@ static sd_status sd_an_parse_region(sd_parse *p, yaml_node_t *m, const char *pat
         if (dh[a] > dl[a] && (rl[a] < dl[a] - 1e-12 || rh[a] > dh[a] + 1e-12))
             return sd_fail(p, line, sd_yaml_kp(key, sizeof key, path, "region"),
                            "the analysis region spans [%g, %g] m on %c, outside the domain [%g, %g] m "
-                           "(simulation.domain)", rl[a], rh[a], 'x' + a, dl[a], dh[a]);
+                           "(simulation.domain)",
+                           rl[a], rh[a], 'x' + a, dl[a], dh[a]);
     return SD_OK;
 }
 
@@ -138,8 +145,9 @@ static sd_status sd_an_parse_entry(sd_parse *p, yaml_node_t *m, const char *path
     yaml_node_t *tn = sd_yaml_map_get(&p->y, m, "type");
     snprintf(key, sizeof key, "%s.type", path);
     if (!tn)
-        return sd_fail(p, line, key, "missing required key 'type' (porosity, radial_porosity, coordination, "
-                                     "velocity_field, speed_pdf, energy, bed_height, surface_angle, repose_angle)");
+        return sd_fail(p, line, key,
+                       "missing required key 'type' (porosity, radial_porosity, coordination, "
+                       "velocity_field, speed_pdf, energy, bed_height, surface_angle, repose_angle)");
     if ((st = sd_yaml_read_value(&p->y, sd_scene_key_find(SD_SEC_ANALYSIS, "type"), tn, key, &v)))
         return st;
     e->type = v.choice;
@@ -149,8 +157,9 @@ static sd_status sd_an_parse_entry(sd_parse *p, yaml_node_t *m, const char *path
         return st;
     const int planar = p->s->world.dimension == 2;
     if (e->type == SD_AN_COORDINATION && p->s->world.solver == SD_SOLVER_GRID)
-        return sd_fail(p, v.line, key, "coordination reads the cells solver's contact list; the grid solver "
-                                       "keeps none (simulation.solver: cells)");
+        return sd_fail(p, v.line, key,
+                       "coordination reads the cells solver's contact list; the grid solver "
+                       "keeps none (simulation.solver: cells)");
     if ((st = sd_an_parse_region(p, m, path, e)))
         return st;
     if (e->type == SD_AN_RADIAL_POROSITY || e->type == SD_AN_SURFACE_ANGLE) {
@@ -178,7 +187,8 @@ static sd_status sd_an_parse_entry(sd_parse *p, yaml_node_t *m, const char *path
             strlen(v.str) >= sizeof e->file)
             return sd_fail(p, v.line, sd_yaml_kp(key, sizeof key, path, "file"),
                            "expected a plain file name (no directory, at most %zu characters) in the output "
-                           "directory, got '%s'", sizeof e->file - 1, v.str);
+                           "directory, got '%s'",
+                           sizeof e->file - 1, v.str);
         snprintf(e->file, sizeof e->file, "%s", v.str);
     }
     /* cadence: every steps, or interval seconds rounded to steps */
@@ -324,16 +334,25 @@ static void sd_an_header(FILE *f, const sd_scene_analysis_entry *e)
             fprintf(f, ",z%d", k);
         fprintf(f, ",z%d_or_more\n", SD_COORDINATION_MAX);
         break;
-    case SD_AN_VELOCITY_FIELD: fprintf(f, "time,step,i,j,u,v,count,vx,vy,vz\n"); break;
-    case SD_AN_SPEED_PDF: fprintf(f, "time,step,bin,speed_lo,speed_hi,count,pdf\n"); break;
+    case SD_AN_VELOCITY_FIELD:
+        fprintf(f, "time,step,i,j,u,v,count,vx,vy,vz\n");
+        break;
+    case SD_AN_SPEED_PDF:
+        fprintf(f, "time,step,bin,speed_lo,speed_hi,count,pdf\n");
+        break;
     case SD_AN_ENERGY:
         fprintf(f, "time,step,particles,mass,kinetic_translational,kinetic_rotational,kinetic_total,mean_speed,"
                    "max_speed,mean_vx,mean_vy,mean_vz\n");
         break;
-    case SD_AN_BED_HEIGHT: fprintf(f, "time,step,particles,top,fraction_height,mean_height\n"); break;
+    case SD_AN_BED_HEIGHT:
+        fprintf(f, "time,step,particles,top,fraction_height,mean_height\n");
+        break;
     case SD_AN_SURFACE_ANGLE:
-    case SD_AN_REPOSE_ANGLE: fprintf(f, "time,step,angle_deg,slope,rms,columns\n"); break;
-    default: break;
+    case SD_AN_REPOSE_ANGLE:
+        fprintf(f, "time,step,angle_deg,slope,rms,columns\n");
+        break;
+    default:
+        break;
     }
 }
 
@@ -357,8 +376,10 @@ sd_status sd_analysis_run_open(const sd_scene *s, const char *dir, sd_analysis_r
         const char *what = sd_fs_not_regular(path);
         if (what) {
             sd_analysis_run_close(a);
-            return sd_error_set(err, SD_ERR_IO, path, 0, "", "%s has the name of analysis '%s''s file; shapedem "
-                                                             "will not write through it", what, e->name);
+            return sd_error_set(err, SD_ERR_IO, path, 0, "",
+                                "%s has the name of analysis '%s''s file; shapedem "
+                                "will not write through it",
+                                what, e->name);
         }
         remove(path);
         sd_status st = sd_fs_create_append(path, &a->f[k], err);
@@ -421,8 +442,8 @@ static sd_status sd_an_rows(sd_analysis_run *a, const sd_scene_analysis_entry *e
             double dr = e->region.radius / d.radial_bins;
             for (int b = 0; b < d.radial_bins; ++b) {
                 double sf = rv[b] > 0 ? (double)rs[b] / (double)rv[b] : 0.0;
-                fprintf(f, "%.10g,%ld,%d,%.10g,%.10g,%lld,%lld,%.10g,%.10g\n", t, step, b, b * dr, (b + 1) * dr,
-                        rv[b], rs[b], sf, rv[b] > 0 ? 1.0 - sf : 0.0);
+                fprintf(f, "%.10g,%ld,%d,%.10g,%.10g,%lld,%lld,%.10g,%.10g\n", t, step, b, b * dr, (b + 1) * dr, rv[b],
+                        rs[b], sf, rv[b] > 0 ? 1.0 - sf : 0.0);
             }
         }
         sd_free(rs);
@@ -490,8 +511,8 @@ static sd_status sd_an_rows(sd_analysis_run *a, const sd_scene_analysis_entry *e
         sd_motion_stats m;
         if ((st = sd_world_motion_stats(w, reg, &m, err)) != SD_OK)
             return st;
-        fprintf(f, "%.10g,%ld,%zu,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g\n", t, step, m.particles, m.mass,
-                m.kinetic_translational, m.kinetic_rotational, m.kinetic_translational + m.kinetic_rotational,
+        fprintf(f, "%.10g,%ld,%zu,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g\n", t, step, m.particles,
+                m.mass, m.kinetic_translational, m.kinetic_rotational, m.kinetic_translational + m.kinetic_rotational,
                 m.mean_speed, m.max_speed, m.mean_velocity.x, m.mean_velocity.y, m.mean_velocity.z);
         break;
     }
@@ -514,7 +535,8 @@ static sd_status sd_an_rows(sd_analysis_run *a, const sd_scene_analysis_entry *e
         fprintf(f, "%.10g,%ld,%.10g,%.10g,%.10g,%d\n", t, step, s.angle, s.slope, s.rms, s.columns);
         break;
     }
-    default: break;
+    default:
+        break;
     }
     (void)a;
     return st;

@@ -12,41 +12,41 @@
 
 /* X(enum, scene name, what it writes) — the order of the type choices
  * (io/scene_keys.c: the kind bits of SD_SEC_ANALYSIS follow it). */
-#define SD_ANALYSIS_TYPES(X)                                                                            \
-    X(SD_AN_POROSITY, "porosity", "solid fraction and porosity of a region by voxels of the true shapes") \
-    X(SD_AN_RADIAL_POROSITY, "radial_porosity", "the same per annulus of a cylinder")                     \
-    X(SD_AN_COORDINATION, "coordination", "mean coordination number and its distribution")                \
-    X(SD_AN_VELOCITY_FIELD, "velocity_field", "mean velocity per cell of a grid on a plane")              \
-    X(SD_AN_SPEED_PDF, "speed_pdf", "histogram and density of particle speeds")                          \
-    X(SD_AN_ENERGY, "energy", "kinetic energies, mean and largest speed")                                \
-    X(SD_AN_BED_HEIGHT, "bed_height", "highest point, mass-fraction height, mean height")                \
-    X(SD_AN_SURFACE_ANGLE, "surface_angle", "free-surface angle in a drum's cross section")              \
+#define SD_ANALYSIS_TYPES(X)                                                                                           \
+    X(SD_AN_POROSITY, "porosity", "solid fraction and porosity of a region by voxels of the true shapes")              \
+    X(SD_AN_RADIAL_POROSITY, "radial_porosity", "the same per annulus of a cylinder")                                  \
+    X(SD_AN_COORDINATION, "coordination", "mean coordination number and its distribution")                             \
+    X(SD_AN_VELOCITY_FIELD, "velocity_field", "mean velocity per cell of a grid on a plane")                           \
+    X(SD_AN_SPEED_PDF, "speed_pdf", "histogram and density of particle speeds")                                        \
+    X(SD_AN_ENERGY, "energy", "kinetic energies, mean and largest speed")                                              \
+    X(SD_AN_BED_HEIGHT, "bed_height", "highest point, mass-fraction height, mean height")                              \
+    X(SD_AN_SURFACE_ANGLE, "surface_angle", "free-surface angle in a drum's cross section")                            \
     X(SD_AN_REPOSE_ANGLE, "repose_angle", "angle of repose of a heap")
 
 typedef enum sd_analysis_type {
 #define SD_X_AN_ENUM(e, name, doc) e,
     SD_ANALYSIS_TYPES(SD_X_AN_ENUM)
 #undef SD_X_AN_ENUM
-    SD_AN_TYPE_COUNT
+        SD_AN_TYPE_COUNT
 } sd_analysis_type;
 
 #define SD_SCENE_ANALYSIS_MAX 32
 
 typedef struct sd_scene_analysis_entry {
-    int type;                      /* sd_analysis_type */
+    int type; /* sd_analysis_type */
     char name[SD_SCENE_NAME_MAX];
     char file[SD_SCENE_NAME_MAX + 8]; /* in the output directory */
     int line;
-    long every;                    /* steps between rows, >= 1 */
-    sd_region_def region;          /* kind SD_REGION_NONE when not given */
-    double voxel;                  /* m */
+    long every;           /* steps between rows, >= 1 */
+    sd_region_def region; /* kind SD_REGION_NONE when not given */
+    double voxel;         /* m */
     int bins;
-    int cells[2], plane;           /* velocity_field */
-    double max_speed;              /* m/s, 0 = the fastest at each row */
-    double fraction;               /* bed_height */
-    double fit[2];                 /* surface_angle, repose_angle */
+    int cells[2], plane; /* velocity_field */
+    double max_speed;    /* m/s, 0 = the fastest at each row */
+    double fraction;     /* bed_height */
+    double fit[2];       /* surface_angle, repose_angle */
     int has_center;
-    sd_v3d center;                 /* repose_angle: a point of the heap's axis */
+    sd_v3d center; /* repose_angle: a point of the heap's axis */
 } sd_scene_analysis_entry;
 
 typedef struct sd_scene_analysis {

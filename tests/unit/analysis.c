@@ -12,8 +12,8 @@
  *    mean height;
  *  - a bed in a drum with its surface tilted at 30 degrees (a lattice
  *    turned by 30 degrees, positions jittered by 0.3 and 0.1 spacings
- *    along and across the surface): the surface angle within 1 degree; a conical heap of slope 30 degrees: the angle of repose
- *    within 1 degree; the same two in 2D (a disc drum, a heap's two flanks);
+ *    along and across the surface): the surface angle within 1 degree; a conical heap of slope 30 degrees: the angle of
+ * repose within 1 degree; the same two in 2D (a disc drum, a heap's two flanks);
  *  - the analysis: section of a scene, run: each CSV file exists with its
  *    header and a row per cadence.
  */

@@ -155,9 +155,9 @@ static void tetrahedron(void)
     double e[3];
     const double h = 1.2 * edge; /* the box around it: its bounding sphere fits */
     for (int k = 0; k < 3; ++k) {
-        sd_porosity po = box_porosity(w, sd_test_v(b.position.x - h, b.position.y - h, b.position.z - h),
-                                      sd_test_v(b.position.x + h, b.position.y + h, b.position.z + h),
-                                      edge / per_edge[k], 0);
+        sd_porosity po =
+            box_porosity(w, sd_test_v(b.position.x - h, b.position.y - h, b.position.z - h),
+                         sd_test_v(b.position.x + h, b.position.y + h, b.position.z + h), edge / per_edge[k], 0);
         double got = (double)po.solid * po.voxel[0] * po.voxel[1] * po.voxel[2];
         e[k] = fabs(got - vol) / vol;
         printf("   %2d voxels per edge: volume %.6e m^3, expected %.6e, relative error %.2e\n", per_edge[k], got, vol,
