@@ -266,6 +266,17 @@ static sd_status sd_ckpt_seal(const char *path, sd_error *err)
 }
 
 /* The header's checks: SD_OK when the bytes are the file that was written. */
+int sd_checkpoint_is_file(const char *path)
+{
+    unsigned char head[8];
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return 0;
+    size_t got = fread(head, 1, sizeof head, f);
+    fclose(f);
+    return got == sizeof head && memcmp(head, SD_CKPT_MAGIC, 8) == 0;
+}
+
 static sd_status sd_ckpt_check_header(const unsigned char *b, size_t size, sd_error *err)
 {
     if (size < SD_CKPT_HEADER || memcmp(b, SD_CKPT_MAGIC, 8) != 0) {

@@ -36,6 +36,10 @@ sd_status sd_checkpoint_decode(const void *buf, size_t size, sd_snapshot *out, s
 /* The same for a file; err names the path. */
 sd_status sd_checkpoint_read_file(const char *path, sd_snapshot *out, sd_error *err);
 
+/* 1 when the file at path starts with a checkpoint's header (its magic
+ * only: the file may still be damaged), 0 otherwise or unreadable. */
+int sd_checkpoint_is_file(const char *path);
+
 /* Writes a snapshot to path atomically (temporary name, fsync, rename). */
 sd_status sd_checkpoint_write_file(const sd_snapshot *s, const char *path, sd_error *err);
 

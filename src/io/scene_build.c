@@ -22,6 +22,7 @@
 #include "core/alloc.h"
 #include "core/error.h"
 #include "io/scene.h"
+#include "io/scene_from.h"
 #include "io/scene_process.h"
 #include "io/scene_keys.h"
 #include "shape/shape.h"
@@ -68,11 +69,18 @@ typedef struct sd_origin {
     char key[64];
 } sd_origin;
 
+/* A csv generator that reads a checkpoint of another run (io/scene_from.h):
+ * its particles are named by the scene's line of file:. */
+static int sd_gen_from_checkpoint(const sd_scene_generator *g)
+{
+    return g->kind == SD_GEN_CSV && sd_from_is_checkpoint(g->file);
+}
+
 static sd_origin sd_sphere_origin(const sd_scene *s, const sd_scene_spheres *sp, size_t k)
 {
     sd_origin o;
     const sd_scene_generator *g = &s->generators[sp->gen[k]];
-    o.file = g->kind == SD_GEN_CSV ? g->file : s->path;
+    o.file = g->kind == SD_GEN_CSV && !sd_gen_from_checkpoint(g) ? g->file : s->path;
     o.line = sp->line[k];
     if (g->kind == SD_GEN_LIST)
         snprintf(o.key, sizeof o.key, "particles[%d].spheres[%d]", sp->gen[k], sp->entry[k]);
@@ -103,6 +111,7 @@ typedef struct sd_overlap_ctx {
     const sd_scene *s;
     const sd_scene_spheres *sp;
     const sd_world *w;
+    const unsigned char *from; /* per generator: 1 for a checkpoint of another run */
     double depth, size; /* m, of the last pair accepted */
 } sd_overlap_ctx;
 
@@ -112,6 +121,11 @@ static int sd_overlap_accept(void *ctx, size_t i, size_t j)
     const sd_scene_spheres *sp = c->sp;
     const sd_sphere_def *a = &sp->defs[i], *b = &sp->defs[j];
     double depth, size;
+    /* two particles of one checkpoint keep the contacts they had there (a
+     * settled bed's overlaps are its resting contacts, whatever their depth;
+     * the run's overlap guard still watches them) */
+    if (sp->gen[i] == sp->gen[j] && c->from[sp->gen[i]])
+        return 0;
     if (c->s->world.dimension == 2 && (sp->shape[i] >= 0 || sp->shape[j] >= 0)) {
         double dx = a->position.x - b->position.x, dy = a->position.y - b->position.y;
         depth = a->radius + b->radius - sqrt(dx * dx + dy * dy);
@@ -133,9 +147,15 @@ static int sd_overlap_accept(void *ctx, size_t i, size_t j)
 static sd_status sd_check_overlaps(const sd_scene *s, const sd_scene_spheres *sp, const sd_world *w, sd_error *err)
 {
     size_t i, j;
-    sd_overlap_ctx ctx = {s, sp, w, 0.0, 0.0};
+    unsigned char *from = sd_calloc(s->generator_count ? s->generator_count : 1, 1);
+    if (!from)
+        return sd_error_set(err, SD_ERR_MEMORY, s->path, 0, "", "out of memory");
+    for (size_t g = 0; g < s->generator_count; ++g)
+        from[g] = (unsigned char)sd_gen_from_checkpoint(&s->generators[g]);
+    sd_overlap_ctx ctx = {s, sp, w, from, 0.0, 0.0};
     /* candidates: bounding spheres that overlap at all; the true shapes decide */
     int found = sd_scene_find_overlap_if(sp->count, sp->defs, 0.0, sd_overlap_accept, &ctx, &i, &j);
+    sd_free(from);
     if (found < 0)
         return sd_error_set(err, SD_ERR_MEMORY, s->path, 0, "", "out of memory");
     if (!found)

@@ -1,5 +1,6 @@
 /* scene_particles.c — the particles: section of a scene: the lattice,
- * random, list and csv generators (the csv file read by io/csv.c), their
+ * random, list and csv generators (the csv file read by io/csv.c, or a
+ * checkpoint of another run by io/scene_from.c, moved by shift), their
  * spheres or bodies of a shape, orientations and velocities; and the
  * particle budget every generator and the pour count against.
  *
@@ -20,6 +21,7 @@
 #include "core/alloc.h"
 #include "core/error.h"
 #include "io/csv.h"
+#include "io/scene_from.h"
 #include "io/scene_keys.h"
 #include "io/scene_sections.h"
 
@@ -285,8 +287,18 @@ sd_status sd_parse_particles(sd_parse *p, yaml_node_t *list, int line)
             sd_yaml_kp(key, sizeof key, path, "file");
             if (!sd_resolve(p->path, v.str, g->file, sizeof g->file))
                 return sd_fail(p, v.line, key, "path too long");
-            if ((st = sd_csv_read(p->s, g, key, v.line, p->err)))
+            /* a checkpoint of another run (scene_from.c), else a CSV file */
+            if ((st = sd_from_is_checkpoint(g->file) ? sd_from_checkpoint_read(p->s, g, key, v.line, p->err)
+                                                     : sd_csv_read(p->s, g, key, v.line, p->err)))
                 return st;
+            if (sd_yaml_get(&p->y, m, SD_SEC_PARTICLES, "shift", path, &v)) {
+                /* the whole bed moved, e.g. into new equipment */
+                for (size_t k = 0; k < g->list_count; ++k) {
+                    g->list[k].position.x += v.v[0];
+                    g->list[k].position.y += v.v[1];
+                    g->list[k].position.z += v.v[2];
+                }
+            }
             if (has_orient) {
                 int shaped = 0;
                 for (size_t k = 0; k < g->list_count; ++k)

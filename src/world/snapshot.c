@@ -507,6 +507,42 @@ static void sd_scatter_rows(const sd_state_ref *r, const void *src)
         memcpy((char *)r->base + k * r->stride, (const char *)src + k * row, row);
 }
 
+/* What the scene named, for readers of the checkpoint other than a
+ * restart (a new scene that starts from its particles, io/scene_from.c;
+ * h5py): per template its name, kind, volume (2D: area) and bounding
+ * radius, per material its name; the particles' shape and material
+ * columns index them. Fixed-width rows padded with zeros, so the bytes
+ * depend on the names only. A restart skips them (the scene's hash covers
+ * what they say). */
+static sd_status sd_snapshot_scene_items(const sd_world *w, sd_snapshot *s)
+{
+    size_t ns = sd_world_shape_count(w), nm = w->material_count;
+    sd_snap_item *names = sd_snapshot_add(s, "scene/shape_names", SD_ST_BYTES, SD_SNAP_NAME, ns, NULL);
+    sd_snap_item *kinds = sd_snapshot_add(s, "scene/shape_kinds", SD_ST_BYTES, SD_SNAP_NAME, ns, NULL);
+    sd_snap_item *sizes = sd_snapshot_add(s, "scene/shape_sizes", SD_ST_F64, 2, ns, NULL);
+    sd_snap_item *mats = sd_snapshot_add(s, "scene/material_names", SD_ST_BYTES, SD_SNAP_NAME, nm, NULL);
+    if (!names || !kinds || !sizes || !mats)
+        return SD_ERR_MEMORY;
+    /* the items may have moved as the list grew: look them up again */
+    names = &s->items[s->n - 4];
+    kinds = &s->items[s->n - 3];
+    sizes = &s->items[s->n - 2];
+    mats = &s->items[s->n - 1];
+    for (size_t k = 0; k < ns; ++k) {
+        sd_shape_info si;
+        if (sd_world_get_shape(w, k, &si) != SD_OK)
+            continue;
+        /* snprintf stops at the NUL: the zeros after it stay */
+        snprintf((char *)names->data + k * SD_SNAP_NAME, SD_SNAP_NAME, "%s", si.name ? si.name : "");
+        snprintf((char *)kinds->data + k * SD_SNAP_NAME, SD_SNAP_NAME, "%s", si.kind ? si.kind : "");
+        double v[2] = {si.volume, si.bounding_radius};
+        memcpy((double *)sizes->data + 2 * k, v, sizeof v);
+    }
+    for (size_t k = 0; k < nm; ++k)
+        snprintf((char *)mats->data + k * SD_SNAP_NAME, SD_SNAP_NAME, "%s", w->materials[k].name);
+    return SD_OK;
+}
+
 sd_status sd_world_snapshot(const sd_world *wc, sd_snapshot *s, sd_error *err)
 {
     sd_world *w = (sd_world *)wc; /* listing only reads */
@@ -523,6 +559,8 @@ sd_status sd_world_snapshot(const sd_world *wc, sd_snapshot *s, sd_error *err)
             sd_gather_rows(it->data, r);
     }
     sd_state_table_free(&t);
+    if (st == SD_OK && sd_snapshot_scene_items(w, s) != SD_OK)
+        st = sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory copying the template names");
     if (st != SD_OK) {
         sd_snapshot_free(s);
         return st;
@@ -538,6 +576,8 @@ sd_status sd_world_snapshot(const sd_world *wc, sd_snapshot *s, sd_error *err)
     s->checksum = sd_snapshot_checksum(s);
     return SD_OK;
 }
+
+static int sd_snap_is_scene(const sd_snap_item *it) { return strncmp(it->name, "scene/", 6) == 0; }
 
 static int sd_ref_cmp(const void *a, const void *b)
 {
@@ -568,9 +608,14 @@ sd_status sd_world_restore(sd_world *w, const sd_snapshot *s, sd_error *err)
     sd_status st = sd_world_state_list(w, &t, err);
     if (st == SD_OK) {
         qsort(t.refs, t.n, sizeof *t.refs, sd_ref_cmp);
-        /* both sorted by name: a merge finds what only one side has */
+        /* both sorted by name: a merge finds what only one side has (the
+         * scene/ items describe the scene for other readers: not state) */
         size_t a = 0, b = 0;
         while (st == SD_OK && (a < t.n || b < s->n)) {
+            if (b < s->n && sd_snap_is_scene(&s->items[b])) {
+                ++b;
+                continue;
+            }
             int c = a == t.n ? 1 : b == s->n ? -1 : strcmp(t.refs[a].name, s->items[b].name);
             if (c < 0)
                 st = sd_error_set(err, SD_ERR_INPUT, "", 0, t.refs[a].name, "the checkpoint lacks '%s' (written "
@@ -591,6 +636,8 @@ sd_status sd_world_restore(sd_world *w, const sd_snapshot *s, sd_error *err)
         }
         /* all checked: now copy (the sizes first were set by the listing) */
         for (size_t k = 0, j = 0; st == SD_OK && k < t.n; ++k, ++j) {
+            while (sd_snap_is_scene(&s->items[j]))
+                ++j;
             const sd_snap_item *it = &s->items[j];
             if (t.refs[k].count)
                 sd_scatter_rows(&t.refs[k], it->data);

@@ -18,7 +18,10 @@
  * their order), the walls' motion state, the clock, the solver's own
  * state. Nothing derived from the scene alone (materials, templates) is
  * listed for a restart; the scene's hash says the world was built from the
- * same physics. Names sort the items (the checksum's order).
+ * same physics. A snapshot also holds scene/ items that name the templates
+ * and materials the particles' columns index (sd_world_snapshot adds them;
+ * a restore skips them), so a new scene can take the particles over by
+ * name (io/scene_from.c). Names sort the items (the checksum's order).
  *
  * Where state is declared (adding state is one line in one of these):
  *  - a particle field: SD_PARTICLE_FIELDS (world/world.h), saved as
@@ -44,6 +47,10 @@
  * added, renamed or resized) makes old files unreadable by name or count
  * anyway; the version says so in one line. */
 #define SD_SNAPSHOT_VERSION 2
+
+/* Bytes of a name row of the scene/ items (template and material names,
+ * zero-padded): what the world keeps, 63 characters and the NUL. */
+#define SD_SNAP_NAME 64
 
 typedef enum sd_state_type {
     SD_ST_F64,

@@ -1,0 +1,282 @@
+/* scene_from.c — a csv generator whose file is a checkpoint of another run
+ * (generator: csv, file: out/run/checkpoint-000500.h5; issue 17): a new
+ * scene starts from the particles of that run, a settled bed reused under
+ * a new load or in new equipment, for every particle kind (spheres,
+ * convex shapes, polyhedra, composites, the planar kinds).
+ *
+ * The checkpoint is read by the checkpoint reader (io/checkpoint.c: its
+ * checksums first) into a snapshot, never into a world. Its owned
+ * particles (storage rows 0 .. particles/n - 1, not the periodic images)
+ * become the generator's entries, in the order of their stable ids, with
+ * their positions, velocities, spins and orientations exactly as saved;
+ * the saved template of each is found in the new scene by name
+ * (scene/shape_names; world/snapshot.c) and must be of the same kind
+ * (scene/shape_kinds), its material by name too (scene/material_names),
+ * else the generator's material. Contact history, forces and walls stay
+ * behind: the new scene brings its own walls.
+ *
+ * Invariant (that of csv.c): on SD_OK, one entry per saved particle was
+ * appended to the generator's entry arrays; on error the arrays hold
+ * consistent rows and err names the scene file, the line of file: and its
+ * key, and says what the checkpoint holds against what was expected.
+ */
+#include "io/scene_from.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/alloc.h"
+#include "core/error.h"
+#include "io/checkpoint.h"
+#include "shape/shape2d.h"
+#include "shape/shape_make.h"
+
+int sd_from_is_checkpoint(const char *path)
+{
+    size_t n = strlen(path);
+    if (n >= 3 && strcmp(path + n - 3, ".h5") == 0)
+        return 1;
+    return sd_checkpoint_is_file(path);
+}
+
+/* A saved array of the particles: type and values per row as expected,
+ * at least rows rows. */
+static const sd_snap_item *sd_from_item(const sd_snapshot *s, const char *name, sd_state_type type, size_t comps,
+                                        size_t rows)
+{
+    const sd_snap_item *it = sd_snapshot_find(s, name);
+    if (!it || it->type != type || it->comps != comps || it->count < rows)
+        return NULL;
+    return it;
+}
+
+/* The scene's kind name of shape i, as the world's sd_shape_info names it. */
+static const char *sd_from_scene_kind(const sd_scene *s, size_t i)
+{
+    const sd_scene_shape *sh = &s->shapes[i];
+    return sh->kind2d >= 0 ? sd_shape2d_kind_name(sh->kind2d) : sd_shape_kind_name(sh->kind);
+}
+
+/* "a, b, c": the names of the scene's shapes or materials, for messages. */
+static const char *sd_from_known(const sd_scene *s, int materials, char *buf, size_t size)
+{
+    size_t used = 0, n = materials ? s->material_count : s->shape_count;
+    buf[0] = '\0';
+    for (size_t i = 0; i < n && used + 1 < size; ++i) {
+        if (!materials && s->shapes[i].hidden)
+            continue;
+        int w = snprintf(buf + used, size - used, "%s%s", used ? ", " : "",
+                         materials ? s->materials[i].name : s->shapes[i].name);
+        used += w > 0 ? (size_t)w : 0;
+    }
+    return used ? buf : "none";
+}
+
+static int sd_from_grow(sd_scene_generator *g, size_t cap)
+{
+    void *q;
+    if (!(q = sd_realloc(g->list, cap * sizeof *g->list)))
+        return 0;
+    g->list = q;
+    if (!(q = sd_realloc(g->list_lines, cap * sizeof *g->list_lines)))
+        return 0;
+    g->list_lines = q;
+    if (!(q = sd_realloc(g->list_shape, cap * sizeof *g->list_shape)))
+        return 0;
+    g->list_shape = q;
+    if (!(q = sd_realloc(g->list_orient, cap * sizeof *g->list_orient)))
+        return 0;
+    g->list_orient = q;
+    if (!(q = sd_realloc(g->list_quat, cap * sizeof *g->list_quat)))
+        return 0;
+    g->list_quat = q;
+    return 1;
+}
+
+typedef struct sd_from_order {
+    uint64_t id;
+    size_t row;
+} sd_from_order;
+
+static int sd_from_order_cmp(const void *a, const void *b)
+{
+    const sd_from_order *x = a, *y = b;
+    return x->id < y->id ? -1 : x->id > y->id;
+}
+
+/* A saved name row: NUL-terminated within its width (a damaged name is
+ * cut there). */
+static void sd_from_name(const sd_snap_item *it, size_t k, char *out)
+{
+    memcpy(out, (const char *)it->data + k * SD_SNAP_NAME, SD_SNAP_NAME);
+    out[SD_SNAP_NAME - 1] = '\0';
+}
+
+sd_status sd_from_checkpoint_read(const sd_scene *s, sd_scene_generator *g, const char *key, int file_line,
+                                  sd_error *err)
+{
+    sd_snapshot snap;
+    sd_error e2;
+    memset(&e2, 0, sizeof e2);
+    sd_status st = sd_checkpoint_read_file(g->file, &snap, &e2);
+    if (st != SD_OK) {
+        sd_snapshot_free(&snap);
+        return sd_error_set(err, st == SD_ERR_MEMORY ? SD_ERR_MEMORY : SD_ERR_INPUT, s->path, file_line, key,
+                            "cannot start from the checkpoint '%s': %s", g->file, e2.msg);
+    }
+    char known[512], esc[80];
+    int dim = s->world.dimension == 2 ? 2 : 3;
+    uint64_t n64 = 0;
+    const sd_snap_item *names = sd_snapshot_find(&snap, "scene/shape_names");
+    const sd_snap_item *kinds = sd_snapshot_find(&snap, "scene/shape_kinds");
+    const sd_snap_item *mats = sd_snapshot_find(&snap, "scene/material_names");
+    if (snap.dimension != dim)
+        st = sd_error_set(err, SD_ERR_INPUT, s->path, file_line, key,
+                          "the checkpoint '%s' is of a %dD run, this scene is %dD", g->file, snap.dimension, dim);
+    else if (strcmp(snap.solver, "cells") != 0)
+        st = sd_error_set(err, SD_ERR_INPUT, s->path, file_line, key,
+                          "the checkpoint '%s' is of the %s solver, whose particles are kept in its own layout: "
+                          "start from a frame instead (scripts/frame_to_csv.py)", g->file, snap.solver);
+    else if (!sd_snapshot_get_u64(&snap, "particles/n", &n64) || n64 > ((uint64_t)1 << 32))
+        st = sd_error_set(err, SD_ERR_INPUT, s->path, file_line, key,
+                          "the checkpoint '%s' lacks its particle count (particles/n)", g->file);
+    else if (!names || !kinds || !mats || names->type != SD_ST_BYTES || names->comps != SD_SNAP_NAME ||
+             kinds->type != SD_ST_BYTES || kinds->comps != SD_SNAP_NAME || kinds->count != names->count ||
+             mats->type != SD_ST_BYTES || mats->comps != SD_SNAP_NAME)
+        st = sd_error_set(err, SD_ERR_INPUT, s->path, file_line, key,
+                          "the checkpoint '%s' does not name its templates and materials (scene/shape_names, "
+                          "scene/shape_kinds, scene/material_names: written by shapedem %s, format %u)",
+                          g->file, snap.writer, snap.version);
+    if (st != SD_OK) {
+        sd_snapshot_free(&snap);
+        return st;
+    }
+    size_t n = (size_t)n64, ns = names->count, nm = mats->count;
+    const sd_snap_item *x = sd_from_item(&snap, "particles/x", SD_ST_F64, 3, n);
+    const sd_snap_item *v = sd_from_item(&snap, "particles/v", SD_ST_F64, 3, n);
+    const sd_snap_item *w = sd_from_item(&snap, "particles/w", SD_ST_F64, 3, n);
+    const sd_snap_item *q = sd_from_item(&snap, "particles/q", SD_ST_F64, 4, n);
+    const sd_snap_item *r = sd_from_item(&snap, "particles/radius", SD_ST_F64, 1, n);
+    const sd_snap_item *sh = sd_from_item(&snap, "particles/shape", SD_ST_I32, 1, n);
+    const sd_snap_item *mt = sd_from_item(&snap, "particles/material", SD_ST_I32, 1, n);
+    const sd_snap_item *id = sd_from_item(&snap, "particles/id", SD_ST_U64, 1, n);
+    if (!x || !v || !w || !q || !r || !sh || !mt || !id) {
+        sd_snapshot_free(&snap);
+        return sd_error_set(err, SD_ERR_INPUT, s->path, file_line, key,
+                            "the checkpoint '%s' lacks one of particles/x, v, w, q, radius, shape, material, id "
+                            "for its %zu particles (or holds another type)", g->file, n);
+    }
+    if (n == 0) {
+        sd_snapshot_free(&snap);
+        return sd_error_set(err, SD_ERR_INPUT, s->path, file_line, key, "the checkpoint '%s' has no particles",
+                            g->file);
+    }
+    /* each saved template and material found once, on first use */
+    int *shape_map = sd_malloc((ns ? ns : 1) * sizeof *shape_map);
+    int *mat_map = sd_malloc((nm ? nm : 1) * sizeof *mat_map);
+    sd_from_order *order = sd_malloc(n * sizeof *order);
+    size_t base = g->list_count;
+    if (!shape_map || !mat_map || !order || !sd_from_grow(g, base + n)) {
+        st = sd_error_set(err, SD_ERR_MEMORY, s->path, file_line, key, "out of memory for %zu particles", n);
+        goto done;
+    }
+    for (size_t k = 0; k < ns; ++k)
+        shape_map[k] = -2; /* not looked up yet */
+    for (size_t k = 0; k < nm; ++k)
+        mat_map[k] = -2;
+    const double *xd = x->data, *vd = v->data, *wd = w->data, *qd = q->data, *rd = r->data;
+    const int32_t *shd = sh->data, *mtd = mt->data;
+    const uint64_t *idd = id->data;
+    for (size_t k = 0; k < n; ++k) {
+        order[k].id = idd[k];
+        order[k].row = k;
+    }
+    qsort(order, n, sizeof *order, sd_from_order_cmp);
+    for (size_t o = 0; o < n; ++o) {
+        size_t k = order[o].row;
+        unsigned long long pid = (unsigned long long)idd[k];
+        double vals[14] = {xd[3 * k], xd[3 * k + 1], xd[3 * k + 2], vd[3 * k], vd[3 * k + 1], vd[3 * k + 2],
+                           wd[3 * k], wd[3 * k + 1], wd[3 * k + 2], qd[4 * k], qd[4 * k + 1], qd[4 * k + 2],
+                           qd[4 * k + 3], rd[k]};
+        for (int c = 0; c < 14; ++c)
+            if (!isfinite(vals[c])) {
+                st = sd_error_set(err, SD_ERR_INPUT, s->path, file_line, key,
+                                  "the checkpoint '%s': particle id %llu has a state that is not finite (a "
+                                  "failed-*.h5 of a run stopped by a guard is for inspection only)", g->file, pid);
+                goto done;
+            }
+        int32_t si = shd[k], mi = mtd[k];
+        if (si < -1 || (si >= 0 && (size_t)si >= ns) || mi < 0 || (size_t)mi >= nm) {
+            st = sd_error_set(err, SD_ERR_INPUT, s->path, file_line, key,
+                              "the checkpoint '%s': particle id %llu has template %d of %zu and material %d of %zu",
+                              g->file, pid, (int)si, ns, (int)mi, nm);
+            goto done;
+        }
+        int shape = -1;
+        if (si >= 0) {
+            if (shape_map[si] == -2) {
+                char name[SD_SNAP_NAME], kind[SD_SNAP_NAME];
+                sd_from_name(names, (size_t)si, name);
+                sd_from_name(kinds, (size_t)si, kind);
+                shape_map[si] = -1;
+                for (size_t i = 0; i < s->shape_count && shape_map[si] < 0; ++i)
+                    if (!strcmp(s->shapes[i].name, name))
+                        shape_map[si] = (int)i;
+                if (shape_map[si] < 0) {
+                    sd_escape(esc, sizeof esc, name, 40);
+                    st = sd_error_set(err, SD_ERR_INPUT, s->path, file_line, key,
+                                      "the checkpoint '%s': particle id %llu is of template '%s', which this "
+                                      "scene's shapes: does not define (shapes: %s); templates are matched by name",
+                                      g->file, pid, esc, sd_from_known(s, 0, known, sizeof known));
+                    goto done;
+                }
+                const char *here = sd_from_scene_kind(s, (size_t)shape_map[si]);
+                if (!here || strcmp(here, kind) != 0) {
+                    sd_escape(esc, sizeof esc, name, 40);
+                    char ek[80];
+                    sd_escape(ek, sizeof ek, kind, 40);
+                    st = sd_error_set(err, SD_ERR_INPUT, s->path, file_line, key,
+                                      "the checkpoint '%s': template '%s' is a %s there, a %s in this scene "
+                                      "(line %d); a template must keep its kind", g->file, esc, ek,
+                                      here ? here : "?", s->shapes[shape_map[si]].line);
+                    goto done;
+                }
+            }
+            shape = shape_map[si];
+        }
+        if (mat_map[mi] == -2) {
+            char name[SD_SNAP_NAME];
+            sd_from_name(mats, (size_t)mi, name);
+            mat_map[mi] = g->material; /* a material this scene does not name: the generator's */
+            for (size_t i = 0; i < s->material_count; ++i)
+                if (!strcmp(s->materials[i].name, name)) {
+                    mat_map[mi] = (int)i;
+                    break;
+                }
+        }
+        size_t e = g->list_count;
+        sd_sphere_def *d = &g->list[e];
+        memset(d, 0, sizeof *d);
+        d->position = (sd_v3d){vals[0], vals[1], vals[2]};
+        d->velocity = (sd_v3d){vals[3], vals[4], vals[5]};
+        d->angular_velocity = (sd_v3d){vals[6], vals[7], vals[8]};
+        d->radius = shape < 0 ? vals[13] : 0.0; /* a shape's bound is set at generation */
+        d->material = mat_map[mi];
+        g->list_shape[e] = shape;
+        g->list_orient[e] = shape >= 0 ? SD_ORIENT_FIXED : g->orient;
+        if (shape >= 0)
+            memcpy(g->list_quat[e], &vals[9], 4 * sizeof(double));
+        else
+            memcpy(g->list_quat[e], g->quat, sizeof g->quat);
+        g->list_lines[e] = file_line;
+        g->list_count = e + 1;
+    }
+done:
+    sd_free(shape_map);
+    sd_free(mat_map);
+    sd_free(order);
+    sd_snapshot_free(&snap);
+    return st;
+}

@@ -1,0 +1,112 @@
+#!/usr/bin/env bash
+# scene_from.sh — a scene that starts from a checkpoint of another run
+# (generator: csv, file: a .h5 checkpoint; io/scene_from.c), from the
+# command line: a bed of spheres and bricks settles with checkpoint_every,
+# a new scene with other walls and a shift starts from its checkpoint and
+# runs; bad starts are refused with exit 2, one stderr line naming the
+# scene file, the line of file: and the key particles[0].file, and no
+# output directory: a missing file, a template this scene lacks, a
+# template of another kind, a damaged checkpoint (one byte flipped, cut
+# short), a checkpoint of the other dimension.
+set -u
+exe=${1:?usage: scene_from.sh SHAPEDEM REPO}
+[[ $exe == */* ]] && exe=$(cd "$(dirname "$exe")" && pwd)/$(basename "$exe")
+tmp=$(mktemp -d "${TMPDIR:-/tmp}/sd_scene_from.XXXXXX")
+trap 'rm -rf "$tmp"' EXIT
+pass=0
+fail=0
+check() { # check NAME 0|1
+    if [[ $2 == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi
+}
+
+head_yaml() { # the physics both scenes share; $1 = the brick's type line
+    cat <<EOF
+simulation: {dt: 1.0e-5, steps: 3000, gravity: [0, 0, -9.81], seed: 4}
+materials:
+  - {name: glass, density: 2500, youngs_modulus: 1.0e7, friction: 0.5, restitution: 0.5}
+shapes:
+  - {name: brick, $1}
+EOF
+}
+{
+    head_yaml "type: box, size: [0.002, 0.003, 0.004]"
+    cat <<EOF
+particles:
+  - {generator: random, material: glass, radius: 0.0012, number: 60, box: {min: [0, 0, 0], max: [0.02, 0.02, 0.02]}}
+  - {generator: random, material: glass, shape: brick, number: 20, box: {min: [0, 0, 0.021], max: [0.02, 0.02, 0.05]}}
+walls:
+  - {name: cup, type: box, min: [0, 0, 0], max: [0.02, 0.02, 0.08], open: [zmax], material: glass}
+output: {every: 3000, checkpoint_every: 3000}
+EOF
+} >"$tmp/bed.yaml"
+(cd "$tmp" && "$exe" run bed.yaml -o bed --threads 1 >/dev/null 2>"$tmp/bed.err")
+check "the bed runs and writes bed/checkpoint-003000.h5 ($(cat "$tmp/bed.err"))" \
+    "$([[ -s $tmp/bed/checkpoint-003000.h5 ]] && echo 1 || echo 0)"
+
+from_yaml() { # $1 = the brick's type line, $2 = the file
+    head_yaml "$1"
+    cat <<EOF
+particles:
+  - generator: csv
+    material: glass
+    file: $2
+    shift: [0.1, 0, 0.001]
+walls:
+  - {name: floor, type: plane, point: [0, 0, 0], normal: [0, 0, 1], material: glass}
+EOF
+}
+from_yaml "type: box, size: [0.002, 0.003, 0.004]" bed/checkpoint-003000.h5 >"$tmp/new.yaml"
+(cd "$tmp" && "$exe" run new.yaml -o new --steps 500 --threads 1 >"$tmp/new.out" 2>"$tmp/new.err")
+rc=$?
+check "the new scene runs from the checkpoint (exit $rc: $(cat "$tmp/new.err"))" "$([[ $rc == 0 ]] && echo 1 || echo 0)"
+check "it has the bed's 80 particles ($(head -1 "$tmp/new.out"))" \
+    "$(grep -q '^shapedem: 80 particles, 500 steps' "$tmp/new.out" && echo 1 || echo 0)"
+
+# damaged copies
+cp "$tmp/bed/checkpoint-003000.h5" "$tmp/flipped.h5"
+size=$(stat -c %s "$tmp/flipped.h5")
+at=$((size / 2))
+byte=$(od -An -tu1 -j "$at" -N1 "$tmp/flipped.h5" | tr -d ' ')
+printf "$(printf '\\%03o' $(((byte + 1) % 256)))" | dd of="$tmp/flipped.h5" bs=1 seek="$at" conv=notrunc 2>/dev/null
+head -c $((size - 4096)) "$tmp/bed/checkpoint-003000.h5" >"$tmp/short.h5"
+# a planar checkpoint
+cat >"$tmp/flat.yaml" <<EOF
+simulation: {dimension: 2, dt: 1.0e-5, steps: 10, gravity: [0, -9.81, 0]}
+materials:
+  - {name: glass, density: 2500, youngs_modulus: 1.0e7, friction: 0.5}
+shapes:
+  - {name: brick, type: circle, radius: 0.002}
+particles:
+  - {generator: random, material: glass, shape: brick, number: 10, box: {min: [0, 0, -0.01], max: [0.05, 0.05, 0.01]}}
+output: {every: 10, checkpoint_every: 10}
+EOF
+(cd "$tmp" && "$exe" run flat.yaml -o flat --threads 1 >/dev/null 2>&1)
+
+bad() { # bad NAME WHAT-THE-MESSAGE-SAYS (a grep -E pattern); the scene is $tmp/bad.yaml
+    rm -rf "$tmp/out"
+    (cd "$tmp" && "$exe" run bad.yaml -o out --threads 1 >/dev/null 2>"$tmp/bad.err")
+    local rc=$? err
+    err=$(cat "$tmp/bad.err")
+    echo "  $1: exit $rc: $err"
+    check "$1: exit 2" "$([[ $rc == 2 ]] && echo 1 || echo 0)"
+    check "$1: one line naming bad.yaml:9: particles[0].file" \
+        "$([[ $(wc -l <"$tmp/bad.err") == 1 ]] && grep -q 'bad.yaml:9: particles\[0\]\.file: ' "$tmp/bad.err" &&
+            echo 1 || echo 0)"
+    check "$1: says why" "$(grep -Eq "$2" "$tmp/bad.err" && echo 1 || echo 0)"
+    check "$1: no output directory" "$([[ ! -e $tmp/out ]] && echo 1 || echo 0)"
+}
+from_yaml "type: box, size: [0.002, 0.003, 0.004]" bed/checkpoint-000000.h5 >"$tmp/bad.yaml"
+bad "a missing checkpoint" "cannot start from the checkpoint 'bed/checkpoint-000000.h5': .*(No such file|cannot open)"
+from_yaml "type: box, size: [0.002, 0.003, 0.004]" flipped.h5 >"$tmp/bad.yaml"
+bad "a byte flipped" "cannot start from the checkpoint 'flipped.h5': .*damaged"
+from_yaml "type: box, size: [0.002, 0.003, 0.004]" short.h5 >"$tmp/bad.yaml"
+bad "cut short by 4 KiB" "cannot start from the checkpoint 'short.h5': .*(truncated|damaged|size)"
+from_yaml "type: cylinder, diameter: 0.002, length: 0.004" bed/checkpoint-003000.h5 >"$tmp/bad.yaml"
+bad "a template of another kind" "template 'brick' is a box there, a cylinder in this scene"
+from_yaml "type: box, size: [0.002, 0.003, 0.004]" bed/checkpoint-003000.h5 | sed 's/name: brick/name: block/' >"$tmp/bad.yaml"
+bad "a template this scene lacks" "template 'brick', which this scene's shapes: does not define \(shapes: block\)"
+from_yaml "type: box, size: [0.002, 0.003, 0.004]" flat/checkpoint-000010.h5 >"$tmp/bad.yaml"
+bad "a planar checkpoint in a 3D scene" "is of a 2D run, this scene is 3D"
+
+echo "$pass passed, $fail failed"
+[[ $fail == 0 ]]
