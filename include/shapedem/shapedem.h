@@ -314,6 +314,33 @@ sd_composite_desc sd_composite_desc_default(void);
 /* Returns a shape index usable in sd_body_def.shape, or -1 with err filled. */
 int sd_world_add_composite(sd_world *w, const char *name, const sd_composite_desc *desc, sd_error *err);
 
+/* A built-in composite (the scene's `preset:`; `shapedem help scene` lists
+ * them with the parameters each takes): cross2d, cross3d, lshape, tshape,
+ * ring, dumbbell, spheres9, spheres54. Parameters a preset does not take
+ * must stay 0. */
+typedef struct sd_composite_preset_def {
+    const char *preset;      /* its name, e.g. "cross3d" */
+    double length;           /* m */
+    double diameter;         /* m */
+    double width;            /* m */
+    double thickness;        /* m */
+    int count;               /* ring segments */
+    int cookie;
+} sd_composite_preset_def;
+
+sd_composite_preset_def sd_composite_preset_def_default(void);
+/* Adds the element templates of preset def to w (named NAME.e0, NAME.e1,
+ * ..., one per distinct part size) and fills out[0 .. *n) with the
+ * elements (cap >= 64 always suffices), ready for sd_composite_desc (to
+ * edit, or to glue with other elements). SD_ERR_INPUT naming the parameter
+ * when one is missing, not positive, out of proportion or not taken by the
+ * preset. */
+sd_status sd_composite_preset(sd_world *w, const char *name, const sd_composite_preset_def *def,
+                              sd_composite_element *out, size_t cap, size_t *n, sd_error *err);
+/* sd_composite_preset, then sd_world_add_composite with the default
+ * lattice: the composite's shape index, or -1 with err filled. */
+int sd_world_add_composite_preset(sd_world *w, const char *name, const sd_composite_preset_def *def, sd_error *err);
+
 /* A planar shape template (dimension 2 only; its index is used by
  * sd_body_def.shape like a 3D template's). Kinds (seed 002):
  *   "circle"      radius

@@ -30,7 +30,8 @@
  * combined: model B (average, the default) divides every force, torque and
  * energy of the run by its number of touching element pairs N_c (eq. 21);
  * model A (sum) keeps the sum and divides the damping by sqrt(N_c)
- * (eq. 18), N_c found by a geometry-only probe of the run first. The run
+ * (eq. 18; the depth laws' gamma_n and eta, the volume laws' zeta), N_c
+ * found by a geometry-only pass over the run first. The run
  * is one item, so the combination needs no second pass and no atomics.
  *
  * Single source (SD_HD): compiles as C17 and as CUDA C++
@@ -411,14 +412,42 @@ SD_HD static SD_INLINE void sd_item_element_volume(const sd_step_view *v, sd_pai
 /* Model A's damping for N_c contact points (seed 004 eq. 18): gamma_n of
  * one contact over sqrt(N_c), so that N_c summed contacts of equal
  * overlap restitute e_n (the viscous coefficient eta alike: N_c dashpots
- * against N_c springs). */
+ * against N_c springs). The volume laws' dashpot 2 zeta sqrt(m* F_e / d)
+ * (contact/law_volume.h) is the same argument with zeta for -beta: N_c
+ * of them against N_c springs have the damping ratio sqrt(N_c) zeta, so
+ * every zeta(e, p) of the table is divided by sqrt(N_c) too. */
 SD_HD static SD_INLINE sd_pair_params sd_item_params_sum(const sd_pair_params *prm, int nc)
 {
     sd_pair_params p = *prm;
     sd_real s = SD_R(1.0) / sd_sqrt((sd_real)nc);
     p.log_e_factor *= s;
     p.eta *= s;
+    for (int k = 0; k < SD_VOLUME_ZETA_N; ++k)
+        p.zeta[k] *= s;
     return p;
+}
+
+/* Model A under a volume law needs N_c before the law runs, and the
+ * overlap volume is geometry and law in one: a geometry-only probe, 1
+ * when element pair e overlaps (bounding spheres, then the narrow phase's
+ * depth above 1e-9 of the two bounding radii: glued neighbours that only
+ * share a face plane with the other body's element touch at depth 0 and
+ * must not count). Sharp polyhedra only, as sd_item_element_volume. */
+SD_HD static SD_INLINE int sd_item_element_probe(const sd_step_view *v, sd_pair_out *o, size_t e)
+{
+    uint32_t si, sj;
+    sd_item_element_subs(o, e, &si, &sj);
+    sd_shape ti, tj;
+    sd_real ri, rj;
+    sd_convex ci = sd_item_element_of(v, o->i[e], si, &ti, &ri), cj = sd_item_element_of(v, o->j[e], sj, &tj, &rj);
+    if (!sd_shape_is_sharp_polyhedron(ci.shape) || !sd_shape_is_sharp_polyhedron(cj.shape))
+        return 0;
+    sd_real reach = ci.shape->bound + cj.shape->bound;
+    if (sd_v3_norm2(sd_v3_sub(ci.x, cj.x)) >= reach * reach)
+        return 0;
+    sd_vec3 warm = o->warm[e]; /* the volume pass keeps its own hint */
+    sd_convex_contact c = sd_convex_collide(&ci, &cj, &warm);
+    return c.touching && c.delta > SD_R(1e-9) * reach;
 }
 
 /* Most touching element pairs of one run whose geometry is kept between
@@ -457,8 +486,18 @@ SD_HD static SD_INLINE int sd_item_elements(const sd_step_view *v, sd_pair_out *
     sd_body a = sd_item_body(v, i), b = sd_item_body(v, j);
     int nc = 0;
     if (sd_law_is_volume(prm->law)) {
-        /* the overlap volume is the geometry and the law in one: one pass;
-         * model A's damping correction is for the depth laws only */
+        /* the overlap volume is the geometry and the law in one: one pass,
+         * after a geometry-only probe for model A's N_c (eq. 18) */
+        sd_pair_params sumv;
+        if (v->multi_contact == SD_MULTI_CONTACT_SUM) {
+            int np = 0;
+            for (size_t e = e0; e < e1; ++e)
+                np += sd_item_element_probe(v, o, e);
+            if (np > 1) {
+                sumv = sd_item_params_sum(prm, np);
+                prm = &sumv;
+            }
+        }
         for (size_t e = e0; e < e1; ++e) {
             sd_item_element_volume(v, o, e, prm, a, b, ws);
             nc += o->delta[e] > SD_R(0.0);
@@ -628,18 +667,85 @@ SD_HD static SD_INLINE void sd_item_wall_poly_volume(const sd_step_view *v, sd_w
     sd_item_wall_store(o, e, point, &r);
 }
 
+/* ---- shared by the mesh-wall kinds and the element runs against meshes --- */
+
+/* The velocity of wall wl at point c (m/s): a mesh translates and turns. */
+SD_HD static SD_INLINE sd_vec3 sd_item_wall_velocity_at(const sd_wall_view *wl, sd_vec3 c)
+{
+    return sd_v3_add(wl->velocity, sd_v3_cross(wl->omega, sd_v3_sub(c, wl->g.centre)));
+}
+
+/* The area weight of a shape's contact with the plane group of wall pair
+ * e at world point pw with overlap delta: the section (exact for
+ * polyhedra, of the core with the plane moved out by the rounding; else
+ * the disc of radius sqrt(2 req delta)) clipped by the group's near
+ * triangles. */
+SD_HD static SD_INLINE sd_real sd_item_mesh_weight(const sd_wall_pair_out *o, size_t e, const sd_wall_view *wl,
+                                                   const sd_mesh_view *m, const sd_convex *c, sd_vec3 pw,
+                                                   sd_real delta, sd_real req, sd_vec3 *shift)
+{
+    uint32_t gr = o->sub[e];
+    sd_vec3 n = m->group_normal[gr];
+    sd_real off = m->group_offset[gr];
+    sd_vec3 e1, e2;
+    sd_clip_basis(n, &e1, &e2);
+    sd_vec2 sec[SD_CLIP_MAX + 3];
+    int ns = 0;
+    sd_vec3 pm = sd_mesh_to_frame(wl->g.q, wl->g.trans, pw);
+    pm = sd_v3_sub(pm, sd_v3_scale(n, sd_v3_dot(n, pm) - off)); /* onto the plane */
+    if (c->shape->kind == SD_SHAPE_POLYHEDRON)
+        ns = sd_mesh_poly_section(c, &wl->g, n, off + c->shape->radius, e1, e2, sec);
+    if (ns < 3 || !(sd_clip_area(sec, ns, NULL) > 0))
+        ns = sd_mesh_disc(pm, sd_sqrt(SD_R(2.0) * req * (delta > 0 ? delta : SD_R(0.0))), e1, e2, sec);
+    sd_vec2 q = sd_v2(sd_v3_dot(pm, e1), sd_v3_dot(pm, e2));
+    return sd_mesh_clip_weight(m, &wl->g, o->tri + o->tstart[e], o->tcount[e], e1, e2, sec, ns, q, shift);
+}
+
+/* A plane contact's result weighted by w, its point moved by shift (m):
+ * force, torques and energy scale with w; the lever arm gains the shift. */
+SD_HD static SD_INLINE void sd_item_mesh_scale(sd_pair_result *r, sd_real w, sd_vec3 shift)
+{
+    r->f = sd_v3_scale(r->f, w);
+    r->ti = sd_v3_add(sd_v3_scale(r->ti, w), sd_v3_cross(shift, r->f));
+    r->tj = sd_v3_scale(r->tj, w);
+    r->energy *= w;
+}
+
 /* The contact geometry of the element of wall pair e (SD_WALL_PAIR_ELEMENTS)
  * with its wall feature: a sphere element by the sphere's contact with the
- * plane or box face, any other by its support point against the feature's
- * plane. *c: the posed element; *req: its equivalent radius, m; *p0, *nw:
- * the feature's plane when *has_plane is set. */
+ * plane, box face or drum, or with the closest active feature of a mesh
+ * plane group's near triangles; any other by its support point against
+ * the feature's plane (a mesh: the group's plane, the contact weighted by
+ * the element's section clipped by the group's near triangles, *wgt and
+ * *shift as sd_item_mesh_weight gives them; touching only where that
+ * weight is positive). *c: the posed element; *req: its equivalent radius,
+ * m; *p0, *nw: the feature's plane when *has_plane is set; *wgt = 1 and
+ * *shift = 0 off meshes. */
 SD_HD static SD_INLINE int sd_item_wall_element_geom(const sd_step_view *v, const sd_wall_pair_out *o, size_t e,
                                                      sd_convex *c, sd_shape *tmp, sd_real *req, sd_contact_geom *g,
-                                                     sd_vec3 *p0, sd_vec3 *nw, int *has_plane)
+                                                     sd_vec3 *p0, sd_vec3 *nw, int *has_plane, sd_real *wgt,
+                                                     sd_vec3 *shift)
 {
     const sd_wall_view *wl = &v->walls[o->wall[e]];
     *c = sd_item_element_of(v, o->i[e], o->elem[e], tmp, req);
     *has_plane = 0;
+    *wgt = SD_R(1.0);
+    *shift = sd_v3_zero();
+    if (wl->g.kind == SD_WALL_MESH) {
+        const sd_mesh_view *m = &v->meshes[wl->g.mesh];
+        if (sd_item_is_sphere(c)) {
+            *req = c->shape->radius;
+            return sd_mesh_sphere_geom(m, &wl->g, o->sub[e], o->tri + o->tstart[e], o->tcount[e], c->x,
+                                       c->shape->radius, g);
+        }
+        sd_mesh_group_plane(m, &wl->g, o->sub[e], p0, nw);
+        *has_plane = 1;
+        sd_narrow_count ns;
+        if (!sd_convex_wall_geom(c, *p0, *nw, g, &ns))
+            return 0;
+        *wgt = sd_item_mesh_weight(o, e, wl, m, c, g->point, g->delta, *req, shift);
+        return *wgt > SD_R(0.0);
+    }
     if (sd_item_is_sphere(c)) {
         sd_real r = c->shape->radius;
         *req = r;
@@ -660,34 +766,60 @@ SD_HD static SD_INLINE int sd_item_wall_element_geom(const sd_step_view *v, cons
 }
 
 /* SD_WALL_PAIR_ELEMENTS: the run [e0, e1) of the elements of one particle
- * against one wall feature, evaluated and combined as the particle pairs
- * are (two passes, the dashpot's mass at the contacts' centroid, seed 004
- * §2.6). Returns N_c. Meshes: not yet (the broad phase makes no element
- * pairs with mesh walls; a mesh's plane group would be this run's
- * feature). */
+ * against one wall feature (a mesh: one plane group), evaluated and
+ * combined as the particle pairs are (two passes, the dashpot's mass at
+ * the contacts' centroid, seed 004 §2.6). Against a mesh each element's
+ * contact is weighted by its clipped section as a convex particle's is
+ * (sd_item_mesh_convex), so a composite on a flat mesh is the composite on
+ * the analytic plane; the weight is applied after the law, before the
+ * combination. Returns N_c. */
 SD_HD static SD_INLINE int sd_item_wall_elements(const sd_step_view *v, sd_wall_pair_out *o, size_t e0, size_t e1)
 {
     uint32_t i = o->i[e0];
     const sd_wall_view *wl = &v->walls[o->wall[e0]];
     const sd_pair_params *prm = sd_item_params(v, v->material[i], wl->material);
     sd_body a = sd_item_wall_body(v, wl, i);
-    /* a drum: the composite's motion relative to the turning drum, right
-     * at every contact point of the run (sd_item_drum_relative) */
-    if (wl->g.kind == SD_WALL_DRUM)
+    /* a drum or a mesh: the composite's motion relative to the wall's
+     * rigid motion, right at every contact point of the run
+     * (sd_item_drum_relative; a mesh's translation left by the line
+     * above) */
+    if (wl->g.kind == SD_WALL_DRUM || wl->g.kind == SD_WALL_MESH)
         sd_item_drum_relative(wl, &a);
     int volume = sd_law_is_volume(prm->law);
+    sd_pair_params sumv;
+    if (volume && v->multi_contact == SD_MULTI_CONTACT_SUM) {
+        /* model A's N_c before the half-space overlaps: the elements whose
+         * support point is below the feature's plane (for a mesh, with
+         * some of their section on the group's triangles) */
+        int np = 0;
+        for (size_t e = e0; e < e1; ++e) {
+            sd_convex c;
+            sd_shape tmp;
+            sd_real req, wgt;
+            sd_contact_geom g;
+            sd_vec3 p0, nw, shift;
+            int has_plane;
+            np += sd_item_wall_element_geom(v, o, e, &c, &tmp, &req, &g, &p0, &nw, &has_plane, &wgt, &shift) &&
+                  has_plane && sd_shape_is_sharp_polyhedron(c.shape);
+        }
+        if (np > 1) {
+            sumv = sd_item_params_sum(prm, np);
+            prm = &sumv;
+        }
+    }
     sd_contact_geom keep[SD_ITEM_RUN_CAP];
-    sd_real keep_r[SD_ITEM_RUN_CAP];
+    sd_real keep_r[SD_ITEM_RUN_CAP], keep_w[SD_ITEM_RUN_CAP];
+    sd_vec3 keep_s[SD_ITEM_RUN_CAP];
     sd_vec3 cm = sd_v3_zero();
     int nc = 0;
     for (size_t e = e0; e < e1; ++e) {
         sd_convex c;
         sd_shape tmp;
-        sd_real req;
+        sd_real req, wgt;
         sd_contact_geom g;
-        sd_vec3 p0, nw;
+        sd_vec3 p0, nw, shift;
         int has_plane;
-        int t = sd_item_wall_element_geom(v, o, e, &c, &tmp, &req, &g, &p0, &nw, &has_plane);
+        int t = sd_item_wall_element_geom(v, o, e, &c, &tmp, &req, &g, &p0, &nw, &has_plane, &wgt, &shift);
         if (volume) {
             /* the half-space overlap is geometry and law in one (seed 000) */
             sd_body ae = a;
@@ -696,6 +828,17 @@ SD_HD static SD_INLINE int sd_item_wall_elements(const sd_step_view *v, sd_wall_
             sd_pair_result r = has_plane && sd_shape_is_sharp_polyhedron(c.shape)
                                    ? sd_pair_poly_wall(prm, &ae, &c, p0, nw, req, &o->ds[e], v->dt, &point)
                                    : sd_pair_none(&o->ds[e]);
+            if (r.delta > SD_R(0.0) && wl->g.kind == SD_WALL_MESH) {
+                const sd_mesh_view *m = &v->meshes[wl->g.mesh];
+                wgt = sd_item_mesh_weight(o, e, wl, m, &c, point, r.delta, req, &shift);
+                if (wgt > SD_R(0.0)) {
+                    sd_item_mesh_scale(&r, wgt, shift);
+                    point = sd_v3_add(point, shift);
+                } else {
+                    r = sd_pair_none(&o->ds[e]);
+                    point = c.x;
+                }
+            }
             sd_item_wall_store(o, e, point, &r);
             nc += r.delta > SD_R(0.0);
             continue;
@@ -704,6 +847,8 @@ SD_HD static SD_INLINE int sd_item_wall_elements(const sd_step_view *v, sd_wall_
             if (nc < SD_ITEM_RUN_CAP) {
                 keep[nc] = g;
                 keep_r[nc] = req;
+                keep_w[nc] = wgt;
+                keep_s[nc] = shift;
             }
             cm = sd_v3_add(cm, g.point);
             ++nc;
@@ -732,21 +877,26 @@ SD_HD static SD_INLINE int sd_item_wall_elements(const sd_step_view *v, sd_wall_
             if (!(o->delta[e] > SD_R(0.0)))
                 continue;
             sd_contact_geom g;
-            sd_real rs;
+            sd_real rs, wgt;
+            sd_vec3 shift;
             if (k < SD_ITEM_RUN_CAP) {
                 g = keep[k];
                 rs = keep_r[k];
+                wgt = keep_w[k];
+                shift = keep_s[k];
             } else {
                 sd_convex c;
                 sd_shape tmp;
                 sd_vec3 p0, nw;
                 int has_plane;
-                (void)sd_item_wall_element_geom(v, o, e, &c, &tmp, &rs, &g, &p0, &nw, &has_plane);
+                (void)sd_item_wall_element_geom(v, o, e, &c, &tmp, &rs, &g, &p0, &nw, &has_plane, &wgt, &shift);
             }
             ++k;
             wall.x = g.point; /* the wall: infinite mass at rest (a's velocity is relative to it) */
             sd_pair_result r = sd_item_apply_at(prm, &a, &wall, &g, rs, &o->ds[e], v->dt, cm);
-            sd_item_wall_store(o, e, g.point, &r);
+            if (wl->g.kind == SD_WALL_MESH)
+                sd_item_mesh_scale(&r, wgt, shift);
+            sd_item_wall_store(o, e, sd_v3_add(g.point, shift), &r);
         }
     }
     if (v->multi_contact == SD_MULTI_CONTACT_AVERAGE && nc > 1) {
@@ -785,12 +935,6 @@ SD_HD static SD_INLINE void sd_item_wall_convex2d(const sd_step_view *v, sd_wall
 
 /* ---- mesh-wall kinds (seed 000 §2.4; geom/mesh_contact.h) ---------------- */
 
-/* The velocity of wall wl at point c (m/s): a mesh translates and turns. */
-SD_HD static SD_INLINE sd_vec3 sd_item_wall_velocity_at(const sd_wall_view *wl, sd_vec3 c)
-{
-    return sd_v3_add(wl->velocity, sd_v3_cross(wl->omega, sd_v3_sub(c, wl->g.centre)));
-}
-
 /* SD_WALL_PAIR_MESH_SPHERE: a plain sphere (or disc) against a plane
  * group: the closest active feature of its near triangles. */
 SD_HD static SD_HOT void sd_item_mesh_sphere(const sd_step_view *v, sd_wall_pair_out *o, size_t e)
@@ -806,42 +950,6 @@ SD_HD static SD_HOT void sd_item_mesh_sphere(const sd_step_view *v, sd_wall_pair
     const sd_pair_params *prm = sd_item_params(v, v->material[i], wl->material);
     sd_pair_result r = sd_pair_wall(prm, &a, &g, touching, a.radius, &o->ds[e], v->dt);
     sd_item_wall_store(o, e, touching ? g.point : a.x, &r);
-}
-
-/* The area weight of a shape's contact with the plane group of wall pair
- * e at world point pw with overlap delta: the section (exact for
- * polyhedra, of the core with the plane moved out by the rounding; else
- * the disc of radius sqrt(2 req delta)) clipped by the group's near
- * triangles. */
-SD_HD static SD_INLINE sd_real sd_item_mesh_weight(const sd_wall_pair_out *o, size_t e, const sd_wall_view *wl,
-                                                   const sd_mesh_view *m, const sd_convex *c, sd_vec3 pw,
-                                                   sd_real delta, sd_real req, sd_vec3 *shift)
-{
-    uint32_t gr = o->sub[e];
-    sd_vec3 n = m->group_normal[gr];
-    sd_real off = m->group_offset[gr];
-    sd_vec3 e1, e2;
-    sd_clip_basis(n, &e1, &e2);
-    sd_vec2 sec[SD_CLIP_MAX + 3];
-    int ns = 0;
-    sd_vec3 pm = sd_mesh_to_frame(wl->g.q, wl->g.trans, pw);
-    pm = sd_v3_sub(pm, sd_v3_scale(n, sd_v3_dot(n, pm) - off)); /* onto the plane */
-    if (c->shape->kind == SD_SHAPE_POLYHEDRON)
-        ns = sd_mesh_poly_section(c, &wl->g, n, off + c->shape->radius, e1, e2, sec);
-    if (ns < 3 || !(sd_clip_area(sec, ns, NULL) > 0))
-        ns = sd_mesh_disc(pm, sd_sqrt(SD_R(2.0) * req * (delta > 0 ? delta : SD_R(0.0))), e1, e2, sec);
-    sd_vec2 q = sd_v2(sd_v3_dot(pm, e1), sd_v3_dot(pm, e2));
-    return sd_mesh_clip_weight(m, &wl->g, o->tri + o->tstart[e], o->tcount[e], e1, e2, sec, ns, q, shift);
-}
-
-/* A plane contact's result weighted by w, its point moved by shift (m):
- * force, torques and energy scale with w; the lever arm gains the shift. */
-SD_HD static SD_INLINE void sd_item_mesh_scale(sd_pair_result *r, sd_real w, sd_vec3 shift)
-{
-    r->f = sd_v3_scale(r->f, w);
-    r->ti = sd_v3_add(sd_v3_scale(r->ti, w), sd_v3_cross(shift, r->f));
-    r->tj = sd_v3_scale(r->tj, w);
-    r->energy *= w;
 }
 
 /* SD_WALL_PAIR_MESH_CONVEX: a 3D shape against a plane group: the plane

@@ -896,6 +896,15 @@ static sd_status sd_bins_mesh_tris(sd_bins *b, const sd_bins_input *in, sd_wall_
                                            &oom);
                     q = 0;
                 }
+                if (g > g0 && l->wall[l->gidx[g - 1]] == l->wall[e] && l->sub[l->gidx[g - 1]] == l->sub[e]) {
+                    /* the next element of a composite against the same
+                     * group: the same near triangles */
+                    if (pass) {
+                        l->tstart[e] = l->tstart[l->gidx[g - 1]];
+                        l->tcount[e] = l->tcount[l->gidx[g - 1]];
+                    }
+                    continue;
+                }
                 while (q < nt && (uint32_t)(buf[q] >> 32) < l->sub[e])
                     ++q;
                 uint32_t q0 = q;
@@ -934,6 +943,26 @@ static sd_status sd_bins_mesh_tris(sd_bins *b, const sd_bins_input *in, sd_wall_
     return SD_OK;
 }
 
+/* 1 when the bounding sphere of element t of composite particle a, grown
+ * by the skin, reaches one of the nt triangles tl (group << 32 | triangle,
+ * sd_bins_mesh_query's entries) of mesh wall wg. */
+static int sd_bins_element_near_mesh(const sd_bins_input *in, const sd_wall_geom *wg, const sd_shape *comp, size_t a,
+                                     uint32_t t, const uint64_t *tl, uint32_t nt)
+{
+    const sd_mesh_view *mv = &in->meshes[wg->mesh];
+    sd_real re;
+    sd_vec3 xe = sd_mesh_to_frame(wg->q, wg->trans, sd_bins_element_sphere(in, a, comp, t, &re));
+    sd_real r = re + in->skin;
+    for (uint32_t q = 0; q < nt; ++q) {
+        const uint32_t *tv = mv->tris[(uint32_t)(tl[q] & 0xffffffffu)];
+        int feature;
+        sd_vec3 c = sd_clip_closest(xe, mv->verts[tv[0]], mv->verts[tv[1]], mv->verts[tv[2]], &feature);
+        if (sd_v3_norm2(sd_v3_sub(xe, c)) < r * r)
+            return 1;
+    }
+    return 0;
+}
+
 /* Visits the wall candidates of owned particle a: the features within its
  * reach (bounding radius plus skin), wall by wall, feature by feature
  * (dynamics/walls.h), and for a composite, within such a feature, each
@@ -957,8 +986,6 @@ static uint32_t sd_bins_wall_candidates(const sd_bins_input *in, size_t a, uint3
             /* one candidate per plane group with a triangle within reach,
              * groups ascending (seed 000 §2.4) */
             int kind = sd_bins_mesh_pair_kind(ca, sd_bins_volume(in, ma, in->wall_material[wi]));
-            if (kind < 0)
-                continue; /* composites against meshes: not yet */
             uint64_t stack[SD_BINS_MESH_MAXT], *heap = NULL;
             size_t heap_cap = 0;
             const uint64_t *buf;
@@ -967,15 +994,25 @@ static uint32_t sd_bins_wall_candidates(const sd_bins_input *in, size_t a, uint3
                 uint32_t g = (uint32_t)(buf[q] >> 32);
                 if (q > 0 && (uint32_t)(buf[q - 1] >> 32) == g)
                     continue;
-                if (kind_count)
-                    kind_count[kind]++;
-                if (out_w && m >= skip && m - skip < cap) {
-                    out_w[m - skip] = (uint16_t)wi;
-                    out_f[m - skip] = g;
-                    out_e[m - skip] = 0;
-                    out_k[m - skip] = (uint8_t)kind;
+                /* a composite: each element whose bounding sphere (plus
+                 * the skin) reaches a triangle of this group, elements
+                 * ascending within the group (one run per group) */
+                uint32_t q1 = q;
+                while (q1 < nt && (uint32_t)(buf[q1] >> 32) == g)
+                    ++q1;
+                for (uint32_t t = 0; t < ne; ++t) {
+                    if (comp && !sd_bins_element_near_mesh(in, wg, comp, a, t, buf + q, q1 - q))
+                        continue;
+                    if (kind_count)
+                        kind_count[kind]++;
+                    if (out_w && m >= skip && m - skip < cap) {
+                        out_w[m - skip] = (uint16_t)wi;
+                        out_f[m - skip] = g;
+                        out_e[m - skip] = t;
+                        out_k[m - skip] = (uint8_t)kind;
+                    }
+                    ++m;
                 }
-                ++m;
             }
             sd_free(heap);
             continue;

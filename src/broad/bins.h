@@ -137,8 +137,8 @@ SD_HD static SD_INLINE int sd_bins_wall_pair_kind(int c, int volume)
     return volume ? SD_WALL_PAIR_POLY_VOLUME : SD_WALL_PAIR_CONVEX;
 }
 
-/* The kind of a pair of a particle and a mesh plane group (composites:
- * not yet, -1). */
+/* The kind of a pair of a particle and a mesh plane group (a composite:
+ * its elements against the group, one run per group). */
 SD_HD static SD_INLINE int sd_bins_mesh_pair_kind(int c, int volume)
 {
     if (c == SD_CLASS_SPHERE)
@@ -146,7 +146,7 @@ SD_HD static SD_INLINE int sd_bins_mesh_pair_kind(int c, int volume)
     if (c == SD_CLASS_SHAPE2D)
         return SD_WALL_PAIR_MESH_CONVEX2D;
     if (c == SD_CLASS_COMPOSITE)
-        return -1;
+        return SD_WALL_PAIR_ELEMENTS; /* one run per plane group (items.h) */
     return volume ? SD_WALL_PAIR_MESH_POLY_VOLUME : SD_WALL_PAIR_MESH_CONVEX;
 }
 

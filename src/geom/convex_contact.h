@@ -123,8 +123,9 @@ SD_HD static SD_INLINE sd_vec3 sd_convex_core_to_world(const sd_convex *a, sd_ve
  * corner to corner and rock. So the point is taken below the centroid of all
  * core points within 1e-9 L (L = the bounding radius) of the deepest one:
  * the vertex centroid of the face, edge or corner for boxes and polyhedra,
- * the cap centre for a cap tilted by less than 1e-9 L over its diameter.
- * (For a polyhedron face the vertex centroid is not the area centroid, but it
+ * the cap centre for a cap tilted by less than 1e-9 L over its diameter,
+ * the midpoint of a cylinder's mantle line tilted by less than 1e-9 L over
+ * its length. (For a polyhedron face the vertex centroid is not the area centroid, but it
  * lies in the face and does not jump; the volume model handles area.) */
 SD_HD static SD_INLINE sd_convex_contact sd_convex_plane(const sd_convex *a, sd_vec3 p0, sd_vec3 nplane)
 {
@@ -190,6 +191,14 @@ SD_HD static SD_INLINE sd_convex_contact sd_convex_plane(const sd_convex *a, sd_
             else
                 zc = nl.z > SD_R(0.0) ? SD_R(0.0) : sh->a.z;
             cen = sd_convex_core_to_world(a, sd_v3(SD_R(0.0), SD_R(0.0), zc));
+        } else if (sh->kind == SD_SHAPE_CYLINDER && SD_R(2.0) * sh->a.z * sd_fabs(nl.z) <= tol) {
+            /* a cylinder on its side: the mantle line of length 2 a.z,
+             * tilted by asin |nl.z|, dips 2 a.z |nl.z| along it; the
+             * support returns one end (a tie broken by rounding), whose
+             * lever arm spins the body (seed 004 §3.2, Fig. 9b): take the
+             * line's midpoint */
+            sd_vec3 sl = sd_v3_sub(sd_quat_rotate_inv(a->q, sd_v3_sub(s, a->x)), sh->offset);
+            cen = sd_convex_core_to_world(a, sd_v3(sl.x, sl.y, SD_R(0.0)));
         }
     }
     sd_real hc = sd_v3_dot(sd_v3_sub(cen, p0), nplane);

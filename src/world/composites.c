@@ -5,6 +5,8 @@
  * Invariant: shapes[k].estart / ecount of a composite index
  * elements[estart .. estart + ecount), in the composite's principal frame;
  * every element's template is convex and was added before the composite.
+ * A preset (shape/complib.h) becomes element templates first, one per
+ * distinct part size, then a composite like any other.
  */
 #include <math.h>
 #include <stdio.h>
@@ -12,6 +14,7 @@
 
 #include "core/alloc.h"
 #include "core/error.h"
+#include "shape/complib.h"
 #include "shape/composite.h"
 #include "world/world.h"
 
@@ -90,4 +93,97 @@ int sd_world_add_composite(sd_world *w, const char *name, const sd_composite_des
     snprintf(w->shape_names[w->shape_count], 64, "%s", name);
     w->prepared = 0;
     return (int)w->shape_count++;
+}
+
+#define SD_COMPOSITE_PRESET_COOKIE 0x5DC1
+
+sd_composite_preset_def sd_composite_preset_def_default(void)
+{
+    sd_composite_preset_def d;
+    memset(&d, 0, sizeof d);
+    d.cookie = SD_COMPOSITE_PRESET_COOKIE;
+    return d;
+}
+
+sd_status sd_composite_preset(sd_world *w, const char *name, const sd_composite_preset_def *def,
+                              sd_composite_element *out, size_t cap, size_t *n, sd_error *err)
+{
+    *n = 0;
+    if (!def || def->cookie != SD_COMPOSITE_PRESET_COOKIE)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "preset",
+                            "composite preset def not made by sd_composite_preset_def_default");
+    sd_comp_def cd;
+    memset(&cd, 0, sizeof cd);
+    cd.preset = sd_complib_from_name(def->preset);
+    if (cd.preset < 0)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "preset",
+                            "unknown composite preset '%s' (cross2d, cross3d, lshape, tshape, ring, dumbbell, "
+                            "spheres9, spheres54)",
+                            def->preset ? def->preset : "(null)");
+    /* a parameter the preset does not take is a mistake, not a no-op */
+    static const char *const keys[5] = {"length", "diameter", "width", "thickness", "count"};
+    static const unsigned bits[5] = {SD_COMP_USES_LENGTH, SD_COMP_USES_DIAMETER, SD_COMP_USES_WIDTH,
+                                     SD_COMP_USES_THICKNESS, SD_COMP_USES_COUNT};
+    const int given[5] = {def->length != 0, def->diameter != 0, def->width != 0, def->thickness != 0,
+                          def->count != 0};
+    unsigned uses = sd_complib_uses(cd.preset);
+    for (int k = 0; k < 5; ++k)
+        if (given[k] && !(uses & bits[k]))
+            return sd_error_set(err, SD_ERR_INPUT, "", 0, keys[k], "%s does not apply to the %s preset", keys[k],
+                                def->preset);
+    cd.length = def->length;
+    cd.diameter = def->diameter;
+    cd.width = def->width;
+    cd.thickness = def->thickness;
+    cd.count = def->count;
+    sd_comp_part parts[SD_COMP_MAX_PARTS];
+    size_t np = 0;
+    sd_status st = sd_complib_parts(&cd, parts, SD_COMP_MAX_PARTS, &np, err);
+    if (st != SD_OK)
+        return st;
+    if (np > cap)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "elements", "the %s preset makes %zu elements, room for %zu",
+                            def->preset, np, cap);
+    /* one template per distinct (kind, size), in order of first use */
+    int tmpl[SD_COMP_MAX_PARTS];
+    size_t nt = 0;
+    for (size_t k = 0; k < np; ++k) {
+        size_t h = 0;
+        while (h < k && !(!strcmp(parts[h].kind, parts[k].kind) && parts[h].size.x == parts[k].size.x &&
+                          parts[h].size.y == parts[k].size.y && parts[h].size.z == parts[k].size.z))
+            ++h;
+        if (h < k) {
+            tmpl[k] = tmpl[h];
+        } else {
+            char en[96];
+            if (snprintf(en, sizeof en, "%s.e%zu", name ? name : "", nt) >= (int)sizeof en)
+                return sd_error_set(err, SD_ERR_INPUT, "", 0, "name",
+                                    "the composite's name is too long to name its element shapes");
+            sd_shape_desc sdsc = sd_shape_desc_default();
+            sdsc.kind = parts[k].kind;
+            sdsc.size = parts[k].size;
+            tmpl[k] = sd_world_add_shape(w, en, &sdsc, err);
+            if (tmpl[k] < 0)
+                return err ? err->code : SD_ERR_INPUT;
+            ++nt;
+        }
+        memset(&out[k], 0, sizeof out[k]);
+        out[k].shape = tmpl[k];
+        out[k].position = parts[k].position;
+        memcpy(out[k].orientation, parts[k].orientation, sizeof out[k].orientation);
+    }
+    *n = np;
+    return SD_OK;
+}
+
+int sd_world_add_composite_preset(sd_world *w, const char *name, const sd_composite_preset_def *def, sd_error *err)
+{
+    sd_composite_element el[SD_COMP_MAX_PARTS];
+    size_t n = 0;
+    if (sd_composite_preset(w, name, def, el, SD_COMP_MAX_PARTS, &n, err) != SD_OK)
+        return -1;
+    sd_composite_desc cd = sd_composite_desc_default();
+    cd.elements = el;
+    cd.element_count = n;
+    return sd_world_add_composite(w, name, &cd, err);
 }

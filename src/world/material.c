@@ -181,7 +181,9 @@ sd_status sd_world_mix_materials(sd_world *w, sd_error *err)
 /* The volume laws need the overlap volume, which exists for sharp polyhedra
  * only (no rounding, no margin): a particle of any other shape whose
  * material meets another one under a volume law is an error at prepare
- * time, naming the shape and the two materials (no silent fallback). */
+ * time, naming the shape and the two materials (no silent fallback); a
+ * composite passes when all its elements do, else its first element that
+ * does not is named. */
 static sd_status sd_world_check_volume_shapes(const sd_world *w, const char *used, sd_error *err)
 {
     size_t nm = w->material_count;
@@ -192,6 +194,22 @@ static sd_status sd_world_check_volume_shapes(const sd_world *w, const char *use
         int sharp = s >= 0 && w->shapes[s].kind == SD_SHAPE_POLYHEDRON && w->shapes[s].radius == 0;
         if (sharp && w->shapes[s].fcount <= SD_OVERLAP_MAX_PLANES)
             continue;
+        if (s >= 0 && w->shapes[s].kind == SD_SHAPE_COMPOSITE) {
+            /* a composite's element pairs take the overlap volume
+             * (backend/items.h): every element a sharp polyhedron the
+             * workspace holds; else the first that is not is named */
+            const sd_shape *c = &w->shapes[s];
+            uint32_t t = 0;
+            for (; t < c->ecount; ++t) {
+                const sd_shape *es = &w->shapes[w->elements[c->estart + t].shape];
+                if (!(es->kind == SD_SHAPE_POLYHEDRON && es->radius == 0 && es->fcount <= SD_OVERLAP_MAX_PLANES))
+                    break;
+            }
+            if (t == c->ecount)
+                continue;
+            s = w->elements[c->estart + t].shape;
+            sharp = w->shapes[s].kind == SD_SHAPE_POLYHEDRON && w->shapes[s].radius == 0;
+        }
         for (size_t b = 0; b < nm && b < 256; ++b) {
             if (!used[b])
                 continue;
