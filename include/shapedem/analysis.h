@@ -62,20 +62,24 @@ sd_status sd_world_porosity(const sd_world *w, const sd_porosity_def *def, sd_po
  * contact when one of their pairs (for composites: element pairs) had an
  * overlap > 0 at the last force evaluation; a particle and a wall feature
  * (a plane, a box face, a mesh plane group, the drum) alike. Z_i counts
- * the particles particle i touches; the walls are counted apart. */
+ * the particles particle i touches; the walls are counted apart. With a
+ * region (NULL or kind NONE: all), only the particles whose centre lies
+ * in it are counted, with all their contacts (e.g. the core of a drum's
+ * bed, away from its walls). */
 #define SD_COORDINATION_MAX 24
 
 typedef struct sd_coordination {
-    size_t particles;                          /* counted (all the solver holds) */
-    long contacts;                             /* particle-particle contacts */
-    long wall_contacts;                        /* particle-wall-feature contacts */
-    double mean;                               /* 2 contacts / particles */
-    double mean_with_walls;                    /* (2 contacts + wall_contacts) / particles */
+    size_t particles;                          /* counted (in the region) */
+    long contacts;                             /* particle-particle contacts of the counted particles */
+    long wall_contacts;                        /* their particle-wall-feature contacts */
+    double mean;                               /* mean Z (2 contacts / particles without a region) */
+    double mean_with_walls;                    /* mean of Z + wall contacts */
     size_t rattlers;                           /* particles touching neither a particle nor a wall */
     size_t histogram[SD_COORDINATION_MAX + 1]; /* particles with Z = k; the last entry: Z >= MAX */
 } sd_coordination;
 
-sd_status sd_world_coordination(const sd_world *w, sd_coordination *out, sd_error *err);
+sd_status sd_world_coordination(const sd_world *w, const sd_region_def *region, sd_coordination *out,
+                                sd_error *err);
 
 /* ---- motion ------------------------------------------------------------------
  * region: only particles whose centre lies in it (NULL or kind NONE: all). */

@@ -7,7 +7,10 @@
  * entry per element pair, and a periodic contact is held once, with the
  * ghost's owner as the second body; so the entries in contact are reduced
  * to distinct (owned i, owner of j) pairs (sorted, then unique) before
- * counting. Wall contacts alike: distinct (particle, wall, feature).
+ * counting. Wall contacts alike: distinct (particle, wall, feature). A
+ * region keeps the particles whose centre lies in it, with every contact
+ * they have (a contact with a particle outside counts for the one
+ * inside).
  *
  * Invariant: reads only; the counts are integers in a fixed order, the
  * same for any thread count.
@@ -46,15 +49,19 @@ static size_t sd_an_unique(sd_an_pair *v, size_t n)
     return m;
 }
 
-sd_status sd_world_coordination(const sd_world *w, sd_coordination *out, sd_error *err)
+sd_status sd_world_coordination(const sd_world *w, const sd_region_def *region, sd_coordination *out,
+                                sd_error *err)
 {
     memset(out, 0, sizeof *out);
+    sd_an_region reg;
+    sd_status st = sd_an_region_make(region, w->dim2, &reg, err);
+    if (st != SD_OK)
+        return st;
     if (w->solver != &sd_solver_cells)
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "type",
                             "coordination reads the contact list of the cells solver; the %s solver keeps none",
                             w->solver->name);
     const size_t n = w->p.n;
-    out->particles = n;
     if (n == 0)
         return SD_OK;
     const sd_pair_list *l = &w->pairs;
@@ -86,8 +93,8 @@ sd_status sd_world_coordination(const sd_world *w, sd_coordination *out, sd_erro
     for (size_t k = 0; k < m; ++k) {
         z[v[k].a]++;
         z[v[k].b]++;
+        out->contacts += sd_an_region_has(&reg, w->p.x[v[k].a]) || sd_an_region_has(&reg, w->p.x[v[k].b]);
     }
-    out->contacts = (long)m;
     m = 0;
     for (size_t e = 0; e < wl->n; ++e) {
         if (!(wl->delta[e] > 0) || wl->i[e] >= n)
@@ -100,13 +107,20 @@ sd_status sd_world_coordination(const sd_world *w, sd_coordination *out, sd_erro
     m = sd_an_unique(v, m);
     for (size_t k = 0; k < m; ++k)
         zw[v[k].a]++;
-    out->wall_contacts = (long)m;
+    long zsum = 0;
     for (size_t k = 0; k < n; ++k) {
+        if (!sd_an_region_has(&reg, w->p.x[k]))
+            continue;
+        out->particles++;
         out->histogram[z[k] < SD_COORDINATION_MAX ? z[k] : SD_COORDINATION_MAX]++;
         out->rattlers += z[k] == 0 && zw[k] == 0;
+        out->wall_contacts += (long)zw[k];
+        zsum += (long)z[k];
     }
-    out->mean = 2.0 * (double)out->contacts / (double)n;
-    out->mean_with_walls = (2.0 * (double)out->contacts + (double)out->wall_contacts) / (double)n;
+    if (out->particles > 0) {
+        out->mean = (double)zsum / (double)out->particles;
+        out->mean_with_walls = (double)(zsum + out->wall_contacts) / (double)out->particles;
+    }
     sd_free(v);
     sd_free(z);
     sd_free(zw);

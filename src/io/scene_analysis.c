@@ -71,11 +71,9 @@ static sd_status sd_an_parse_region(sd_parse *p, yaml_node_t *m, const char *pat
         return SD_OK;
     }
     int line = v.line;
-    if (e->type == SD_AN_COORDINATION || e->type == SD_AN_REPOSE_ANGLE)
-        return sd_fail(p, line, sd_yaml_kp(key, sizeof key, path, "region"), "%s takes no region (%s)",
-                       sd_an_type_names[e->type],
-                       e->type == SD_AN_COORDINATION ? "it counts every contact"
-                                                     : "the heap is found about center, default its centre of mass");
+    if (e->type == SD_AN_REPOSE_ANGLE)
+        return sd_fail(p, line, sd_yaml_kp(key, sizeof key, path, "region"),
+                       "repose_angle takes no region (the heap is found about center, default its centre of mass)");
     if (v.choice == 0) { /* box */
         for (int k = 0; k < 4; ++k)
             if (sd_yaml_map_get(&p->y, m, cyl_keys[k]))
@@ -283,8 +281,12 @@ sd_status sd_parse_analysis(sd_parse *p, yaml_node_t *root)
                 snprintf(e->name, sizeof e->name, "%s", sd_an_type_names[e->type]);
         }
         seen[e->type]++;
-        if (!e->file[0])
-            snprintf(e->file, sizeof e->file, "%.*s.csv", (int)sizeof e->file - 5, e->name);
+        if (!e->file[0]) { /* NAME.csv (two members of one struct: no snprintf of one into the other) */
+            size_t nl = strlen(e->name);
+            nl = nl > sizeof e->file - 5 ? sizeof e->file - 5 : nl;
+            memcpy(e->file, e->name, nl);
+            memcpy(e->file + nl, ".csv", 5);
+        }
         for (size_t k = 0; k < i; ++k)
             if (strcmp(sa->e[k].file, e->file) == 0) {
                 char key[80];
@@ -451,7 +453,7 @@ static sd_status sd_an_rows(sd_analysis_run *a, const sd_scene_analysis_entry *e
     }
     case SD_AN_COORDINATION: {
         sd_coordination c;
-        if ((st = sd_world_coordination(w, &c, err)) != SD_OK)
+        if ((st = sd_world_coordination(w, reg, &c, err)) != SD_OK)
             return st;
         fprintf(f, "%.10g,%ld,%zu,%ld,%ld,%.10g,%.10g,%zu", t, step, c.particles, c.contacts, c.wall_contacts, c.mean,
                 c.mean_with_walls, c.rattlers);

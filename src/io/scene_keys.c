@@ -66,8 +66,7 @@
 #define AN_VOX (AN(SD_AN_POROSITY) | AN(SD_AN_RADIAL_POROSITY))
 #define AN_NEEDS_REGION (AN_VOX | AN(SD_AN_VELOCITY_FIELD) | AN(SD_AN_SURFACE_ANGLE))
 /* the region keys are read for every type (io/scene_analysis.c refuses a
- * region for coordination and repose_angle by name), so their section
- * column stays short */
+ * region for repose_angle by name), so their section column stays short */
 #define AN_REGION ALL
 #define AN_BOX ALL
 #define AN_CYL ALL
@@ -603,8 +602,8 @@ const sd_scene_key sd_scene_keys[] = {
      "simulated time between rows instead of every (rounded to whole steps)"},
     {SD_SEC_ANALYSIS, "region", SD_KT_ENUM, SD_KR_ANY, "box|cylinder", AN_REGION, AN_NEEDS_REGION, "", "all particles",
      "where: the voxels of porosity, the annuli of radial_porosity (cylinder), the slab of velocity_field "
-     "(box), the drum of surface_angle (cylinder); speed_pdf, energy, bed_height: the particles whose centre "
-     "lies in it; not for coordination and repose_angle"},
+     "(box), the drum of surface_angle (cylinder); coordination, speed_pdf, energy, bed_height: the particles "
+     "whose centre lies in it; not for repose_angle"},
     {SD_SEC_ANALYSIS, "min", SD_KT_VEC3, SD_KR_ANY, NULL, AN_BOX, 0, "m", "-", "box region: lower corner"},
     {SD_SEC_ANALYSIS, "max", SD_KT_VEC3, SD_KR_ANY, NULL, AN_BOX, 0, "m", "-",
      "box region: upper corner, > min on every axis (2D: x and y)"},

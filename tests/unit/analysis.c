@@ -77,7 +77,7 @@ static void coordination(void)
                     &err);
     sd_test_require(sd_world_prepare(w, &err) == SD_OK, "prepare", &err);
     sd_coordination c;
-    sd_test_require(sd_world_coordination(w, &c, &err) == SD_OK, "coordination", &err);
+    sd_test_require(sd_world_coordination(w, NULL, &c, &err) == SD_OK, "coordination", &err);
     CHECK_NEAR("particle contacts", (double)c.contacts, 54, 0);
     CHECK_NEAR("mean coordination number", c.mean, 4.0, 1e-12);
     CHECK_NEAR("wall contacts (the bottom layer)", (double)c.wall_contacts, 9, 0);
@@ -87,6 +87,17 @@ static void coordination(void)
     CHECK_NEAR("particles with Z = 5 (faces)", (double)c.histogram[5], 6, 0);
     CHECK_NEAR("particles with Z = 6 (the centre)", (double)c.histogram[6], 1, 0);
     CHECK_NEAR("rattlers", (double)c.rattlers, 0, 0);
+    /* the bottom layer only: 4 corners (Z 3), 4 edges (Z 4), the middle (Z 5) */
+    sd_region_def bottom;
+    memset(&bottom, 0, sizeof bottom);
+    bottom.kind = SD_REGION_BOX;
+    bottom.lo = sd_test_v(-r, -r, 0);
+    bottom.hi = sd_test_v(3 * d, 3 * d, 1.5 * r);
+    sd_test_require(sd_world_coordination(w, &bottom, &c, &err) == SD_OK, "coordination", &err);
+    CHECK_NEAR("bottom layer: particles", (double)c.particles, 9, 0);
+    CHECK_NEAR("bottom layer: mean Z", c.mean, 33.0 / 9.0, 1e-12);
+    CHECK_NEAR("bottom layer: contacts with one end in it", (double)c.contacts, 12 + 9, 0);
+    CHECK_NEAR("bottom layer: wall contacts", (double)c.wall_contacts, 9, 0);
     sd_world_destroy(w);
 
     printf("-- coordination: two dumbbells side by side, touching with both element pairs\n");
@@ -117,7 +128,7 @@ static void coordination(void)
     sd_test_require(sd_world_prepare(w, &err) == SD_OK, "prepare", &err);
     sd_stats st;
     sd_world_stats(w, &st);
-    sd_test_require(sd_world_coordination(w, &c, &err) == SD_OK, "coordination", &err);
+    sd_test_require(sd_world_coordination(w, NULL, &c, &err) == SD_OK, "coordination", &err);
     printf("   element contacts in the pair list: %ld\n", st.contacts);
     CHECK_NEAR("composite contacts (2 element contacts, 1 pair)", (double)c.contacts, 1, 0);
     CHECK_NEAR("rattlers", (double)c.rattlers, 1, 0);
