@@ -207,8 +207,24 @@ static sd_status sd_an_parse_entry(sd_parse *p, yaml_node_t *m, const char *path
         e->every = st_ < 1.0 ? 1 : (long)floor(st_ + 0.5);
     }
     /* the type's own keys */
-    if (sd_yaml_get(&p->y, m, SD_SEC_ANALYSIS, "voxel", path, &v))
+    if (sd_yaml_get(&p->y, m, SD_SEC_ANALYSIS, "voxel", path, &v)) {
         e->voxel = v.num;
+        /* the lattice's size now, not hours into the run (sd_world_porosity's limit) */
+        const sd_region_def *r = &e->region;
+        double n = 1;
+        if (r->kind == SD_REGION_BOX) {
+            const double ext[3] = {r->hi.x - r->lo.x, r->hi.y - r->lo.y, planar ? 0 : r->hi.z - r->lo.z};
+            for (int a = 0; a < 3; ++a)
+                n *= ext[a] > 0 ? fmax(1.0, floor(ext[a] / v.num + 0.5)) : 1.0;
+        } else if (r->kind == SD_REGION_CYLINDER) {
+            double nr = fmax(1.0, floor(2 * r->radius / v.num + 0.5));
+            n = nr * nr * (planar ? 1.0 : fmax(1.0, floor(r->length / v.num + 0.5)));
+        }
+        if (n > (double)SD_POROSITY_MAX_VOXELS)
+            return sd_fail(p, v.line, sd_yaml_kp(key, sizeof key, path, "voxel"),
+                           "voxel %g m cuts the region into %.3g voxels, more than %.3g: take a larger voxel", v.num,
+                           n, (double)SD_POROSITY_MAX_VOXELS);
+    }
     e->bins = sd_an_default_bins(e->type);
     if (sd_yaml_get(&p->y, m, SD_SEC_ANALYSIS, "bins", path, &v))
         e->bins = (int)(v.integer > 100000 ? 100000 : v.integer);
