@@ -21,8 +21,11 @@ set -euo pipefail
 # (tests/fuzz). valgrind: the memcheck.run_short test (skipped without it).
 # libmpfr-dev: the correctly rounded oracle of unit.math, which checks the
 # engine's own elementary functions (core/math.h) to 1 ulp.
+# libcairo2-dev: `shapedem render` (src/render/) draws frames headless into
+# PNG files with cairo's image surfaces (the build leaves render out without it).
 need_pkgs=(build-essential cmake pkg-config libyaml-dev libhdf5-dev libccd-dev libqhull-dev
-  python3 python3-matplotlib git clang libclang-rt-dev valgrind libmpfr-dev)
+  python3 python3-matplotlib git clang libclang-rt-dev valgrind libmpfr-dev
+  libcairo2-dev)
 if [[ "${SHAPEDEM_WITH_BENCH:-0}" == 1 ]]; then
   need_pkgs+=(liggghts)
 fi

@@ -52,6 +52,8 @@ static void sd_usage(FILE *f)
             "       shapedem shape info KIND --size X[,Y,Z] [--rounding R] [--margin M] [--density RHO]\n"
             "       shapedem shape info SCENE.yaml\n"
             "       shapedem shape fit-fourier OUTLINE.csv [--order N] [--directions M] [--beta B]\n"
+            "       shapedem render FRAME.vtu|frames.pvd -o PICTURE.png [--field F] [--view V] [--size WxH]\n"
+            "                  [--movie]\n"
             "       shapedem help [scene [--markdown]]\n"
             "       shapedem --version\n"
             "\n"
@@ -60,6 +62,8 @@ static void sd_usage(FILE *f)
             "  check   validate the scene and print what it would simulate\n"
             "  shape fit-fourier  fit a convex Fourier-series support function ([Huang 2021]) to a\n"
             "          closed outline; prints coefficients, convexity, reduction, coverage\n"
+            "  render  draw a frame's particles with their true shapes into a PNG, headless;\n"
+            "          'render --help' lists its options\n"
             "  help    this text; 'help scene' lists every scene key with unit and default\n"
             "\n"
             "  -o DIR       output directory\n"
@@ -496,6 +500,8 @@ int main(int argc, char **argv)
     }
     if (argc >= 2 && !strcmp(argv[1], "shape"))
         return sd_cmd_shape(argc, argv);
+    if (argc >= 2 && !strcmp(argv[1], "render"))
+        return sd_cmd_render(argc, argv);
     sd_cli c;
     int rc = sd_parse_args(argc, argv, &c);
     if (rc)

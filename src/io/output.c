@@ -4,7 +4,7 @@
  * Invariants (see output.h): nothing is written into a non-empty directory
  * that lacks the .shapedem-output marker; a directory with the marker loses
  * only files whose names shapedem itself writes (particles_<digits>.vtu,
- * walls_<digits>.vtp, frames.pvd, stats.csv, walls.csv, biaxial.csv,
+ * walls_<digits>.vtp, shapes_<digits>.vtp, frames.pvd, stats.csv, walls.csv, biaxial.csv,
  * summary.txt and their ".<name>.tmp" temporaries); every file except the
  * CSVs is replaced atomically; stats.csv, walls.csv (worlds with walls) and
  * biaxial.csv (2D boxes) are only ever appended to, one flushed row per call,
@@ -38,6 +38,7 @@ struct sd_output {
     char *dir;
     char *scene;
     int vtk, csv;
+    sd_vtk_shapes *shapes; /* the templates' surfaces when frames carry the true shapes, else NULL */
     long frames;          /* frames written so far = next frame number */
     double *frame_times;  /* s, one per frame, for frames.pvd */
     size_t frame_cap;
@@ -92,7 +93,7 @@ static int sd_output_is_ours(const char *name)
         if (n == strlen(fixed[k]) && memcmp(s, fixed[k], n) == 0)
             return 1;
     return sd_output_is_frame_name(s, n, "particles_", ".vtu") ||
-           sd_output_is_frame_name(s, n, "walls_", ".vtp");
+           sd_output_is_frame_name(s, n, "walls_", ".vtp") || sd_output_is_frame_name(s, n, "shapes_", ".vtp");
 }
 
 typedef struct sd_output_scan {
@@ -190,7 +191,7 @@ static sd_status sd_output_prepare_dir(const char *dir, sd_error *err)
         return s;
     fprintf(af.fp,
             "This directory was written by shapedem %s.\n"
-            "The next run writing here replaces particles_*.vtu, walls_*.vtp, frames.pvd,\n"
+            "The next run writing here replaces particles_*.vtu, walls_*.vtp, shapes_*.vtp, frames.pvd,\n"
             "stats.csv, walls.csv, biaxial.csv and summary.txt; any other file is left alone.\n",
             SD_VERSION_STRING);
     return sd_fs_atomic_commit(&af, err);
@@ -198,7 +199,6 @@ static sd_status sd_output_prepare_dir(const char *dir, sd_error *err)
 
 sd_status sd_output_open(const sd_output_def *def, const sd_world *w, sd_output **out, sd_error *err)
 {
-    (void)w;
     if (!out)
         return sd_error_set(err, SD_ERR_INTERNAL, "", 0, "", "sd_output_open: out is NULL");
     *out = NULL;
@@ -219,9 +219,18 @@ sd_status sd_output_open(const sd_output_def *def, const sd_world *w, sd_output 
         sd_free(o);
         return sd_error_set(err, SD_ERR_MEMORY, def->directory, 0, "", "out of memory");
     }
-    o->vtk = def->vtk;
+    o->vtk = def->vtk || def->shapes;
     o->csv = def->csv;
     o->walls_csv = def->csv;
+    if (def->shapes) {
+        s = sd_vtk_shapes_make(w, def->shape_resolution ? def->shape_resolution : 24, &o->shapes, err);
+        if (s != SD_OK) {
+            sd_free(o->dir);
+            sd_free(o->scene);
+            sd_free(o);
+            return s;
+        }
+    }
     *out = o;
     return SD_OK;
 }
@@ -239,7 +248,8 @@ static sd_status sd_output_fail(sd_atomic_file *af, sd_status s, sd_error *err)
 
 static sd_status sd_output_write_pvd(sd_output *o, sd_error *err)
 {
-    size_t n = 2 * (size_t)o->frames;
+    size_t parts = o->shapes ? 3 : 2; /* particles, walls, and shapes when written */
+    size_t n = parts * (size_t)o->frames;
     sd_vtk_dataset *sets = sd_malloc((n ? n : 1) * sizeof *sets);
     char *names = sd_malloc((n ? n : 1) * SD_OUTPUT_NAME_MAX);
     if (!sets || !names) {
@@ -248,10 +258,11 @@ static sd_status sd_output_write_pvd(sd_output *o, sd_error *err)
         return sd_error_set(err, SD_ERR_MEMORY, o->dir, 0, "", "out of memory");
     }
     for (long f = 0; f < o->frames; ++f) {
-        for (int part = 0; part < 2; ++part) {
-            size_t k = 2 * (size_t)f + (size_t)part;
+        for (int part = 0; part < (int)parts; ++part) {
+            size_t k = parts * (size_t)f + (size_t)part;
             char *name = names + SD_OUTPUT_NAME_MAX * k;
-            snprintf(name, SD_OUTPUT_NAME_MAX, part ? "walls_%06ld.vtp" : "particles_%06ld.vtu", f);
+            snprintf(name, SD_OUTPUT_NAME_MAX,
+                     part == 2 ? "shapes_%06ld.vtp" : part ? "walls_%06ld.vtp" : "particles_%06ld.vtu", f);
             sets[k].time = o->frame_times[f];
             sets[k].part = part;
             sets[k].file = name;
@@ -302,6 +313,17 @@ sd_status sd_output_frame(sd_output *o, const sd_world *w, sd_error *err)
     s = (s == SD_OK) ? sd_fs_atomic_commit(&af, err) : sd_output_fail(&af, s, err);
     if (s != SD_OK)
         return s;
+
+    if (o->shapes) {
+        snprintf(name, sizeof name, "shapes_%06ld.vtp", o->frames);
+        s = sd_fs_atomic_begin(&af, o->dir, name, err);
+        if (s != SD_OK)
+            return s;
+        s = sd_vtk_write_shapes(af.fp, w, o->shapes, err);
+        s = (s == SD_OK) ? sd_fs_atomic_commit(&af, err) : sd_output_fail(&af, s, err);
+        if (s != SD_OK)
+            return s;
+    }
 
     o->frame_times[o->frames++] = sd_world_time(w);
     return sd_output_write_pvd(o, err);
@@ -687,6 +709,7 @@ sd_status sd_output_close(sd_output *o, const sd_world *w, const sd_run_summary 
     if (s == SD_OK)
         s = s2;
     sd_free(o->frame_times);
+    sd_vtk_shapes_free(o->shapes);
     sd_free(o->scene);
     sd_free(o->dir);
     sd_free(o);

@@ -19,6 +19,8 @@ typedef struct sd_output_def {
     int vtk;            /* write frames */
     int csv;            /* write stats.csv */
     const char *scene;  /* scene path, recorded in the summary */
+    int shapes;         /* with each frame, the true shapes (shapes_NNNNNN.vtp, io/vtk_shapes.c) */
+    int shape_resolution; /* directions per turn of curved surfaces (0: 24) */
 } sd_output_def;
 
 typedef struct sd_run_summary {

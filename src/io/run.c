@@ -94,7 +94,12 @@ sd_status sd_run_open(const sd_scene *s, sd_world *w, const char *dir, sd_run **
             return sd_error_set(err, SD_ERR_INPUT, dir, 0, "", "output directory path too long");
         }
         snprintf(r->dir, sizeof r->dir, "%s", dir);
-        sd_output_def od = {.directory = r->dir, .vtk = info.write_frames, .csv = info.write_stats, .scene = s->path};
+        sd_output_def od = {.directory = r->dir,
+                            .vtk = info.write_frames,
+                            .csv = info.write_stats,
+                            .shapes = (s->output.formats & SD_OUT_SHAPES) != 0,
+                            .shape_resolution = s->output.shape_resolution,
+                            .scene = s->path};
         sd_status st = sd_output_open(&od, w, &r->out, err);
         if (st != SD_OK) {
             sd_free(r);

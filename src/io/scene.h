@@ -132,13 +132,14 @@ typedef struct sd_scene_wall {
     char warning[400];            /* repairs made to the mesh (dropped, turned facets), or "" */
 } sd_scene_wall;
 
-enum { SD_OUT_VTK = 1 << 0, SD_OUT_CSV = 1 << 1 };
+enum { SD_OUT_VTK = 1 << 0, SD_OUT_CSV = 1 << 1, SD_OUT_SHAPES = 1 << 2 };
 
 typedef struct sd_scene_output {
     char directory[SD_SCENE_PATH_MAX]; /* "" = out/<scene file stem> */
     long every;                   /* steps between frames */
     long stats_every;             /* steps between stats.csv rows */
     unsigned formats;             /* SD_OUT_* mask */
+    int shape_resolution;         /* directions per turn of the shapes files' curved surfaces */
     long checkpoint_every;        /* steps between checkpoints, 0 = none */
     double checkpoint_minutes;    /* minutes of wall time between checkpoints, 0 = none */
 } sd_scene_output;

@@ -474,8 +474,12 @@ const sd_scene_key sd_scene_keys[] = {
      "steps between frames (the default is at least 1)"},
     {SD_SEC_OUTPUT, "stats_every", SD_KT_INT, SD_KR_ONE, NULL, ALL, 0, "", "every/10",
      "steps between rows of stats.csv (the default is at least 1)"},
-    {SD_SEC_OUTPUT, "formats", SD_KT_ENUM_LIST, SD_KR_ANY, "vtk|csv", ALL, 0, "", "[vtk, csv]",
-     "what to write: vtk frames, csv statistics"},
+    {SD_SEC_OUTPUT, "formats", SD_KT_ENUM_LIST, SD_KR_ANY, "vtk|csv|shapes", ALL, 0, "", "[vtk, csv]",
+     "what to write: vtk frames, csv statistics, shapes: with each frame the particles' true shapes as "
+     "surfaces (shapes_NNNNNN.vtp, implies vtk; docs/output.md)"},
+    {SD_SEC_OUTPUT, "shape_resolution", SD_KT_INT, SD_KR_ONE, NULL, ALL, 0, "", "24",
+     "directions per full turn when the shapes files tessellate curved surfaces (8 to 64); flat faces "
+     "are drawn exactly"},
     {SD_SEC_OUTPUT, "checkpoint_every", SD_KT_INT, SD_KR_NONNEG, NULL, ALL, 0, "", "0",
      "steps between checkpoints (checkpoint-STEP.h5 in the output directory, docs/checkpoints.md); 0 = none"},
     {SD_SEC_OUTPUT, "checkpoint_minutes", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "min", "0",

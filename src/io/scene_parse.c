@@ -39,6 +39,7 @@
 #include "io/scene_sections.h"
 #include "io/yaml_read.h"
 #include "shape/shape.h" /* SD_SHAPE_POLYHEDRON, for the volume-law check */
+#include "shape/surface.h" /* the range of output.shape_resolution */
 
 /* ---- parse context and errors ------------------------------------------ */
 
@@ -490,9 +491,20 @@ static sd_status sd_parse_output(sd_parse *p, yaml_node_t *root, int line)
                                 : s->output.every / 10;
     if (s->output.stats_every < 1)
         s->output.stats_every = 1;
-    /* The choice order vtk|csv matches SD_OUT_VTK, SD_OUT_CSV. */
+    /* The choice order vtk|csv|shapes matches SD_OUT_VTK, SD_OUT_CSV, SD_OUT_SHAPES;
+     * the shapes files go with the frames, so shapes brings vtk. */
     s->output.formats =
         sd_yaml_get(&p->y, out, SD_SEC_OUTPUT, "formats", path, &v) ? v.mask : (SD_OUT_VTK | SD_OUT_CSV);
+    if (s->output.formats & SD_OUT_SHAPES)
+        s->output.formats |= SD_OUT_VTK;
+    s->output.shape_resolution = 24;
+    if (sd_yaml_get(&p->y, out, SD_SEC_OUTPUT, "shape_resolution", path, &v)) {
+        if (v.integer < SD_SURFACE_RES_MIN || v.integer > SD_SURFACE_RES_MAX)
+            return sd_fail(p, v.line, "output.shape_resolution",
+                           "shape_resolution is %lld; it must be %d to %d directions per turn",
+                           (long long)v.integer, SD_SURFACE_RES_MIN, SD_SURFACE_RES_MAX);
+        s->output.shape_resolution = (int)v.integer;
+    }
     s->output.checkpoint_every = sd_yaml_get(&p->y, out, SD_SEC_OUTPUT, "checkpoint_every", path, &v) ? (long)v.integer : 0;
     s->output.checkpoint_minutes =
         sd_yaml_get(&p->y, out, SD_SEC_OUTPUT, "checkpoint_minutes", path, &v) ? v.num : 0.0;

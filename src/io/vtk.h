@@ -5,7 +5,8 @@
  * count followed by the values, always in little-endian byte order whatever
  * the host (values are encoded byte by byte), so the files declare
  * byte_order="LittleEndian" header_type="UInt64" truthfully everywhere.
- * The writers only read the world through the public API.
+ * The writers only read the world through the public API, but for the
+ * template geometry of the shapes file (vtk_shapes.c).
  */
 #ifndef SD_IO_VTK_H
 #define SD_IO_VTK_H
@@ -31,9 +32,23 @@ double sd_vtk_plane_side(const sd_world *w);
  * boxes as their closed faces; cell data: wall index and wall force. */
 sd_status sd_vtk_write_walls(FILE *fp, const sd_world *w, double plane_side, sd_error *err);
 
+/* The true shapes of a frame's particles (shapes_NNNNNN.vtp): each
+ * template's surface (shape/surface.h, `resolution` directions per turn)
+ * built once on first use, posed per particle; cell data = the particle
+ * frame's point data of the cell's particle. */
+typedef struct sd_vtk_shapes sd_vtk_shapes;
+struct sd_surface;
+sd_status sd_vtk_shapes_make(const sd_world *w, int resolution, sd_vtk_shapes **out, sd_error *err);
+void sd_vtk_shapes_free(sd_vtk_shapes *t);
+/* Template `shape`'s surface in its principal frame (-1: the unit ball of
+ * plain spheres), built the first time it is asked for. */
+sd_status sd_vtk_shapes_surface(sd_vtk_shapes *t, const sd_world *w, int shape, const struct sd_surface **out,
+                                sd_error *err);
+sd_status sd_vtk_write_shapes(FILE *fp, const sd_world *w, sd_vtk_shapes *t, sd_error *err);
+
 typedef struct sd_vtk_dataset {
     double time;       /* s */
-    int part;          /* 0 particles, 1 walls */
+    int part;          /* 0 particles, 1 walls, 2 shapes */
     const char *file;  /* relative to the .pvd */
 } sd_vtk_dataset;
 

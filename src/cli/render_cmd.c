@@ -1,0 +1,298 @@
+/* render_cmd.c — `shapedem render`: pictures of a run's frames, headless
+ * (src/render/, docs/output.md).
+ *
+ * Invariant: bad input (a missing file, a file that is not a frame, a bad
+ * option) is one line on stderr naming the file or option, exit status 2,
+ * and no picture written; a movie's frames share one colour range (the
+ * range over all frames, unless --range gives one), so colours mean the
+ * same value in every picture.
+ */
+#define _POSIX_C_SOURCE 200809L
+
+#include "cli/commands.h"
+#include "core/alloc.h"
+#include "render/render.h"
+
+#include <errno.h>
+#include <spawn.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+extern char **environ;
+
+static int sd_render_usage(FILE *f)
+{
+    fprintf(f, "usage: shapedem render FRAME.vtu|SHAPES.vtp|frames.pvd -o PICTURE.png [--frame I] [--field NAME]\n"
+               "                       [--view front|top|iso|AZ,EL] [--size WxH] [--colormap viridis|coolwarm|gray]\n"
+               "                       [--range LO,HI] [--fit particles|all] [--no-colorbar] [--movie [--fps N]]\n"
+               "\n"
+               "  draws a frame's particles with their true shapes (the run's shapes_NNNNNN.vtp, written\n"
+               "  with output.formats: [vtk, csv, shapes]; without it, spheres of each particle's radius),\n"
+               "  coloured by a field, walls and meshes drawn thin; no display needed\n"
+               "  --frame I     frame I of a frames.pvd (0 the first, -1 the last: the default)\n"
+               "  --field NAME  speed (the default) or any particle array (vectors by magnitude)\n"
+               "  --view V      front (along +y), top (down -z), iso, or AZ,EL in degrees (default iso;\n"
+               "                top for a planar run)\n"
+               "  --size WxH    pixels (default 800x600)\n"
+               "  --range LO,HI the field values at the ends of the colour map (default: the frame's)\n"
+               "  --fit F       what the picture frames: particles (the default) or all (walls too)\n"
+               "  --movie       every frame of a frames.pvd: PICTURE_000000.png, ... (and PICTURE.mp4\n"
+               "                when ffmpeg is on the PATH), one colour range for all\n");
+    return f == stdout ? 0 : 2;
+}
+
+static int sd_render_bad(const char *fmt, const char *arg)
+{
+    fprintf(stderr, "shapedem: render: ");
+    fprintf(stderr, fmt, arg);
+    fprintf(stderr, " (see 'shapedem render --help')\n");
+    return 2;
+}
+
+static int sd_parse_two(const char *s, char sep, double *a, double *b)
+{
+    char *e;
+    errno = 0;
+    *a = strtod(s, &e);
+    if (e == s || *e != sep || errno)
+        return -1;
+    const char *t = e + 1;
+    *b = strtod(t, &e);
+    return (e == t || *e || errno) ? -1 : 0;
+}
+
+static int sd_ends_with(const char *s, const char *suffix)
+{
+    size_t n = strlen(s), m = strlen(suffix);
+    return n >= m && !strcmp(s + n - m, suffix);
+}
+
+/* 1 when an executable `name` is in a directory of PATH. */
+static int sd_on_path(const char *name)
+{
+    const char *path = getenv("PATH");
+    if (!path)
+        return 0;
+    char buf[4096];
+    for (const char *p = path; *p;) {
+        const char *c = strchr(p, ':');
+        size_t n = c ? (size_t)(c - p) : strlen(p);
+        if (n > 0 && n + strlen(name) + 2 < sizeof buf) {
+            snprintf(buf, sizeof buf, "%.*s/%s", (int)n, p, name);
+            if (access(buf, X_OK) == 0)
+                return 1;
+        }
+        p += n + (c ? 1 : 0);
+    }
+    return 0;
+}
+
+/* PICTURE.png -> PICTURE_NNNNNN.png (or PICTURE.mp4 for k < 0). */
+static void sd_movie_name(const char *out, long k, char *buf, size_t size)
+{
+    size_t n = strlen(out);
+    if (sd_ends_with(out, ".png"))
+        n -= 4;
+    if (k < 0)
+        snprintf(buf, size, "%.*s.mp4", (int)n, out);
+    else
+        snprintf(buf, size, "%.*s_%06ld.png", (int)n, out, k);
+}
+
+static int sd_render_one(const char *frame, const char *field, sd_render_def *d, int view_given, const char *png)
+{
+    sd_render_frame f;
+    sd_error err;
+    sd_status s = sd_render_frame_load(frame, field, &f, &err);
+    if (s != SD_OK)
+        return sd_cli_fail_input(&err);
+    if (!view_given && f.planar)
+        sd_render_view("top", &d->azimuth, &d->elevation);
+    if (f.bounding_spheres)
+        fprintf(stderr, "shapedem: render: %s has no shapes file: shaped particles are drawn as their bounding "
+                        "spheres (write output.formats: [vtk, csv, shapes])\n", frame);
+    s = sd_render_png(&f, d, png, &err);
+    sd_render_frame_free(&f);
+    if (s != SD_OK) {
+        int rc = sd_cli_fail_input(&err);
+        return s == SD_ERR_INPUT ? rc : 1;
+    }
+    return 0;
+}
+
+static int sd_render_movie(const char *pvd, const char *field, sd_render_def *d, int view_given, const char *out,
+                           int fps)
+{
+    char *paths;
+    size_t n;
+    sd_error err;
+    if (sd_render_pvd_list(pvd, &paths, &n, &err) != SD_OK)
+        return sd_cli_fail_input(&err);
+    int rc = 0;
+    if (!d->fixed_range) { /* one range for every picture */
+        double lo = 0.0, hi = 0.0;
+        for (size_t k = 0; k < n && !rc; ++k) {
+            sd_render_frame f;
+            if (sd_render_frame_load(paths + SD_RENDER_PATH_MAX * k, field, &f, &err) != SD_OK) {
+                rc = sd_cli_fail_input(&err);
+                break;
+            }
+            double a, b;
+            sd_render_frame_range(&f, &a, &b);
+            if (k == 0 || a < lo)
+                lo = a;
+            if (k == 0 || b > hi)
+                hi = b;
+            sd_render_frame_free(&f);
+        }
+        d->fixed_range = 1;
+        d->lo = lo;
+        d->hi = hi;
+    }
+    char name[SD_RENDER_PATH_MAX + 32];
+    for (size_t k = 0; k < n && !rc; ++k) {
+        sd_movie_name(out, (long)k, name, sizeof name);
+        rc = sd_render_one(paths + SD_RENDER_PATH_MAX * k, field, d, view_given, name);
+    }
+    sd_free(paths);
+    if (rc)
+        return rc;
+    printf("wrote %zu pictures\n", n);
+    if (!sd_on_path("ffmpeg")) {
+        printf("no ffmpeg on the PATH: no MP4\n");
+        return 0;
+    }
+    char pattern[SD_RENDER_PATH_MAX + 32], mp4[SD_RENDER_PATH_MAX + 32], rate[16];
+    snprintf(pattern, sizeof pattern, "%.*s_%%06d.png", (int)(strlen(out) - (sd_ends_with(out, ".png") ? 4 : 0)),
+             out);
+    sd_movie_name(out, -1, mp4, sizeof mp4);
+    snprintf(rate, sizeof rate, "%d", fps);
+    /* even sizes: the yuv420p that players expect halves the chroma */
+    char *argv[] = {"ffmpeg", "-y", "-loglevel", "error", "-framerate", rate, "-i", pattern, "-vf",
+                    "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-pix_fmt", "yuv420p", mp4, NULL};
+    pid_t pid;
+    if (posix_spawnp(&pid, "ffmpeg", NULL, NULL, argv, environ) != 0) {
+        fprintf(stderr, "shapedem: render: cannot start ffmpeg\n");
+        return 1;
+    }
+    int st = 0;
+    if (waitpid(pid, &st, 0) < 0 || !WIFEXITED(st) || WEXITSTATUS(st) != 0) {
+        fprintf(stderr, "shapedem: render: ffmpeg failed; the PNG pictures are there\n");
+        return 1;
+    }
+    printf("wrote %s\n", mp4);
+    return 0;
+}
+
+int sd_cmd_render(int argc, char **argv)
+{
+    const char *in = NULL, *out = NULL, *field = "speed";
+    long frame = -1;
+    int movie = 0, fps = 10, view_given = 0;
+    sd_render_def d = sd_render_def_default();
+    sd_render_view("iso", &d.azimuth, &d.elevation);
+    for (int k = 2; k < argc; ++k) {
+        const char *a = argv[k], *next = k + 1 < argc ? argv[k + 1] : NULL;
+        if (!strcmp(a, "--help") || !strcmp(a, "-h"))
+            return sd_render_usage(stdout);
+        if (!strcmp(a, "-o")) {
+            if (!next)
+                return sd_render_bad("%s needs a picture file", a);
+            out = next;
+            ++k;
+        } else if (!strcmp(a, "--field")) {
+            if (!next || !next[0] || strlen(next) >= 60)
+                return sd_render_bad("%s needs a field name", a);
+            field = next;
+            ++k;
+        } else if (!strcmp(a, "--frame")) {
+            char *e;
+            errno = 0;
+            frame = next ? strtol(next, &e, 10) : 0;
+            if (!next || e == next || *e || errno)
+                return sd_render_bad("--frame needs a whole number, got '%s'", next ? next : "");
+            ++k;
+        } else if (!strcmp(a, "--view")) {
+            if (!next || (sd_render_view(next, &d.azimuth, &d.elevation) != 0 &&
+                          (sd_parse_two(next, ',', &d.azimuth, &d.elevation) != 0 || d.elevation < -90.0 ||
+                           d.elevation > 90.0)))
+                return sd_render_bad("--view needs front, top, iso or AZ,EL in degrees (EL in [-90, 90]), got '%s'",
+                                     next ? next : "");
+            view_given = 1;
+            ++k;
+        } else if (!strcmp(a, "--size")) {
+            double w, h;
+            if (!next || sd_parse_two(next, 'x', &w, &h) != 0 || w != (int)w || h != (int)h || w < 16 || h < 16 ||
+                w > 16384 || h > 16384)
+                return sd_render_bad("--size needs WxH, whole pixels from 16 to 16384, got '%s'", next ? next : "");
+            d.width = (int)w;
+            d.height = (int)h;
+            ++k;
+        } else if (!strcmp(a, "--colormap")) {
+            if (!next || (d.colormap = sd_render_colormap_of(next)) < 0)
+                return sd_render_bad("--colormap needs viridis, coolwarm or gray, got '%s'", next ? next : "");
+            ++k;
+        } else if (!strcmp(a, "--range")) {
+            if (!next || sd_parse_two(next, ',', &d.lo, &d.hi) != 0 || !(d.lo < d.hi))
+                return sd_render_bad("--range needs LO,HI with LO < HI, got '%s'", next ? next : "");
+            d.fixed_range = 1;
+            ++k;
+        } else if (!strcmp(a, "--fit")) {
+            if (!next || (strcmp(next, "particles") && strcmp(next, "all")))
+                return sd_render_bad("--fit needs particles or all, got '%s'", next ? next : "");
+            d.fit_walls = !strcmp(next, "all");
+            ++k;
+        } else if (!strcmp(a, "--no-colorbar")) {
+            d.colorbar = 0;
+        } else if (!strcmp(a, "--movie")) {
+            movie = 1;
+        } else if (!strcmp(a, "--fps")) {
+            char *e;
+            long v = next ? strtol(next, &e, 10) : 0;
+            if (!next || e == next || *e || v < 1 || v > 120)
+                return sd_render_bad("--fps needs a whole number from 1 to 120, got '%s'", next ? next : "");
+            fps = (int)v;
+            ++k;
+        } else if (a[0] == '-') {
+            return sd_render_bad("unknown option '%s'", a);
+        } else if (!in) {
+            in = a;
+        } else {
+            return sd_render_bad("unexpected argument '%s'", a);
+        }
+    }
+    if (!in)
+        return sd_render_bad("%s", "needs a frame file (particles_NNNNNN.vtu, shapes_NNNNNN.vtp or frames.pvd)");
+    if (!out)
+        return sd_render_bad("%s", "needs -o PICTURE.png");
+    if (!sd_render_available()) {
+        fprintf(stderr, "shapedem: render: this shapedem was built without rendering (cairo was not found at "
+                        "build time: install libcairo2-dev, scripts/deps.sh does it, and build again)\n");
+        return 2;
+    }
+    int is_pvd = sd_ends_with(in, ".pvd");
+    if (movie && !is_pvd)
+        return sd_render_bad("--movie needs a frames.pvd, got '%s'", in);
+    if (movie)
+        return sd_render_movie(in, field, &d, view_given, out, fps);
+    if (!is_pvd)
+        return sd_render_one(in, field, &d, view_given, out);
+    char *paths;
+    size_t n;
+    sd_error err;
+    if (sd_render_pvd_list(in, &paths, &n, &err) != SD_OK)
+        return sd_cli_fail_input(&err);
+    long i = frame < 0 ? (long)n + frame : frame;
+    if (i < 0 || i >= (long)n) {
+        sd_free(paths);
+        fprintf(stderr, "shapedem: render: %s: --frame %ld: the collection has %zu frames (0 to %zu, or -1 for the "
+                        "last)\n", in, frame, n, n - 1);
+        return 2;
+    }
+    int rc = sd_render_one(paths + SD_RENDER_PATH_MAX * (size_t)i, field, &d, view_given, out);
+    sd_free(paths);
+    return rc;
+}

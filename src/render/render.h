@@ -1,0 +1,106 @@
+/* render.h — pictures of frames without ParaView: `shapedem render`.
+ *
+ * A frame is read back from the files a run wrote (docs/output.md): the
+ * particles' true shapes from shapes_NNNNNN.vtp when the run wrote it
+ * (output.formats: [shapes]), else the particle points of
+ * particles_NNNNNN.vtu drawn as spheres of their `radius` (for shaped
+ * particles that is the bounding sphere, and the program says so), and the
+ * walls of walls_NNNNNN.vtp drawn thin. The picture is an orthographic view
+ * painted back to front (painter's algorithm over the cells, back faces
+ * culled, Lambert shading) with cairo's image surfaces and written as PNG.
+ *
+ * Invariants: the reader (read.c) takes any bytes and either fills a frame
+ * whose every index is in range or returns SD_ERR_INPUT naming the file and
+ * what is wrong; a PNG is written to a temporary and renamed into place, so
+ * a failed render leaves nothing half-written. The same frame and options
+ * give the same pixels (the sort breaks depth ties by cell index).
+ * Without cairo at build time (SHAPEDEM_HAVE_CAIRO undefined) the reader
+ * still builds and sd_render_png says rendering was left out.
+ */
+#ifndef SD_RENDER_RENDER_H
+#define SD_RENDER_RENDER_H
+
+#include <shapedem/shapedem.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#define SD_RENDER_PATH_MAX 4096
+
+/* What one frame draws, in world coordinates (m). */
+typedef struct sd_render_frame {
+    /* true shapes: polygons (triangles, or 2D outlines), one value each */
+    size_t point_count;
+    double *points;        /* x y z per point */
+    size_t cell_count, conn_count;
+    int64_t *conn, *ends;  /* cell k is conn[ends[k-1] .. ends[k]) */
+    double *cell_value;    /* the field, per cell */
+    double *cell_id;       /* the particle's id, per cell (a particle's cells are consecutive) */
+    /* spheres, when the frame has no shapes file: centre, radius, value */
+    size_t sphere_count;
+    double *centres, *radii, *sphere_value;
+    int bounding_spheres;  /* some sphere stands for a shaped particle */
+    /* walls, drawn as thin outlines */
+    size_t wall_point_count;
+    double *wall_points;
+    size_t wall_cell_count, wall_conn_count;
+    int64_t *wall_conn, *wall_ends;
+    int planar;            /* every point in z = 0: a planar (2D) run */
+    char field[64];        /* the field drawn ("speed" = |velocity|) */
+    char source[SD_RENDER_PATH_MAX]; /* the file the particles came from */
+} sd_render_frame;
+
+/* Loads the frame of `path`: a particles_NNNNNN.vtu or shapes_NNNNNN.vtp
+ * (their siblings of the same number are found next to it), with `field`
+ * per particle: "speed" (|velocity|) or any particle array (vectors by
+ * their magnitude). SD_ERR_INPUT for a missing file, a file that is not a
+ * shapedem frame, or a field the frame does not have (the message lists
+ * those it has). */
+sd_status sd_render_frame_load(const char *path, const char *field, sd_render_frame *out, sd_error *err);
+void sd_render_frame_free(sd_render_frame *f);
+
+/* The particle files of a frames.pvd (part 0 of each DataSet, in order),
+ * resolved against the .pvd's directory: *paths holds *count strings of
+ * SD_RENDER_PATH_MAX bytes (sd_free it). */
+sd_status sd_render_pvd_list(const char *pvd, char **paths, size_t *count, sd_error *err);
+
+/* The smallest and largest value of the frame's field (0, 0 when empty). */
+void sd_render_frame_range(const sd_render_frame *f, double *lo, double *hi);
+
+#define SD_RENDER_COLORMAPS(X)                                                                                         \
+    X(SD_CMAP_VIRIDIS, "viridis")                                                                                      \
+    X(SD_CMAP_COOLWARM, "coolwarm")                                                                                    \
+    X(SD_CMAP_GRAY, "gray")
+
+typedef enum sd_render_cmap {
+#define SD_X_CMAP(e, name) e,
+    SD_RENDER_COLORMAPS(SD_X_CMAP)
+#undef SD_X_CMAP
+    SD_CMAP_COUNT
+} sd_render_cmap;
+
+typedef struct sd_render_def {
+    int width, height;      /* pixels */
+    double azimuth, elevation; /* degrees: the camera's direction from the scene (front: 0, 0) */
+    int colormap;           /* sd_render_cmap */
+    int colorbar;           /* draw the colour bar with the field's name and range */
+    int fit_walls;          /* fit the walls into the picture too (else the particles only) */
+    int fixed_range;        /* use lo, hi rather than the frame's range */
+    double lo, hi;
+} sd_render_def;
+
+sd_render_def sd_render_def_default(void);
+/* Named views: front (looking along +y, z up), top (looking down, y up),
+ * iso (from +x... -y, +z at 45 and 35.26 degrees); 0 and the angles set,
+ * or -1 for an unknown name. */
+int sd_render_view(const char *name, double *azimuth, double *elevation);
+/* A colour map by name, or -1. */
+int sd_render_colormap_of(const char *name);
+/* Colour of t in [0, 1] in map c: r, g, b in [0, 1]. */
+void sd_render_colormap(int c, double t, double rgb[3]);
+
+/* 1 when the build has cairo (SHAPEDEM_HAVE_CAIRO), else 0. */
+int sd_render_available(void);
+/* Draws f with d into the PNG file png (via a temporary, renamed). */
+sd_status sd_render_png(const sd_render_frame *f, const sd_render_def *d, const char *png, sd_error *err);
+
+#endif
