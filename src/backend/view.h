@@ -62,6 +62,8 @@ typedef struct sd_step_view {
     const sd_dtri *dtris;
     const sd_element *elements;    /* composite elements (sd_shape estart/ecount) */
     const sd_real *shape_req;      /* m, radius of the sphere of equal volume, per template */
+    /* the tables' lengths (a device backend copies them) */
+    size_t shape_count, vert_count, plane_count, dtri_count, element_count, shape2d_count, pool2d_count;
     /* planar mode: 2D templates and their pool */
     const sd_shape2d *shapes2d;
     const sd_real *pool2d;
@@ -96,6 +98,8 @@ typedef struct sd_pair_out {
     sd_vec3 *x0;
     uint8_t *x0_ok;
     const uint32_t *gstart, *gidx; /* the gather lists */
+    size_t n_gstart, n_gidx;       /* their lengths; 0 while stale (particles added or removed since
+                                      the last rebuild, which remakes them before any gather) */
 } sd_pair_out;
 
 /* The particle-wall pair list. */
@@ -106,10 +110,12 @@ typedef struct sd_wall_pair_out {
     const uint16_t *wall;          /* wall index */
     const uint32_t *sub;           /* its feature (box face 0..5, 0 for planes, a mesh's plane group) */
     const uint32_t *tstart, *tcount, *tri; /* mesh pairs: triangles tri[tstart[e] ..] of the group near the particle */
+    size_t n_tri;                  /* entries of tri */
     const uint32_t *elem;          /* the particle's composite element (ELEMENTS pairs; 0 otherwise) */
     sd_vec3 *ds, *f, *t, *c;       /* spring, force and torque on the particle, contact point */
     sd_real *delta, *energy;
     const uint32_t *gstart, *gidx; /* owned particle k owns pairs gidx[gstart[k] .. gstart[k+1]-1] */
+    size_t n_gstart, n_gidx;       /* their lengths, as sd_pair_out's */
 } sd_wall_pair_out;
 
 /* How a CPU backend runs its loops (a GPU backend ignores it): threads, and

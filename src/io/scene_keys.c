@@ -139,6 +139,10 @@ const sd_scene_key sd_scene_keys[] = {
      "hertz_mindlin", "default contact law for every pair of materials"},
     {SD_SEC_SIMULATION, "skin", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "m", "0",
      "Verlet skin of the pair list; 0 = 0.2 x the smallest radius"},
+    {SD_SEC_SIMULATION, "max_overlap", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "", "0.5",
+     "the overlap guard (cells solver): a contact deeper than this fraction of the smaller radius "
+     "(bounding radius for shapes) stops the run, naming both particles, after writing the state to "
+     "failed-STEP.h5 (docs/checkpoints.md); 0 = off"},
     {SD_SEC_SIMULATION, "solver", SD_KT_ENUM, SD_KR_ANY, "cells|grid", ALL, 0, "", "cells",
      "cells: the general engine; grid: the dense grid-stencil solver of [Naderi 2024] for equal "
      "(R_max/R_min <= 2) spheres inside a box wall, same physics (docs/grid-solver.md)"},

@@ -151,6 +151,8 @@ static sd_status sd_parse_simulation(sd_parse *p, yaml_node_t *root)
         return sd_fail(p, v.line, "simulation.contact_law", "unknown contact law");
     sd_yaml_get(&p->y, sim, SD_SEC_SIMULATION, "skin", path, &v);
     s->world.skin = v.num;
+    if (sd_yaml_get(&p->y, sim, SD_SEC_SIMULATION, "max_overlap", path, &v))
+        s->world.max_overlap = v.num;
     /* choices in sd_solver order: cells, grid */
     if (sd_yaml_get(&p->y, sim, SD_SEC_SIMULATION, "solver", path, &v))
         s->world.solver = v.choice == 1 ? SD_SOLVER_GRID : SD_SOLVER_CELLS;

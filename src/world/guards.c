@@ -87,30 +87,34 @@ sd_status sd_world_guards(sd_world *w, sd_error *err)
                                     (unsigned long long)p->id[k], (double)d, w->step, (double)sd_v3_norm(p->v[k]),
                                     (double)cell);
         }
-    /* an overlap beyond SD_GUARD_OVERLAP of the smaller size: the contact
-     * law no longer describes it */
+    /* an overlap beyond max_overlap of the smaller size (simulation.
+     * max_overlap, 0.5 by default, 0 = off): the contact law no longer
+     * describes it */
+    const sd_real lim = (sd_real)w->def.max_overlap;
+    if (!(lim > 0))
+        return SD_OK;
     const sd_pair_list *l = &w->pairs;
     for (size_t e = 0; e < l->n; ++e) {
         sd_real r = sd_min(p->radius[l->i[e]], p->radius[l->j[e]]);
-        if (l->delta[e] > SD_GUARD_OVERLAP * r)
+        if (l->delta[e] > lim * r)
             return sd_error_set(err, SD_ERR_PHYSICS, "", 0, "",
                                 "particles id %llu and id %llu overlap by %g m at step %ld, %.0f %% of the smaller "
-                                "one's radius (the guard's limit is %.0f %%): stiffness too low for the load, or "
-                                "time step too large",
+                                "one's radius (the guard's limit is %.0f %%, simulation.max_overlap): stiffness too low "
+                                "for the load, or time step too large",
                                 (unsigned long long)p->id[l->i[e]], (unsigned long long)p->id[l->j[e]],
                                 (double)l->delta[e], w->step, 100.0 * (double)(l->delta[e] / r),
-                                100.0 * SD_GUARD_OVERLAP);
+                                100.0 * (double)lim);
     }
     const sd_wall_pair_list *wl = &w->wpairs;
     for (size_t e = 0; e < wl->n; ++e) {
         sd_real r = p->radius[wl->i[e]];
-        if (wl->delta[e] > SD_GUARD_OVERLAP * r)
+        if (wl->delta[e] > lim * r)
             return sd_error_set(err, SD_ERR_PHYSICS, "", 0, "",
                                 "particle id %llu overlaps wall '%s' by %g m at step %ld, %.0f %% of its radius "
-                                "(the guard's limit is %.0f %%): stiffness too low for the load, or time step too "
-                                "large",
+                                "(the guard's limit is %.0f %%, simulation.max_overlap): stiffness too low for the "
+                                "load, or time step too large",
                                 (unsigned long long)p->id[wl->i[e]], w->walls[wl->wall[e]].name, (double)wl->delta[e],
-                                w->step, 100.0 * (double)(wl->delta[e] / r), 100.0 * SD_GUARD_OVERLAP);
+                                w->step, 100.0 * (double)(wl->delta[e] / r), 100.0 * (double)lim);
     }
     return SD_OK;
 }

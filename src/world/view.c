@@ -38,6 +38,12 @@ static void sd_view_pairs(sd_world *w)
     o->x0_ok = l->x0_ok;
     o->gstart = l->gstart;
     o->gidx = l->gidx;
+    /* the gather lists' lengths, for a backend that copies them: those of
+     * the last rebuild, none while stale (w->dirty: the next step rebuilds
+     * them before it gathers) */
+    int fresh = l->gstart && !w->dirty;
+    o->n_gstart = fresh ? w->p.n + 1 : 0;
+    o->n_gidx = fresh ? l->gstart[w->p.n] : 0;
 
     const sd_wall_pair_list *wl = &w->wpairs;
     sd_wall_pair_out *wo = &s->wpairs;
@@ -50,6 +56,7 @@ static void sd_view_pairs(sd_world *w)
     wo->tstart = wl->tstart;
     wo->tcount = wl->tcount;
     wo->tri = wl->tri;
+    wo->n_tri = wl->tri_n;
     wo->elem = wl->elem;
     wo->ds = wl->ds;
     wo->f = wl->f;
@@ -59,6 +66,9 @@ static void sd_view_pairs(sd_world *w)
     wo->energy = wl->energy;
     wo->gstart = wl->gstart;
     wo->gidx = wl->gidx;
+    fresh = wl->gstart && !w->dirty;
+    wo->n_gstart = fresh ? w->p.n + 1 : 0;
+    wo->n_gidx = fresh ? wl->n : 0;
 }
 
 sd_status sd_world_views(sd_world *w)
@@ -90,6 +100,13 @@ sd_status sd_world_views(sd_world *w)
     v->dtris = w->dtris;
     v->elements = w->elements;
     v->shape_req = w->shape_req;
+    v->shape_count = w->shape_count;
+    v->vert_count = w->vert_count;
+    v->plane_count = w->plane_count;
+    v->dtri_count = w->dtri_count;
+    v->element_count = w->element_count;
+    v->shape2d_count = w->shape2d_count;
+    v->pool2d_count = w->pool2d_count;
     v->shapes2d = w->shapes2d;
     v->pool2d = w->pool2d;
     v->mix = w->mix;

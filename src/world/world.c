@@ -38,6 +38,7 @@ sd_world_def sd_world_def_default(void)
     d.law = SD_LAW_HERTZ_MINDLIN;
     d.skin = 0;
     d.backend = SD_BACKEND_AUTO;
+    d.max_overlap = (double)SD_GUARD_OVERLAP;
     d.cookie = SD_COOKIE;
     return d;
 }
@@ -190,6 +191,9 @@ sd_status sd_world_create(const sd_world_def *def, sd_world **out, sd_error *err
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.contact_law", "unknown contact law %d", (int)def->law);
     if (def->skin < 0)
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.skin", "expected a skin >= 0, got %g", def->skin);
+    if (!(def->max_overlap >= 0) || !isfinite(def->max_overlap))
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.max_overlap",
+                            "expected an overlap fraction >= 0 (0 = no overlap guard), got %g", def->max_overlap);
     if (def->multi_contact != SD_MULTI_CONTACT_AVERAGE && def->multi_contact != SD_MULTI_CONTACT_SUM)
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.multi_contact",
                             "expected average or sum, got %d", def->multi_contact);

@@ -211,8 +211,9 @@ sd_vec3 sd_world_wall_torque_about(const sd_world *w, size_t k);
 sd_status sd_world_check_dt(sd_world *w, sd_error *err);
 /* guards.c: SD_ERR_PHYSICS naming the particle (stable id), the step and
  * the likely cause for a NaN or infinite state, a particle crossing more
- * than a broad-phase cell per step, or an overlap beyond SD_GUARD_OVERLAP
- * of the smaller radius (cells solver; read-only, any thread count). */
+ * than a broad-phase cell per step, or an overlap beyond def.max_overlap
+ * (SD_GUARD_OVERLAP by default; 0 = off) of the smaller radius (cells
+ * solver; read-only, any thread count). */
 #define SD_GUARD_OVERLAP SD_R(0.5)
 sd_status sd_world_guard_nonfinite(sd_world *w, sd_error *err);
 sd_status sd_world_guards(sd_world *w, sd_error *err);
