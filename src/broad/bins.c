@@ -1130,6 +1130,7 @@ static sd_status sd_bins_wall_pairs(sd_bins *b, const sd_bins_input *in, sd_wall
     for (size_t e = 0; e < total; ++e) {
         uint32_t a = l->i[e];
         sd_wall_pair_key key;
+        memset(&key, 0, sizeof key); /* its 4 bytes of padding too: checkpoints compare bit for bit */
         key.id = in->id[a];
         key.wall = l->wall[e];
         key.sub = l->sub[e];

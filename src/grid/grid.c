@@ -147,6 +147,9 @@ static sd_status sd_grid_grow_rest(sd_grid_state *g, size_t cap)
     /* new particles start with empty slots, no force and no cell (the
      * springs of an empty slot are never read) */
     memset(g->tag + old * SD_GRID_SLOTS, 0, (cap - old) * SD_GRID_SLOTS * sizeof *tag);
+    /* their springs are never read, but the checkpoint holds them: zero, so
+     * that two runs of the same scene write the same bits */
+    memset(g->ds + old * SD_GRID_SLOTS, 0, (cap - old) * SD_GRID_SLOTS * sizeof *ds);
     memset(g->ft + 2 * old, 0, 2 * (cap - old) * sizeof *ft);
     for (size_t k = old; k < cap; ++k)
         g->home[k] = SD_GRID_OVER;
