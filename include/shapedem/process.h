@@ -5,7 +5,9 @@
  * Insertion (seed 004 §4.1, random sequential addition with retries):
  * each particle takes an entry of the mix (a template, or a sphere with a
  * size distribution), a random position in the region (its bounding
- * sphere inside the region) and, for shaped bodies, a random orientation
+ * sphere inside the region; a mesh region: its centre inside the closed
+ * mesh by the winding number, the sphere clear of every triangle) and,
+ * for shaped bodies, a random orientation
  * uniform over all rotations, from the insertion's own stream of the
  * world's seed; a position is taken when the bounding sphere overlaps the
  * bounding sphere of no particle present (of any insertion or generator,
@@ -37,7 +39,8 @@ typedef enum sd_region_kind {
     SD_REGION_NONE,     /* not given */
     SD_REGION_BOX,      /* lo, hi */
     SD_REGION_CYLINDER, /* center (the middle of its axis), axis, radius, length */
-    SD_REGION_DISC      /* center, axis (its normal), radius: centres on a flat disc (insertion only) */
+    SD_REGION_DISC,     /* center, axis (its normal), radius: centres on a flat disc (insertion only) */
+    SD_REGION_MESH      /* the inside of a closed triangle mesh (insertion only, 3D) */
 } sd_region_kind;
 
 typedef struct sd_region_def {
@@ -47,6 +50,12 @@ typedef struct sd_region_def {
     sd_v3d axis;       /* cylinder axis or disc normal, any length > 0 */
     double radius;     /* m */
     double length;     /* m, cylinder */
+    /* mesh: a closed surface (every edge shared by exactly two triangles),
+     * world frame, either winding; copied by sd_world_add_insertion */
+    const sd_v3d *vertices;            /* m */
+    size_t vertex_count;
+    const uint32_t (*triangles)[3];
+    size_t triangle_count;
 } sd_region_def;
 
 /* Radius distribution of inserted spheres (m). */
@@ -180,8 +189,8 @@ void sd_world_get_process(const sd_world *w, sd_process_info *out);
  * boundaries). It turns at rpm about +axis (right-handed): the law sees
  * the particle's velocity relative to the surface, omega x r. Contact for
  * spheres (exact), convex shapes and polyhedra (the tangent plane at the
- * particle's radial projection), composite elements (without the turning
- * speed yet). */
+ * particle's radial projection) and composite elements (the turning speed
+ * taken at each contact point, backend/items.h sd_item_drum_relative). */
 typedef struct sd_drum_def {
     const char *name;
     sd_v3d center, axis;  /* m; any length > 0 */
@@ -193,7 +202,11 @@ typedef struct sd_drum_def {
 } sd_drum_def;
 
 sd_drum_def sd_drum_def_default(void);
-/* Adds the drum; its wall index, or -1 with err filled. */
+/* Adds the drum; its wall index, or -1 with err filled. The scene's
+ * `walls: - type: drum` calls it. sd_world_get_wall reports a drum as
+ * kind 3: point = center, normal = the unit axis, lo.x = radius, lo.y =
+ * length / 2, open_faces bit 2 (the low cap) and 4 (the high cap) set for
+ * an open end. */
 int sd_world_add_drum(sd_world *w, const sd_drum_def *def, sd_error *err);
 
 /* A loaded scene's warning for outlet k (outlets: section): why no

@@ -107,8 +107,8 @@ typedef struct sd_scene_interaction {
 
 typedef struct sd_scene_wall {
     char name[SD_SCENE_NAME_MAX];
-    int kind;                     /* 0 plane, 1 box */
-    sd_v3d point, normal;         /* plane */
+    int kind;                     /* 0 plane, 1 box, 2 mesh, 3 drum */
+    sd_v3d point, normal;         /* plane; drum: centre (the middle of its axis) and unit axis */
     sd_v3d lo, hi;                /* box */
     unsigned open_faces;          /* SD_BOX_* mask */
     int material;
@@ -130,6 +130,9 @@ typedef struct sd_scene_wall {
     sd_mesh_motion_def mesh_motion; /* .table points at mesh_table */
     double *mesh_table;           /* rows of (t, dx, dy, dz, angle_deg) */
     char warning[400];            /* repairs made to the mesh (dropped, turned facets), or "" */
+    /* kind 3, the analytic rotating drum (sd_world_add_drum) */
+    double drum_radius, drum_length, drum_rpm; /* m, m, rev/min about +axis */
+    int drum_open_lo, drum_open_hi; /* end caps left out (caps: keys) */
 } sd_scene_wall;
 
 enum { SD_OUT_VTK = 1 << 0, SD_OUT_CSV = 1 << 1, SD_OUT_SHAPES = 1 << 2 };

@@ -184,6 +184,25 @@ static double sd_wall_excess(const sd_scene_wall *w, const sd_sphere_def *d, con
                  (d->position.y - w->point.y) * w->normal.y +
                  (d->position.z - w->point.z) * w->normal.z);
     }
+    if (w->kind == 3) {
+        /* a drum holds centres inside its mantle and between its closed caps */
+        const double r[3] = {d->position.x - w->point.x, d->position.y - w->point.y, d->position.z - w->point.z};
+        const double n[3] = {w->normal.x, w->normal.y, w->normal.z};
+        double s = r[0] * n[0] + r[1] * n[1] + r[2] * n[2], q = 0, half = 0.5 * w->drum_length;
+        for (int a = 0; a < 3; ++a)
+            q += (r[a] - s * n[a]) * (r[a] - s * n[a]);
+        double worst = sqrt(q) - w->drum_radius;
+        *side = "mantle";
+        if (!w->drum_open_hi && s - half > worst) {
+            worst = s - half;
+            *side = "high cap";
+        }
+        if (!w->drum_open_lo && -s - half > worst) {
+            worst = -s - half;
+            *side = "low cap";
+        }
+        return worst;
+    }
     static const char *const faces[6] = {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
     const double lo[3] = {w->lo.x, w->lo.y, w->lo.z}, hi[3] = {w->hi.x, w->hi.y, w->hi.z};
     double worst = -HUGE_VAL;
@@ -243,6 +262,11 @@ static sd_status sd_check_walls(const sd_scene *s, const sd_scene_spheres *sp, c
                                     "particle outside the walls: %s has its centre %.3g m behind "
                                     "plane '%s' (walls[%zu], line %d)",
                                     dk, excess, w->name, wi, w->line);
+            if (w->kind == 3)
+                return sd_error_set(err, SD_ERR_INPUT, o.file, o.line, o.key,
+                                    "particle outside the walls: %s has its centre %.3g m beyond the %s of "
+                                    "drum '%s' (walls[%zu], line %d)",
+                                    dk, excess, side, w->name, wi, w->line);
             return sd_error_set(err, SD_ERR_INPUT, o.file, o.line, o.key,
                                 "particle outside the walls: %s crosses the closed %s face of "
                                 "box '%s' (walls[%zu], line %d) by %.3g m",
@@ -533,6 +557,18 @@ static sd_status sd_build(const sd_scene *s, sd_world *w, sd_scene_spheres *sp, 
             md.coplanar_tolerance = wl->coplanar_tolerance;
             md.outside = wl->outside;
             idx = sd_world_add_mesh(w, wl->name, &md, err);
+        } else if (wl->kind == 3) { /* the analytic drum (shapedem/process.h) */
+            sd_drum_def dd = sd_drum_def_default();
+            dd.name = wl->name;
+            dd.center = wl->point;
+            dd.axis = wl->normal;
+            dd.radius = wl->drum_radius;
+            dd.length = wl->drum_length;
+            dd.rpm = wl->drum_rpm;
+            dd.open_lo = wl->drum_open_lo;
+            dd.open_hi = wl->drum_open_hi;
+            dd.material = wl->material;
+            idx = sd_world_add_drum(w, &dd, err);
         } else {
             idx = wl->kind == 0 ? sd_world_add_plane(w, wl->name, wl->point, wl->normal, wl->material, err)
                                 : sd_world_add_box(w, wl->name, wl->lo, wl->hi, wl->open_faces, wl->material, err);

@@ -41,6 +41,7 @@
 #define PLANE 1u
 #define BOX 2u
 #define MESH 4u
+#define DRUM 8u
 /* mesh motion types, in SD_MESH_* order */
 #define MFIX 1u
 #define MTRA 2u
@@ -50,6 +51,7 @@
 #define IBOX 1u
 #define ICYL 2u
 #define IDISC 4u
+#define IMESH 8u
 #define SSPH (1u << SD_SHAPE_SPHERE)
 #define SBOX (1u << SD_SHAPE_BOX)
 #define SCYL (1u << SD_SHAPE_CYLINDER)
@@ -384,9 +386,10 @@ const sd_scene_key sd_scene_keys[] = {
 
     {SD_SEC_WALL, "name", SD_KT_STRING, SD_KR_NONEMPTY, NULL, ALL, 0, "", "wall0, wall1, ...",
      "name in output and messages"},
-    {SD_SEC_WALL, "type", SD_KT_ENUM, SD_KR_ANY, "plane|box|mesh", ALL, ALL, "", "required",
-     "an infinite plane, a box container, or a triangle mesh read from an STL or OBJ file (§2.4 of "
-     "[Xu n.d.]; docs/mesh-walls.md)"},
+    {SD_SEC_WALL, "type", SD_KT_ENUM, SD_KR_ANY, "plane|box|mesh|drum", ALL, ALL, "", "required",
+     "an infinite plane, a box container, a triangle mesh read from an STL or OBJ file (§2.4 of "
+     "[Xu n.d.]; docs/mesh-walls.md), or an analytic rotating cylindrical drum (3D, cells solver; "
+     "docs/physics.md)"},
     {SD_SEC_WALL, "material", SD_KT_STRING, SD_KR_NONEMPTY, NULL, ALL, ALL, "", "required",
      "material name"},
     {SD_SEC_WALL, "point", SD_KT_VEC3, SD_KR_ANY, NULL, PLANE, PLANE, "m", "required",
@@ -449,6 +452,20 @@ const sd_scene_key sd_scene_keys[] = {
      "the centre of the mesh's bounding box"},
     {SD_SEC_WALL, "motion", SD_KT_MAP, SD_KR_ANY, NULL, MESH, 0, "", "{type: fixed}",
      "the mesh's rigid motion from its pose at t = 0 (the keys of walls[].motion)"},
+    {SD_SEC_WALL, "center", SD_KT_VEC3, SD_KR_ANY, NULL, DRUM, DRUM, "m", "required",
+     "drum: the middle of its axis"},
+    {SD_SEC_WALL, "axis", SD_KT_VEC3, SD_KR_ANY, NULL, DRUM, 0, "", "[0, 0, 1]",
+     "drum: its axis (normalised); it turns right-handed about it"},
+    {SD_SEC_WALL, "radius", SD_KT_NUMBER, SD_KR_POS, NULL, DRUM, DRUM, "m", "required",
+     "drum: inner radius of the mantle; particles live inside it"},
+    {SD_SEC_WALL, "length", SD_KT_NUMBER, SD_KR_POS, NULL, DRUM, DRUM, "m", "required",
+     "drum: distance between the end caps, centred on center"},
+    {SD_SEC_WALL, "rpm", SD_KT_NUMBER, SD_KR_ANY, NULL, DRUM, 0, "rev/min", "0",
+     "drum: turning speed about +axis from t = 0 (negative turns the other way); contacts see the "
+     "particle's motion relative to the turning wall"},
+    {SD_SEC_WALL, "caps", SD_KT_ENUM, SD_KR_ANY, "both|none|low|high", DRUM, 0, "", "both",
+     "drum: the closed end caps (low: the one at center - length/2 axis); none with the axis along a "
+     "periodic axis of simulation.domain gives periodic axial boundaries ([Rakotonirina 2019] §4.2)"},
 
     {SD_SEC_MESH_MOTION, "type", SD_KT_ENUM, SD_KR_ANY, "fixed|translate|rotate|table", ALL, ALL, "",
      "required", "fixed: rests; translate: constant velocity; rotate: about the axis at rpm; table: "
@@ -519,8 +536,9 @@ const sd_scene_key sd_scene_keys[] = {
      "time the hole opens (fill and settle first, then discharge)"},
     {SD_SEC_INSERT, "name", SD_KT_STRING, SD_KR_NONEMPTY, NULL, ALL, 0, "", "insert0, insert1, ...",
      "name in summary.txt and messages"},
-    {SD_SEC_INSERT, "region", SD_KT_ENUM, SD_KR_ANY, "box|cylinder|disc", ALL, ALL, "", "required",
-     "where the particles go: every bounding sphere inside the region (disc: centres on the disc)"},
+    {SD_SEC_INSERT, "region", SD_KT_ENUM, SD_KR_ANY, "box|cylinder|disc|mesh", ALL, ALL, "", "required",
+     "where the particles go: every bounding sphere inside the region (disc: centres on the disc; mesh: "
+     "inside a closed triangle mesh, by its winding number, clear of its triangles)"},
     {SD_SEC_INSERT, "min", SD_KT_VEC3, SD_KR_ANY, NULL, IBOX, IBOX, "m", "required", "box: lower corner"},
     {SD_SEC_INSERT, "max", SD_KT_VEC3, SD_KR_ANY, NULL, IBOX, IBOX, "m", "required",
      "box: upper corner, > min on every axis"},
@@ -532,6 +550,13 @@ const sd_scene_key sd_scene_keys[] = {
      "radius of the cylinder or disc"},
     {SD_SEC_INSERT, "length", SD_KT_NUMBER, SD_KR_POS, NULL, ICYL, ICYL, "m", "required",
      "length of the cylinder along its axis"},
+    {SD_SEC_INSERT, "file", SD_KT_STRING, SD_KR_NONEMPTY, NULL, IMESH, IMESH, "", "required",
+     "mesh: STL or OBJ file of a closed surface (every edge in two triangles once coincident vertices "
+     "are one), relative to the scene file; 3D only"},
+    {SD_SEC_INSERT, "scale", SD_KT_NUMBER, SD_KR_POS, NULL, IMESH, 0, "m per file unit", "1",
+     "mesh: length of one file unit, applied first"},
+    {SD_SEC_INSERT, "position", SD_KT_VEC3, SD_KR_ANY, NULL, IMESH, 0, "m", "[0, 0, 0]",
+     "mesh: translation applied after scale"},
     {SD_SEC_INSERT, "mix", SD_KT_LIST, SD_KR_ANY, NULL, ALL, ALL, "", "required",
      "what to insert: templates and sphere size laws with their fractions (insert[].mix[])"},
     {SD_SEC_INSERT, "mix_by", SD_KT_ENUM, SD_KR_ANY, "number|mass", ALL, 0, "", "number",
@@ -704,15 +729,15 @@ const char *sd_scene_section_name(sd_scene_section sec)
 const char *sd_scene_section_kinds(sd_scene_section sec)
 {
     /* The bit order matches sd_gen_kind, the wall kinds (0 plane, 1 box,
-     * 2 mesh) and SD_MESH_FIXED .. SD_MESH_TABLE. */
+     * 2 mesh, 3 drum) and SD_MESH_FIXED .. SD_MESH_TABLE. */
     if (sec == SD_SEC_PARTICLES)
         return "lattice|random|list|csv";
     if (sec == SD_SEC_WALL)
-        return "plane|box|mesh";
+        return "plane|box|mesh|drum";
     if (sec == SD_SEC_MESH_MOTION)
         return "fixed|translate|rotate|table";
     if (sec == SD_SEC_INSERT)
-        return "box|cylinder|disc";
+        return "box|cylinder|disc|mesh";
     if (sec == SD_SEC_OUTLETS)
         return "box|cylinder";
     if (sec == SD_SEC_ANALYSIS) /* the type choices, in SD_ANALYSIS_TYPES order */

@@ -201,14 +201,17 @@ static sd_status sd_check_periodic_walls(sd_parse *p)
                                "axes non-periodic", w->name);
             }
             int across = w->kind == 0 ? n[a] != 0.0 : (w->open_faces & (3u << (2 * a))) != (3u << (2 * a));
+            if (w->kind == 3) /* only along its own axis, open at both ends (dynamics/walls.h) */
+                across = fabs(n[a]) < 1.0 - 1e-12 || !w->drum_open_lo || !w->drum_open_hi;
             if (across) {
                 snprintf(key, sizeof key, "walls[%zu]", k);
                 return sd_fail(p, w->line, key,
                                "wall '%s' lies across the periodic axis %c (%s); make the axis non-periodic or "
                                "the wall parallel to it",
                                w->name, axis[a],
-                               w->kind == 0 ? "its normal has a component along it"
-                                            : "its faces on that axis are closed: open them");
+                               w->kind == 0   ? "its normal has a component along it"
+                               : w->kind == 3 ? "a drum takes a periodic axis only along its own axis, with caps: none"
+                                              : "its faces on that axis are closed: open them");
             }
         }
     }
@@ -395,6 +398,34 @@ static sd_status sd_parse_wall_motion(sd_parse *p, yaml_node_t *m, sd_scene_wall
     return SD_OK;
 }
 
+/* The analytic rotating drum (type: drum; shapedem/process.h). */
+static sd_status sd_parse_drum_wall(sd_parse *p, yaml_node_t *m, sd_scene_wall *w, const char *path)
+{
+    sd_yaml_value v;
+    char key[96];
+    if (p->s->world.dimension == 2)
+        return sd_fail(p, w->line, sd_yaml_kp(key, sizeof key, path, "type"),
+                       "dimension 2: the drum wall is 3D only (a planar drum is a ring of planes or a mesh)");
+    sd_yaml_get(&p->y, m, SD_SEC_WALL, "center", path, &v);
+    w->point = sd_parse_v3(v.v);
+    sd_yaml_get(&p->y, m, SD_SEC_WALL, "axis", path, &v);
+    double len = v.node ? sqrt(v.v[0] * v.v[0] + v.v[1] * v.v[1] + v.v[2] * v.v[2]) : 1.0;
+    if (!(len > 0.0) || !isfinite(len))
+        return sd_fail(p, v.line, sd_yaml_kp(key, sizeof key, path, "axis"), "expected a non-zero axis, got [%g, %g, %g]",
+                       v.v[0], v.v[1], v.v[2]);
+    w->normal = v.node ? (sd_v3d){v.v[0] / len, v.v[1] / len, v.v[2] / len} : (sd_v3d){0, 0, 1};
+    sd_yaml_get(&p->y, m, SD_SEC_WALL, "radius", path, &v);
+    w->drum_radius = v.num;
+    sd_yaml_get(&p->y, m, SD_SEC_WALL, "length", path, &v);
+    w->drum_length = v.num;
+    w->drum_rpm = sd_yaml_get(&p->y, m, SD_SEC_WALL, "rpm", path, &v) ? v.num : 0.0;
+    /* caps: both|none|low|high, the closed ones */
+    int caps = sd_yaml_get(&p->y, m, SD_SEC_WALL, "caps", path, &v) ? v.choice : 0;
+    w->drum_open_lo = caps == 1 || caps == 3;
+    w->drum_open_hi = caps == 1 || caps == 2;
+    return SD_OK;
+}
+
 static sd_status sd_parse_walls(sd_parse *p, yaml_node_t *list)
 {
     sd_scene *s = p->s;
@@ -409,14 +440,15 @@ static sd_status sd_parse_walls(sd_parse *p, yaml_node_t *list)
         return sd_yaml_oom(&p->y);
     for (size_t i = 0; i < n; ++i) {
         yaml_node_t *m;
-        if ((st = sd_yaml_entry(&p->y, list, i, "walls", "(type: plane|box|mesh, ...)", path, sizeof path, &m)))
+        if ((st = sd_yaml_entry(&p->y, list, i, "walls", "(type: plane|box|mesh|drum, ...)", path, sizeof path,
+                                &m)))
             return st;
         sd_scene_wall *w = &s->walls[i];
         w->line = sd_yaml_line(m);
         yaml_node_t *tn = sd_yaml_map_get(&p->y, m, "type");
         snprintf(key, sizeof key, "%s.type", path);
         if (!tn)
-            return sd_fail(p, w->line, key, "missing required key 'type' (plane, box or mesh)");
+            return sd_fail(p, w->line, key, "missing required key 'type' (plane, box, mesh or drum)");
         if ((st = sd_yaml_read_value(&p->y, sd_scene_key_find(SD_SEC_WALL, "type"), tn, key, &v)))
             return st;
         w->kind = v.choice;
@@ -438,6 +470,9 @@ static sd_status sd_parse_walls(sd_parse *p, yaml_node_t *list)
             return st;
         if (w->kind == 2) {
             if ((st = sd_parse_mesh_wall(p, m, w, path)))
+                return st;
+        } else if (w->kind == 3) {
+            if ((st = sd_parse_drum_wall(p, m, w, path)))
                 return st;
         } else if (w->kind == 0) {
             sd_yaml_get(&p->y, m, SD_SEC_WALL, "point", path, &v);

@@ -16,15 +16,74 @@
 #include <string.h>
 
 #include "core/alloc.h"
+#include "io/mesh.h"
+
+/* A mesh region (insert only): the closed mesh of `file` (STL or OBJ,
+ * relative to the scene), scaled then moved by position; its box in lo,
+ * hi for the checks here. The world checks that it is closed. */
+static sd_status sd_parse_mesh_region(sd_parse *p, yaml_node_t *m, const char *path, size_t slot, sd_region_def *r)
+{
+    sd_yaml_value v, sc, pos;
+    char key[128], file[SD_SCENE_PATH_MAX];
+    sd_scene_process *sp = p->s->process;
+    sd_yaml_get(&p->y, m, SD_SEC_INSERT, "file", path, &v);
+    sd_yaml_kp(key, sizeof key, path, "file");
+    if (!sd_resolve(p->path, v.str, file, sizeof file))
+        return sd_fail(p, v.line, key, "the path '%s' is too long", v.str);
+    double scale = sd_yaml_get(&p->y, m, SD_SEC_INSERT, "scale", path, &sc) ? sc.num : 1.0;
+    sd_yaml_get(&p->y, m, SD_SEC_INSERT, "position", path, &pos);
+    sd_v3d shift = pos.node ? sd_parse_v3(pos.v) : (sd_v3d){0, 0, 0};
+    sd_mesh mesh;
+    sd_error merr;
+    memset(&merr, 0, sizeof merr);
+    sd_status st = sd_mesh_read(file, &mesh, &merr);
+    if (st == SD_ERR_MEMORY)
+        return sd_yaml_oom(&p->y);
+    if (st != SD_OK)
+        return sd_fail(p, v.line, key, "%s", merr.msg);
+    sd_free(sp->mesh_vertices[slot]);
+    sd_free(sp->mesh_triangles[slot]);
+    sp->mesh_vertices[slot] = sd_malloc((mesh.vertex_count ? mesh.vertex_count : 1) * sizeof(sd_v3d));
+    sp->mesh_triangles[slot] = sd_malloc((mesh.triangle_count ? mesh.triangle_count : 1) * sizeof *mesh.triangles);
+    if (!sp->mesh_vertices[slot] || !sp->mesh_triangles[slot]) {
+        sd_mesh_free(&mesh);
+        return sd_yaml_oom(&p->y);
+    }
+    for (size_t k = 0; k < mesh.vertex_count; ++k) {
+        sd_v3d x = mesh.vertices[k];
+        sp->mesh_vertices[slot][k] = (sd_v3d){shift.x + scale * x.x, shift.y + scale * x.y, shift.z + scale * x.z};
+    }
+    memcpy(sp->mesh_triangles[slot], mesh.triangles, mesh.triangle_count * sizeof *mesh.triangles);
+    r->vertices = sp->mesh_vertices[slot];
+    r->vertex_count = mesh.vertex_count;
+    r->triangles = (const uint32_t(*)[3])sp->mesh_triangles[slot];
+    r->triangle_count = mesh.triangle_count;
+    sd_mesh_free(&mesh);
+    if (r->vertex_count == 0)
+        return sd_fail(p, v.line, key, "the mesh file '%s' has no vertices", file);
+    r->lo = r->hi = r->vertices[0];
+    for (size_t k = 1; k < r->vertex_count; ++k) {
+        sd_v3d x = r->vertices[k];
+        r->lo = (sd_v3d){fmin(r->lo.x, x.x), fmin(r->lo.y, x.y), fmin(r->lo.z, x.z)};
+        r->hi = (sd_v3d){fmax(r->hi.x, x.x), fmax(r->hi.y, x.y), fmax(r->hi.z, x.z)};
+    }
+    return SD_OK;
+}
 
 /* The region keys of an insert or outlet entry (kind already chosen). */
 static sd_status sd_parse_region(sd_parse *p, yaml_node_t *m, sd_scene_section sec, const char *path, int kind,
-                                 sd_region_def *r)
+                                 size_t slot, sd_region_def *r)
 {
     sd_yaml_value v;
     char key[128];
     memset(r, 0, sizeof *r);
     r->kind = kind;
+    if (kind == SD_REGION_MESH) {
+        if (p->s->world.dimension == 2)
+            return sd_fail(p, sd_yaml_line(m), sd_yaml_kp(key, sizeof key, path, "region"),
+                           "dimension 2: a mesh region is 3D only");
+        return sd_parse_mesh_region(p, m, path, slot, r);
+    }
     if (kind == SD_REGION_BOX) {
         sd_yaml_value lo, hi;
         sd_yaml_get(&p->y, m, sec, "min", path, &lo);
@@ -57,7 +116,7 @@ static sd_status sd_parse_region(sd_parse *p, yaml_node_t *m, sd_scene_section s
 /* The region's box, for the domain and reach checks. */
 static void sd_region_box(const sd_region_def *r, double lo[3], double hi[3])
 {
-    if (r->kind == SD_REGION_BOX) {
+    if (r->kind == SD_REGION_BOX || r->kind == SD_REGION_MESH) { /* a mesh keeps its box in lo, hi */
         lo[0] = r->lo.x, lo[1] = r->lo.y, lo[2] = r->lo.z;
         hi[0] = r->hi.x, hi[1] = r->hi.y, hi[2] = r->hi.z;
         return;
@@ -222,14 +281,14 @@ static sd_status sd_parse_inserts(sd_parse *p, yaml_node_t *list)
                        "insert: runs on the cells solver; the grid solver pours with its pour: section");
     for (size_t i = 0; i < n; ++i) {
         yaml_node_t *m;
-        if ((st = sd_yaml_entry(&p->y, list, i, "insert", "(region: box|cylinder|disc, mix: ..., count: ...)", path,
+        if ((st = sd_yaml_entry(&p->y, list, i, "insert", "(region: box|cylinder|disc|mesh, mix: ..., count: ...)", path,
                                 sizeof path, &m)))
             return st;
         int line = sd_yaml_line(m);
         yaml_node_t *rn = sd_yaml_map_get(&p->y, m, "region");
         snprintf(key, sizeof key, "%s.region", path);
         if (!rn)
-            return sd_fail(p, line, key, "missing required key 'region' (box, cylinder or disc)");
+            return sd_fail(p, line, key, "missing required key 'region' (box, cylinder, disc or mesh)");
         if ((st = sd_yaml_read_value(&p->y, sd_scene_key_find(SD_SEC_INSERT, "region"), rn, key, &v)))
             return st;
         int kind = v.choice + 1; /* box|cylinder|disc -> SD_REGION_BOX .. */
@@ -245,7 +304,7 @@ static sd_status sd_parse_inserts(sd_parse *p, yaml_node_t *list)
         else
             snprintf(sp->insert_names[i], SD_SCENE_NAME_MAX, "insert%zu", i);
         d->name = sp->insert_names[i];
-        if ((st = sd_parse_region(p, m, SD_SEC_INSERT, path, kind, &d->region)))
+        if ((st = sd_parse_region(p, m, SD_SEC_INSERT, path, kind, i, &d->region)))
             return st;
         sd_yaml_get(&p->y, m, SD_SEC_INSERT, "mix_by", path, &v);
         d->mix_by_mass = v.node ? v.choice : 0;
@@ -336,7 +395,7 @@ static sd_status sd_parse_outlets(sd_parse *p, yaml_node_t *list)
         else
             snprintf(sp->outlet_names[i], SD_SCENE_NAME_MAX, "outlet%zu", i);
         o->name = sp->outlet_names[i];
-        if ((st = sd_parse_region(p, m, SD_SEC_OUTLETS, path, kind, &o->region)))
+        if ((st = sd_parse_region(p, m, SD_SEC_OUTLETS, path, kind, i, &o->region)))
             return st;
         sd_yaml_get(&p->y, m, SD_SEC_OUTLETS, "open_at", path, &v);
         o->open_at = v.num;
@@ -443,6 +502,10 @@ sd_status sd_parse_process(sd_parse *p, yaml_node_t *root)
 
 void sd_scene_process_free(sd_scene *s)
 {
+    for (int k = 0; s->process && k < SD_SCENE_PROCESS_MAX; ++k) {
+        sd_free(s->process->mesh_vertices[k]);
+        sd_free(s->process->mesh_triangles[k]);
+    }
     sd_free(s->process);
     s->process = NULL;
 }

@@ -23,6 +23,10 @@ typedef struct sd_scene_process {
     char outlet_names[SD_SCENE_PROCESS_MAX][SD_SCENE_NAME_MAX];
     int outlet_lines[SD_SCENE_PROCESS_MAX];
     char outlet_warning[SD_SCENE_PROCESS_MAX][256];     /* "" or why no particle may reach it */
+    /* mesh regions (region: mesh): the file's vertices, scaled and placed,
+     * and its triangles (sd_malloc'd; inserts[k].region points at them) */
+    sd_v3d *mesh_vertices[SD_SCENE_PROCESS_MAX];
+    uint32_t (*mesh_triangles[SD_SCENE_PROCESS_MAX])[3];
 } sd_scene_process;
 
 /* Reads insert: and outlets: (absent: s->process stays NULL). */

@@ -191,16 +191,91 @@ double sd_vtk_plane_side(const sd_world *w)
     return side;
 }
 
-/* The quads that draw one wall, corners counter-clockwise seen from the side
- * the normal points to (a plane's normal; a box's inward side faces the
- * particles, so its faces are wound to point outward). Returns how many. */
-static int sd_vtk_wall_quads(const sd_wall_info *wi, double plane_side, sd_v3d q[6][4])
+/* The cells that draw one wall (not a mesh): points and, per cell, its
+ * corners, counter-clockwise seen from the side the normal points to (a
+ * plane's normal; a box's and a drum's inward side faces the particles,
+ * so their faces are wound to point outward). */
+#define SD_VTK_DRUM_SEGMENTS 48
+typedef struct sd_vtk_wall_cells {
+    int npt, ncell, nconn;
+    sd_v3d pt[2 * SD_VTK_DRUM_SEGMENTS];
+    int64_t conn[6 * SD_VTK_DRUM_SEGMENTS];
+    int size[SD_VTK_DRUM_SEGMENTS + 2]; /* corners of each cell */
+} sd_vtk_wall_cells;
+
+static void sd_vtk_cells_quad(sd_vtk_wall_cells *g, const sd_v3d q[4])
 {
+    for (int k = 0; k < 4; ++k) {
+        g->conn[g->nconn++] = g->npt;
+        g->pt[g->npt++] = q[k];
+    }
+    g->size[g->ncell++] = 4;
+}
+
+/* A drum (kind 3: point = centre, normal = axis, lo.x = radius, lo.y =
+ * half length, open_faces bits 2 and 4 = caps left out): its mantle as
+ * SD_VTK_DRUM_SEGMENTS quads between two rings of points, each closed cap
+ * one polygon on its ring. Drawn at rest (the mantle looks the same
+ * turned). */
+static void sd_vtk_drum_cells(const sd_wall_info *wi, sd_vtk_wall_cells *g)
+{
+    double a[3] = {wi->normal.x, wi->normal.y, wi->normal.z};
+    double len = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+    if (!(len > 0.0))
+        return;
+    for (int k = 0; k < 3; ++k)
+        a[k] /= len;
+    /* e1 perpendicular to the axis, e2 = a x e1: (e1, e2, a) right-handed */
+    double t[3] = {fabs(a[0]) < 0.9 ? 1.0 : 0.0, fabs(a[0]) < 0.9 ? 0.0 : 1.0, 0.0};
+    double d = t[0] * a[0] + t[1] * a[1] + t[2] * a[2], e1[3], e2[3];
+    for (int k = 0; k < 3; ++k)
+        e1[k] = t[k] - d * a[k];
+    double n1 = sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
+    for (int k = 0; k < 3; ++k)
+        e1[k] /= n1;
+    e2[0] = a[1] * e1[2] - a[2] * e1[1];
+    e2[1] = a[2] * e1[0] - a[0] * e1[2];
+    e2[2] = a[0] * e1[1] - a[1] * e1[0];
+    const double c[3] = {wi->point.x, wi->point.y, wi->point.z}, rad = wi->lo.x, half = wi->lo.y;
+    const int n = SD_VTK_DRUM_SEGMENTS;
+    for (int ring = 0; ring < 2; ++ring) /* points ring * n + k: ring 0 at -half, 1 at +half */
+        for (int k = 0; k < n; ++k) {
+            double th = 2.0 * 3.14159265358979323846 * k / n, cs = cos(th), sn = sin(th), s = ring ? half : -half;
+            g->pt[g->npt].x = c[0] + rad * (cs * e1[0] + sn * e2[0]) + s * a[0];
+            g->pt[g->npt].y = c[1] + rad * (cs * e1[1] + sn * e2[1]) + s * a[1];
+            g->pt[g->npt].z = c[2] + rad * (cs * e1[2] + sn * e2[2]) + s * a[2];
+            g->npt++;
+        }
+    /* mantle quads: along the turn, then along the axis (outward normal) */
+    for (int k = 0; k < n; ++k) {
+        int k1 = (k + 1) % n;
+        g->conn[g->nconn++] = k;
+        g->conn[g->nconn++] = k1;
+        g->conn[g->nconn++] = n + k1;
+        g->conn[g->nconn++] = n + k;
+        g->size[g->ncell++] = 4;
+    }
+    if (!(wi->open_faces & 2u)) { /* the low cap, wound about -axis */
+        for (int k = n - 1; k >= 0; --k)
+            g->conn[g->nconn++] = k;
+        g->size[g->ncell++] = n;
+    }
+    if (!(wi->open_faces & 4u)) { /* the high cap, about +axis */
+        for (int k = 0; k < n; ++k)
+            g->conn[g->nconn++] = n + k;
+        g->size[g->ncell++] = n;
+    }
+}
+
+static void sd_vtk_cells_of(const sd_wall_info *wi, double plane_side, sd_vtk_wall_cells *g)
+{
+    g->npt = g->ncell = g->nconn = 0;
+    sd_v3d q[4];
     if (wi->kind == 0) {
         double nx = wi->normal.x, ny = wi->normal.y, nz = wi->normal.z;
         double len = sqrt(nx * nx + ny * ny + nz * nz);
         if (!(len > 0.0))
-            return 0;
+            return;
         nx /= len;
         ny /= len;
         nz /= len;
@@ -221,17 +296,17 @@ static int sd_vtk_wall_quads(const sd_wall_info *wi, double plane_side, sd_v3d q
         double h = 0.5 * plane_side;
         static const double su[4] = {-1.0, 1.0, 1.0, -1.0}, sv[4] = {-1.0, -1.0, 1.0, 1.0};
         for (int k = 0; k < 4; ++k) {
-            q[0][k].x = wi->point.x + h * (su[k] * ux + sv[k] * vx);
-            q[0][k].y = wi->point.y + h * (su[k] * uy + sv[k] * vy);
-            q[0][k].z = wi->point.z + h * (su[k] * uz + sv[k] * vz);
+            q[k].x = wi->point.x + h * (su[k] * ux + sv[k] * vx);
+            q[k].y = wi->point.y + h * (su[k] * uy + sv[k] * vy);
+            q[k].z = wi->point.z + h * (su[k] * uz + sv[k] * vz);
         }
-        return 1;
+        sd_vtk_cells_quad(g, q);
+        return;
     }
     if (wi->kind == 1) {
         double lo[3] = {wi->lo.x, wi->lo.y, wi->lo.z}, hi[3] = {wi->hi.x, wi->hi.y, wi->hi.z};
         /* (b, c) corners in this order wind a face at +a counter-clockwise about +a. */
         static const int cb[4] = {0, 1, 1, 0}, cc[4] = {0, 0, 1, 1};
-        int nq = 0;
         for (int a = 0; a < 3; ++a) {
             int b = (a + 1) % 3, c = (a + 2) % 3;
             for (int side = 0; side < 2; ++side) {
@@ -244,25 +319,27 @@ static int sd_vtk_wall_quads(const sd_wall_info *wi, double plane_side, sd_v3d q
                     x[a] = side ? hi[a] : lo[a];
                     x[b] = cb[kk] ? hi[b] : lo[b];
                     x[c] = cc[kk] ? hi[c] : lo[c];
-                    q[nq][k].x = x[0];
-                    q[nq][k].y = x[1];
-                    q[nq][k].z = x[2];
+                    q[k].x = x[0];
+                    q[k].y = x[1];
+                    q[k].z = x[2];
                 }
-                ++nq;
+                sd_vtk_cells_quad(g, q);
             }
         }
-        return nq;
+        return;
     }
-    return 0; /* a wall kind this writer does not draw yet */
+    if (wi->kind == 3)
+        sd_vtk_drum_cells(wi, g);
+    /* a mesh (kind 2) is drawn from its facets (sd_vtk_mesh) */
 }
 
-static sd_status sd_vtk_wall(const sd_world *w, size_t i, double side, sd_wall_info *wi,
-                             sd_v3d q[6][4], int *nq, sd_error *err)
+static sd_status sd_vtk_wall(const sd_world *w, size_t i, double side, sd_wall_info *wi, sd_vtk_wall_cells *g,
+                             sd_error *err)
 {
     sd_status s = sd_world_get_wall(w, i, wi);
     if (s != SD_OK)
         return sd_error_set(err, s, "", 0, "", "cannot read wall %zu of the world", i);
-    *nq = sd_vtk_wall_quads(wi, side, q);
+    sd_vtk_cells_of(wi, side, g);
     return SD_OK;
 }
 
@@ -292,13 +369,12 @@ sd_status sd_vtk_write_walls(FILE *fp, const sd_world *w, double plane_side, sd_
     size_t nw = sd_world_wall_count(w);
     sd_wall_info wi;
     sd_mesh_info mi;
-    sd_v3d q[6][4];
-    int nq = 0;
-    /* cells: 4-corner quads (planes, boxes) and a mesh's triangles on its
-     * own (shared) points, at the mesh's current pose */
+    sd_vtk_wall_cells g; /* one wall at a time, ~5 kB */
+    /* cells: quads (planes, boxes, a drum's mantle), a drum's caps, and a
+     * mesh's triangles on its own (shared) points, at the mesh's current pose */
     size_t ncells = 0, npts = 0, nconn = 0;
     for (size_t i = 0; i < nw; ++i) {
-        sd_status s = sd_vtk_wall(w, i, plane_side, &wi, q, &nq, err);
+        sd_status s = sd_vtk_wall(w, i, plane_side, &wi, &g, err);
         if (s != SD_OK)
             return s;
         if (sd_vtk_mesh(w, i, &mi)) {
@@ -306,9 +382,9 @@ sd_status sd_vtk_write_walls(FILE *fp, const sd_world *w, double plane_side, sd_
             npts += mi.vertex_count;
             nconn += 3 * mi.triangle_count;
         } else {
-            ncells += (size_t)nq;
-            npts += 4 * (size_t)nq;
-            nconn += 4 * (size_t)nq;
+            ncells += (size_t)g.ncell;
+            npts += (size_t)g.npt;
+            nconn += (size_t)g.nconn;
         }
     }
     uint64_t off = 0;
@@ -344,36 +420,34 @@ sd_status sd_vtk_write_walls(FILE *fp, const sd_world *w, double plane_side, sd_
         sd_bin_u64(&b, bytes);
         int64_t base = 0, end = 0; /* first point of the wall; running cell end */
         for (size_t i = 0; i < nw; ++i) {
-            sd_status s = sd_vtk_wall(w, i, plane_side, &wi, q, &nq, err);
+            sd_status s = sd_vtk_wall(w, i, plane_side, &wi, &g, err);
             if (s != SD_OK)
                 return s;
             int mesh = sd_vtk_mesh(w, i, &mi);
-            size_t cells = mesh ? mi.triangle_count : (size_t)nq;
+            size_t cells = mesh ? mi.triangle_count : (size_t)g.ncell;
             for (size_t k = 0; k < cells; ++k) {
                 if (pass == 0) {
                     sd_bin_i32(&b, (int32_t)i);
                 } else if (pass == 1) {
                     sd_bin_v3(&b, wi.force);
-                } else if (pass == 2) {
-                    if (!mesh)
-                        for (int c = 0; c < 4; ++c)
-                            sd_bin_v3(&b, q[k][c]);
-                } else if (pass == 3) {
-                    if (mesh)
-                        for (int c = 0; c < 3; ++c)
-                            sd_bin_i64(&b, base + (int64_t)mi.triangles[k][c]);
-                    else
-                        for (int c = 0; c < 4; ++c)
-                            sd_bin_i64(&b, base + 4 * (int64_t)k + c);
-                } else {
-                    end += mesh ? 3 : 4;
+                } else if (pass == 3 && mesh) {
+                    for (int c = 0; c < 3; ++c)
+                        sd_bin_i64(&b, base + (int64_t)mi.triangles[k][c]);
+                } else if (pass == 4) {
+                    end += mesh ? 3 : g.size[k];
                     sd_bin_i64(&b, end);
                 }
             }
-            if (mesh && pass == 2)
+            if (pass == 2 && mesh)
                 for (size_t k = 0; k < mi.vertex_count; ++k)
                     sd_bin_v3(&b, sd_vtk_mesh_point(&mi, k));
-            base += mesh ? (int64_t)mi.vertex_count : 4 * (int64_t)nq;
+            if (pass == 2 && !mesh)
+                for (int k = 0; k < g.npt; ++k)
+                    sd_bin_v3(&b, g.pt[k]);
+            if (pass == 3 && !mesh)
+                for (int k = 0; k < g.nconn; ++k)
+                    sd_bin_i64(&b, base + g.conn[k]);
+            base += mesh ? (int64_t)mi.vertex_count : (int64_t)g.npt;
         }
     }
     sd_status s = sd_vtk_bin_status(&b, err);

@@ -28,8 +28,10 @@ uint64_t sd_vtk_particles_bytes(const sd_world *w, size_t n);
  * particles' bounding box (radii included), at least 1e-3 m. */
 double sd_vtk_plane_side(const sd_world *w);
 
-/* Writes planes as squares of side plane_side centred at their point and
- * boxes as their closed faces; cell data: wall index and wall force. */
+/* Writes planes as squares of side plane_side centred at their point,
+ * boxes as their closed faces, drums as their mantle (48 quads) and closed
+ * caps (one polygon each), meshes as their facets at the current pose;
+ * cell data: wall index and wall force. */
 sd_status sd_vtk_write_walls(FILE *fp, const sd_world *w, double plane_side, sd_error *err);
 
 /* The true shapes of a frame's particles (shapes_NNNNNN.vtp): each

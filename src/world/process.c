@@ -30,6 +30,7 @@
 #include <limits.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "core/alloc.h"
@@ -84,6 +85,11 @@ void sd_world_process_free(sd_world *w)
 {
     sd_free(w->process);
     w->process = NULL;
+    if (w->region_meshes)
+        for (int k = 0; k < SD_INSERTIONS_MAX; ++k)
+            sd_free(w->region_meshes->slot[k].tri);
+    sd_free(w->region_meshes);
+    w->region_meshes = NULL;
 }
 
 /* ---- regions ------------------------------------------------------------ */
@@ -111,6 +117,205 @@ static void sd_region_basis(sd_v3d a, sd_v3d *e1, sd_v3d *e2)
     *e2 = sd_d3(a.y * e1->z - a.z * e1->y, a.z * e1->x - a.x * e1->z, a.x * e1->y - a.y * e1->x);
 }
 
+/* ---- mesh regions --------------------------------------------------------- */
+
+static int sd_edge_cmp(const void *a, const void *b)
+{
+    const uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+    return x < y ? -1 : x > y;
+}
+
+typedef struct sd_vkey {
+    double x, y, z;
+    uint32_t i;
+} sd_vkey;
+
+static int sd_vkey_cmp(const void *a, const void *b)
+{
+    const sd_vkey *p = a, *q = b;
+    if (p->x != q->x)
+        return p->x < q->x ? -1 : 1;
+    if (p->y != q->y)
+        return p->y < q->y ? -1 : 1;
+    if (p->z != q->z)
+        return p->z < q->z ? -1 : 1;
+    return (p->i > q->i) - (p->i < q->i);
+}
+
+/* A mesh region is a closed surface: indices in range, finite corners,
+ * every edge in exactly two triangles, and a volume (divergence theorem,
+ * either winding). */
+static sd_status sd_region_mesh_check(const sd_region_def *r, const char *key, sd_error *err)
+{
+    size_t nt = r->triangle_count, nv = r->vertex_count;
+    if (!r->vertices || !r->triangles || nt < 4 || nv < 4)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, key, "a mesh region needs a closed mesh (at least 4 "
+                            "triangles), got %zu triangles", nt);
+    for (size_t v = 0; v < nv; ++v)
+        if (!isfinite(r->vertices[v].x) || !isfinite(r->vertices[v].y) || !isfinite(r->vertices[v].z))
+            return sd_error_set(err, SD_ERR_INPUT, "", 0, key, "mesh region: vertex %zu is not finite", v);
+    /* vertices at the same point are one (an STL file repeats them per facet) */
+    uint64_t *e = sd_malloc(3 * nt * sizeof *e);
+    uint32_t *same = sd_malloc(nv * sizeof *same);
+    sd_vkey *vk = sd_malloc(nv * sizeof *vk);
+    if (!e || !same || !vk) {
+        sd_free(e);
+        sd_free(same);
+        sd_free(vk);
+        return sd_error_set(err, SD_ERR_MEMORY, "", 0, key, "out of memory (mesh region)");
+    }
+    for (size_t v = 0; v < nv; ++v)
+        vk[v] = (sd_vkey){r->vertices[v].x, r->vertices[v].y, r->vertices[v].z, (uint32_t)v};
+    qsort(vk, nv, sizeof *vk, sd_vkey_cmp);
+    for (size_t v = 0, first = 0; v < nv; ++v) {
+        if (v == 0 || vk[v].x != vk[first].x || vk[v].y != vk[first].y || vk[v].z != vk[first].z)
+            first = v;
+        same[vk[v].i] = vk[first].i;
+    }
+    sd_free(vk);
+    double vol = 0;
+    for (size_t t = 0; t < nt; ++t) {
+        const uint32_t *c = r->triangles[t];
+        if (c[0] >= nv || c[1] >= nv || c[2] >= nv) {
+            sd_free(e);
+            sd_free(same);
+            return sd_error_set(err, SD_ERR_INPUT, "", 0, key, "mesh region: triangle %zu has a vertex index past "
+                                "the %zu vertices", t, nv);
+        }
+        for (int k = 0; k < 3; ++k) {
+            uint64_t a = same[c[k]], b = same[c[(k + 1) % 3]];
+            e[3 * t + k] = a < b ? (a << 32) | b : (b << 32) | a;
+        }
+        sd_v3d p = r->vertices[c[0]], q = r->vertices[c[1]], s = r->vertices[c[2]];
+        vol += (p.x * (q.y * s.z - q.z * s.y) - p.y * (q.x * s.z - q.z * s.x) + p.z * (q.x * s.y - q.y * s.x)) / 6;
+    }
+    sd_free(same);
+    qsort(e, 3 * nt, sizeof *e, sd_edge_cmp);
+    size_t bad = 0;
+    for (size_t i = 0; i < 3 * nt;) {
+        size_t j = i;
+        while (j < 3 * nt && e[j] == e[i])
+            ++j;
+        bad += j - i != 2;
+        i = j;
+    }
+    sd_free(e);
+    if (bad)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, key, "a mesh region must be closed: %zu edges are not shared "
+                            "by exactly two triangles", bad);
+    if (!(fabs(vol) > 0))
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, key, "a mesh region encloses no volume");
+    return SD_OK;
+}
+
+/* Copies the mesh into its slot (corners per triangle) with its box. */
+static sd_status sd_region_mesh_store(sd_world *w, int slot, const sd_region_def *r, sd_error *err)
+{
+    if (!w->region_meshes) {
+        w->region_meshes = sd_calloc(1, sizeof *w->region_meshes);
+        if (!w->region_meshes)
+            return sd_error_set(err, SD_ERR_MEMORY, "", 0, "insert.region", "out of memory (mesh region)");
+    }
+    sd_region_mesh *m = &w->region_meshes->slot[slot];
+    sd_free(m->tri);
+    m->tri = sd_malloc(r->triangle_count * sizeof *m->tri);
+    if (!m->tri)
+        return sd_error_set(err, SD_ERR_MEMORY, "", 0, "insert.region", "out of memory (mesh region)");
+    m->count = r->triangle_count;
+    for (int a = 0; a < 3; ++a)
+        m->lo[a] = HUGE_VAL, m->hi[a] = -HUGE_VAL;
+    for (size_t t = 0; t < m->count; ++t)
+        for (int k = 0; k < 3; ++k) {
+            sd_v3d v = r->vertices[r->triangles[t][k]];
+            const double x[3] = {v.x, v.y, v.z};
+            for (int a = 0; a < 3; ++a) {
+                m->tri[t][3 * k + a] = x[a];
+                m->lo[a] = fmin(m->lo[a], x[a]);
+                m->hi[a] = fmax(m->hi[a], x[a]);
+            }
+        }
+    return SD_OK;
+}
+
+/* Winding number of the closed mesh about p (van Oosterom and Strackee's
+ * solid angle of each triangle, summed): about +-1 inside, 0 outside. */
+static double sd_region_mesh_winding(const sd_region_mesh *m, const double p[3])
+{
+    double sum = 0;
+    for (size_t t = 0; t < m->count; ++t) {
+        const double *c = m->tri[t];
+        double a[3], b[3], d[3];
+        for (int k = 0; k < 3; ++k) {
+            a[k] = c[k] - p[k];
+            b[k] = c[3 + k] - p[k];
+            d[k] = c[6 + k] - p[k];
+        }
+        double la = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]), lb = sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
+        double ld = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        double det = a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) +
+                     a[2] * (b[0] * d[1] - b[1] * d[0]);
+        double ab = a[0] * b[0] + a[1] * b[1] + a[2] * b[2], ad = a[0] * d[0] + a[1] * d[1] + a[2] * d[2];
+        double bd = b[0] * d[0] + b[1] * d[1] + b[2] * d[2];
+        sum += 2 * atan2(det, la * lb * ld + ab * ld + ad * lb + bd * la);
+    }
+    return sum / (4 * sd_pi);
+}
+
+/* Squared distance from p to triangle c (its closest point by regions:
+ * a vertex, an edge or the face; Ericson, Real-Time Collision Detection 5.1.5). */
+static double sd_tri_dist2(const double *c, const double p[3])
+{
+    double ab[3], ac[3], ap[3], q[3];
+    for (int k = 0; k < 3; ++k) {
+        ab[k] = c[3 + k] - c[k];
+        ac[k] = c[6 + k] - c[k];
+        ap[k] = p[k] - c[k];
+    }
+#define SD_DOT(u, v) ((u)[0] * (v)[0] + (u)[1] * (v)[1] + (u)[2] * (v)[2])
+    double d1 = SD_DOT(ab, ap), d2 = SD_DOT(ac, ap), s = 0, t = 0;
+    if (d1 <= 0 && d2 <= 0) {
+        s = t = 0;
+    } else {
+        double bp[3], cp[3];
+        for (int k = 0; k < 3; ++k) {
+            bp[k] = p[k] - c[3 + k];
+            cp[k] = p[k] - c[6 + k];
+        }
+        double d3 = SD_DOT(ab, bp), d4 = SD_DOT(ac, bp), d5 = SD_DOT(ab, cp), d6 = SD_DOT(ac, cp);
+        double vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
+        if (d3 >= 0 && d4 <= d3)
+            s = 1, t = 0;
+        else if (vc <= 0 && d1 >= 0 && d3 <= 0)
+            s = d1 / (d1 - d3), t = 0;
+        else if (d6 >= 0 && d5 <= d6)
+            s = 0, t = 1;
+        else if (vb <= 0 && d2 >= 0 && d6 <= 0)
+            s = 0, t = d2 / (d2 - d6);
+        else if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+            double u = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+            s = 1 - u, t = u;
+        } else {
+            double den = 1 / (va + vb + vc);
+            s = vb * den, t = vc * den;
+        }
+    }
+#undef SD_DOT
+    for (int k = 0; k < 3; ++k)
+        q[k] = c[k] + s * ab[k] + t * ac[k] - p[k];
+    return q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
+}
+
+/* 1 when a sphere of radius b at p lies inside the closed mesh. */
+static int sd_region_mesh_holds(const sd_region_mesh *m, const double p[3], double b)
+{
+    if (fabs(sd_region_mesh_winding(m, p)) < 0.5)
+        return 0;
+    for (size_t t = 0; t < m->count; ++t)
+        if (sd_tri_dist2(m->tri[t], p) < b * b)
+            return 0;
+    return 1;
+}
+
 static sd_status sd_region_check(const sd_world *w, const sd_region_def *r, const char *key, int outlet,
                                  sd_error *err)
 {
@@ -132,6 +337,12 @@ static sd_status sd_region_check(const sd_world *w, const sd_region_def *r, cons
             return sd_error_set(err, SD_ERR_INPUT, "", 0, key, "an outlet is a box or a cylinder (a disc holds no "
                                                                "centres but those on it)");
         break;
+    case SD_REGION_MESH:
+        if (outlet)
+            return sd_error_set(err, SD_ERR_INPUT, "", 0, key, "an outlet is a box or a cylinder");
+        if (dim2)
+            return sd_error_set(err, SD_ERR_INPUT, "", 0, key, "dimension 2: a mesh region is 3D only");
+        return sd_region_mesh_check(r, key, err);
     default:
         return sd_error_set(err, SD_ERR_INPUT, "", 0, key, "expected a box, cylinder or disc region");
     }
@@ -141,7 +352,7 @@ static sd_status sd_region_check(const sd_world *w, const sd_region_def *r, cons
 /* The region's bounding box. */
 static void sd_region_bbox(const sd_region_def *r, double lo[3], double hi[3])
 {
-    if (r->kind == SD_REGION_BOX) {
+    if (r->kind == SD_REGION_BOX || r->kind == SD_REGION_MESH) { /* a mesh keeps its box in lo, hi */
         lo[0] = r->lo.x, lo[1] = r->lo.y, lo[2] = r->lo.z;
         hi[0] = r->hi.x, hi[1] = r->hi.y, hi[2] = r->hi.z;
         return;
@@ -172,9 +383,26 @@ static int sd_region_contains(const sd_region_def *r, sd_v3d x)
 /* A uniform random centre for a bounding radius b in the region, the
  * sphere inside it; 0 when it cannot fit. Always the same number of draws
  * per call for a region kind (three), so the stream does not depend on
- * the sizes. 2D: z = 0. */
-static int sd_region_draw(const sd_region_def *r, double b, int dim2, sd_rng *rng, sd_v3d *out)
+ * the sizes. 2D: z = 0. A mesh region (m) draws points in its box, three
+ * draws each, until one holds the sphere, at most 64: 2 when none did
+ * (the attempt failed, as a taken spot does). */
+static int sd_region_draw(const sd_region_def *r, const sd_region_mesh *m, double b, int dim2, sd_rng *rng,
+                          sd_v3d *out)
 {
+    if (r->kind == SD_REGION_MESH) {
+        if (!m || m->hi[0] - m->lo[0] < 2 * b || m->hi[1] - m->lo[1] < 2 * b || m->hi[2] - m->lo[2] < 2 * b)
+            return 0;
+        for (int k = 0; k < 64; ++k) {
+            double p[3];
+            for (int a = 0; a < 3; ++a)
+                p[a] = m->lo[a] + b + sd_rng_uniform(rng) * (m->hi[a] - m->lo[a] - 2 * b);
+            if (sd_region_mesh_holds(m, p, b)) {
+                *out = sd_d3(p[0], p[1], p[2]);
+                return 1;
+            }
+        }
+        return 2;
+    }
     double u1 = sd_rng_uniform(rng), u2 = sd_rng_uniform(rng), u3 = sd_rng_uniform(rng);
     if (r->kind == SD_REGION_BOX) {
         double ex = r->hi.x - r->lo.x - 2 * b, ey = r->hi.y - r->lo.y - 2 * b, ez = r->hi.z - r->lo.z - 2 * b;
@@ -451,12 +679,22 @@ int sd_world_add_insertion(sd_world *w, const sd_insert_def *d, sd_error *err)
                      ">= 0 s, attempts >= 1 and a velocity jitter >= 0");
         return -1;
     }
+    /* a mesh region: its box in lo, hi (the box checks below read them) */
+    sd_region_def reg = d->region;
+    if (reg.kind == SD_REGION_MESH) {
+        reg.lo = reg.hi = reg.vertices[0];
+        for (size_t v = 1; v < reg.vertex_count; ++v) {
+            sd_v3d x = reg.vertices[v];
+            reg.lo = sd_d3(fmin(reg.lo.x, x.x), fmin(reg.lo.y, x.y), fmin(reg.lo.z, x.z));
+            reg.hi = sd_d3(fmax(reg.hi.x, x.x), fmax(reg.hi.y, x.y), fmax(reg.hi.z, x.z));
+        }
+    }
     /* the region must lie inside the domain where one is given */
     int has_domain = w->def.domain_hi.x > w->def.domain_lo.x || w->def.domain_hi.y > w->def.domain_lo.y ||
                      w->def.domain_hi.z > w->def.domain_lo.z;
     if (has_domain) {
         double lo[3], hi[3];
-        sd_region_bbox(&d->region, lo, hi);
+        sd_region_bbox(&reg, lo, hi);
         const double dl[3] = {w->def.domain_lo.x, w->def.domain_lo.y, w->def.domain_lo.z};
         const double dh[3] = {w->def.domain_hi.x, w->def.domain_hi.y, w->def.domain_hi.z};
         for (int a = 0; a < (w->def.dimension == 2 ? 2 : 3); ++a)
@@ -478,6 +716,12 @@ int sd_world_add_insertion(sd_world *w, const sd_insert_def *d, sd_error *err)
     memset(&ins, 0, sizeof ins);
     ins.def = *d;
     ins.def.name = NULL;
+    /* no pointers in the stored def (a checkpoint dataset): a mesh's
+     * triangles go to the world's slot of this insertion */
+    ins.def.region = reg;
+    ins.def.region.vertices = NULL;
+    ins.def.region.triangles = NULL;
+    ins.mesh = -1;
     snprintf(ins.name, sizeof ins.name, "%s", d->name && d->name[0] ? d->name : "insert");
     double sum = 0, weight[SD_INSERT_MIX_MAX];
     /* the mix's sum first: nothing (no scaled template) is added for a mix refused */
@@ -599,6 +843,11 @@ int sd_world_add_insertion(sd_world *w, const sd_insert_def *d, sd_error *err)
         ins.entry_cum[e] = c;
     }
     size_t index = pr->insertion_count;
+    if (reg.kind == SD_REGION_MESH) {
+        if (sd_region_mesh_store(w, (int)index, &reg, err) != SD_OK)
+            return -1;
+        ins.mesh = (int)index;
+    }
     uint64_t x = w->def.seed ^ (0xA0761D6478BD642Full * (uint64_t)(index + 1));
     ins.rng = sd_rng_seed(sd_rng_splitmix(&x));
     ins.next_step = (long)ceil(d->start / (double)w->dt - 1e-9);
@@ -1008,12 +1257,14 @@ static sd_status sd_insert_run(sd_world *w, sd_insertion *ins, sd_error *err)
         }
         sd_v3d x;
         int ok = 0, fits = 1;
+        const sd_region_mesh *rm = ins->mesh >= 0 && w->region_meshes ? &w->region_meshes->slot[ins->mesh] : NULL;
         for (int a = 0; a < d->attempts && !ok; ++a) {
-            if (!sd_region_draw(&d->region, b, dim2, &ins->rng, &x)) {
+            int drawn = sd_region_draw(&d->region, rm, b, dim2, &ins->rng, &x);
+            if (!drawn) {
                 fits = 0;
                 break;
             }
-            ok = sd_place_free_spot(&g, x, b);
+            ok = drawn == 1 && sd_place_free_spot(&g, x, b);
         }
         if (!ok) {
             ++failed;

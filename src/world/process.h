@@ -29,6 +29,7 @@ typedef struct sd_insertion {
      * (class_cum). Kept small: this struct is a checkpoint dataset. */
     int scaled_count[SD_INSERT_MIX_MAX];  /* 0: the template as it is */
     int scaled_first[SD_INSERT_MIX_MAX], scaled_stride[SD_INSERT_MIX_MAX], scaled_per[SD_INSERT_MIX_MAX];
+    int mesh;                     /* a mesh region: its slot in w->region_meshes, else -1 */
     size_t asked, inserted;       /* due so far; in */
     double mass;                  /* kg in */
     long next_step;               /* the next step at which it runs */
@@ -53,6 +54,19 @@ typedef struct sd_process {
     sd_insertion insertions[SD_INSERTIONS_MAX];
     sd_outlet_state outlets[SD_OUTLETS_MAX];
 } sd_process;
+
+/* The triangles of the insertions' mesh regions, one slot per insertion,
+ * outside sd_process (that struct is a checkpoint dataset of plain bytes:
+ * a restored world keeps the slots its scene built). */
+typedef struct sd_region_mesh {
+    size_t count;
+    double (*tri)[9];             /* m, the corners of each triangle */
+    double lo[3], hi[3];          /* m, bounding box */
+} sd_region_mesh;
+
+typedef struct sd_region_meshes {
+    sd_region_mesh slot[SD_INSERTIONS_MAX];
+} sd_region_meshes;
 
 /* The cells solver's step with the process events between steps (the
  * solver table's step entry, world.c). */

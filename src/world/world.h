@@ -175,6 +175,7 @@ struct sd_world {
     sd_profile profile;       /* s per stage of the step (world/profile.c) */
     long rebuilds;
     struct sd_process *process; /* insertions and outlets (world/process.h), NULL when none */
+    struct sd_region_meshes *region_meshes; /* insertions' mesh regions (world/process.h), NULL when none */
     int prepared;
     int dirty;                /* particles added since the last rebuild */
     double dt_checked;        /* s, the time step sd_world_check_dt last passed (guards.c), 0 none */

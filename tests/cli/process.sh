@@ -5,7 +5,10 @@
 #    particles + removed = initial + inserted, and summary.txt says how many
 #    were asked for and inserted (all 300);
 #  - full-box.yaml: fewer fit than asked: summary.txt and one stderr line
-#    say how many went in and why.
+#    say how many went in and why;
+#  - graded-drum.yaml: log-normal cubes (scaled copies of a template) and
+#    spheres inserted into an analytic drum (walls: type: drum): all go in,
+#    and the walls VTK file draws the drum (48 mantle quads and 2 caps).
 set -u
 bin="$1"
 root="$2"
@@ -41,6 +44,16 @@ grep -q "^shapedem: insert crowd: inserted [0-9]* of the 100 asked for: .*no fre
 check "full-box: one stderr line says how many went in and why" "$((! $? && $(wc -l <"$tmp/full.err") == 1))"
 grep -q "^insert crowd: asked 100, inserted [0-9]*, mass_kg [0-9.e-]*, why: " "$tmp/full/summary.txt"
 check "full-box: summary.txt says asked, inserted and why" "$((! $?))"
+
+"$bin" run "$scenes/graded-drum.yaml" --quiet -o "$tmp/drum" >"$tmp/drum.out" 2>"$tmp/drum.err"
+rc=$?
+check "graded-drum: exit 0 (got $rc)" "$((rc == 0))"
+grep -q "^insert charge: asked 300, inserted 300," "$tmp/drum/summary.txt"
+check "graded-drum: summary.txt: 300 graded cubes and spheres asked for and inserted" "$((! $?))"
+polys=$(grep -ao 'NumberOfPolys="[0-9]*"' "$tmp/drum/walls_000000.vtp")
+echo "     walls_000000.vtp: $polys"
+check "graded-drum: the drum drawn in the walls file (48 mantle quads, 2 caps)" \
+    "$([[ $polys == 'NumberOfPolys="50"' ]] && echo 1 || echo 0)"
 
 echo "$pass passed, $fail failed"
 ((fail == 0))
