@@ -677,8 +677,10 @@ SD_HD static SD_INLINE sd_vec3 sd_item_wall_velocity_at(const sd_wall_view *wl, 
 
 /* The area weight of a shape's contact with the plane group of wall pair
  * e at world point pw with overlap delta: the section (exact for
- * polyhedra, of the core with the plane moved out by the rounding; else
- * the disc of radius sqrt(2 req delta)) clipped by the group's near
+ * polyhedra, of the core with the plane moved out by the rounding; for
+ * the kinds without vertices the rounded body's own section, a polygon of
+ * 24 rim points; the disc of radius sqrt(2 req delta) only when that has
+ * no area, a contact just touching) clipped by the group's near
  * triangles. */
 SD_HD static SD_INLINE sd_real sd_item_mesh_weight(const sd_wall_pair_out *o, size_t e, const sd_wall_view *wl,
                                                    const sd_mesh_view *m, const sd_convex *c, sd_vec3 pw,
@@ -695,6 +697,8 @@ SD_HD static SD_INLINE sd_real sd_item_mesh_weight(const sd_wall_pair_out *o, si
     pm = sd_v3_sub(pm, sd_v3_scale(n, sd_v3_dot(n, pm) - off)); /* onto the plane */
     if (c->shape->kind == SD_SHAPE_POLYHEDRON)
         ns = sd_mesh_poly_section(c, &wl->g, n, off + c->shape->radius, e1, e2, sec);
+    else /* no vertex list: the rim by support points (spheres, ellipsoids, cylinders, cones, boxes) */
+        ns = sd_mesh_convex_section(c, &wl->g, n, off, e1, e2, sec);
     if (ns < 3 || !(sd_clip_area(sec, ns, NULL) > 0))
         ns = sd_mesh_disc(pm, sd_sqrt(SD_R(2.0) * req * (delta > 0 ? delta : SD_R(0.0))), e1, e2, sec);
     sd_vec2 q = sd_v2(sd_v3_dot(pm, e1), sd_v3_dot(pm, e2));
@@ -952,6 +956,48 @@ SD_HD static SD_HOT void sd_item_mesh_sphere(const sd_step_view *v, sd_wall_pair
     sd_item_wall_store(o, e, touching ? g.point : a.x, &r);
 }
 
+/* The plane kinds' rule at a convex ridge (issue 14: no double push). A
+ * body near a convex edge between plane groups X and Y sinks into both
+ * planes, but near the ridge the solid is the intersection of the two
+ * half-spaces, and the overlap is pushed out along the plane it sinks
+ * less deep into (the separating-axis choice): the contact with X, depth
+ * delta (m), gives way (returns 1) when some group Y across a convex edge
+ * of X's near triangles tl (nt) holds the body less deep (ties: the
+ * lower group index keeps it). Y makes that contact itself: it is within
+ * reach, since its edge is. Depths are the support depths of c under each
+ * plane (contact/'s plane contact). */
+SD_HD static SD_INLINE int sd_item_mesh_ridge_yields(const sd_mesh_view *m, const sd_wall_geom *wg, uint32_t gr,
+                                                     const uint32_t *tl, uint32_t nt, const sd_convex *c,
+                                                     sd_real delta)
+{
+    if (!m->nbr)
+        return 0;
+    enum { SEEN = 8 };
+    uint32_t seen[SEEN];
+    int ns = 0;
+    for (uint32_t k = 0; k < nt; ++k)
+        for (int q = 0; q < 3; ++q) {
+            uint32_t nb = m->nbr[tl[k]][q];
+            if (nb == UINT32_MAX || m->group[nb] == gr)
+                continue;
+            uint32_t gy = m->group[nb];
+            int dup = 0;
+            for (int s = 0; s < ns; ++s)
+                dup |= seen[s] == gy;
+            if (dup || !sd_mesh_edge_convex(m, tl[k], q, nb))
+                continue;
+            if (ns < SEEN)
+                seen[ns++] = gy;
+            sd_vec3 p0, nw;
+            sd_mesh_group_plane(m, wg, gy, &p0, &nw);
+            sd_contact_geom g;
+            sd_narrow_count cnt;
+            if (sd_convex_wall_geom(c, p0, nw, &g, &cnt) && (g.delta < delta || (g.delta == delta && gy < gr)))
+                return 1;
+        }
+    return 0;
+}
+
 /* SD_WALL_PAIR_MESH_CONVEX: a 3D shape against a plane group: the plane
  * contact (support point), weighted by the clipped area. */
 SD_HD static SD_INLINE void sd_item_mesh_convex(const sd_step_view *v, sd_wall_pair_out *o, size_t e)
@@ -969,6 +1015,8 @@ SD_HD static SD_INLINE void sd_item_mesh_convex(const sd_step_view *v, sd_wall_p
     int touching = sd_convex_wall_geom(&c, p0, nw, &g, &ns);
     sd_real wgt = SD_R(0.0);
     sd_vec3 shift = sd_v3_zero();
+    touching = touching && !sd_item_mesh_ridge_yields(m, &wl->g, o->sub[e], o->tri + o->tstart[e], o->tcount[e], &c,
+                                                      g.delta);
     if (touching) {
         wgt = sd_item_mesh_weight(o, e, wl, m, &c, g.point, g.delta, req, &shift);
         touching = wgt > 0;
@@ -1005,7 +1053,12 @@ SD_HD static SD_INLINE void sd_item_mesh_poly_volume(const sd_step_view *v, sd_w
          * centroid is not known before the law runs) */
         sd_vec3 foot = sd_v3_sub(a.x, sd_v3_scale(nw, sd_v3_dot(sd_v3_sub(a.x, p0), nw)));
         a.v = sd_v3_sub(a.v, sd_item_wall_velocity_at(wl, foot));
-        r = sd_pair_poly_wall(prm, &a, &c, p0, nw, v->shape_req[s], &o->ds[e], v->dt, &point);
+        /* the ridge rule on the support depths (the law's own depth is a volume's) */
+        sd_contact_geom gx;
+        sd_narrow_count cnt;
+        int yields = sd_convex_wall_geom(&c, p0, nw, &gx, &cnt) &&
+                     sd_item_mesh_ridge_yields(m, &wl->g, o->sub[e], o->tri + o->tstart[e], o->tcount[e], &c, gx.delta);
+        r = yields ? sd_pair_none(&o->ds[e]) : sd_pair_poly_wall(prm, &a, &c, p0, nw, v->shape_req[s], &o->ds[e], v->dt, &point);
         if (r.delta > 0) {
             sd_vec3 shift;
             sd_real wgt = sd_item_mesh_weight(o, e, wl, m, &c, point, r.delta, v->shape_req[s], &shift);

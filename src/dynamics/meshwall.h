@@ -35,6 +35,7 @@ typedef struct sd_mesh_view {
     const uint32_t (*tris)[3];
     const uint32_t *group;         /* plane group of each triangle */
     const uint8_t *flags;          /* SD_TRIMESH_EDGE(k), SD_TRIMESH_CORNER(k) of geom/trimesh.h */
+    const uint32_t (*nbr)[3];      /* triangle across edge k, UINT32_MAX: none (boundary, non-manifold) */
     const sd_vec3 *group_normal;   /* unit, mesh frame, towards the particle side */
     const sd_real *group_offset;   /* m: n . x = offset */
     /* facet bins (mesh frame) */

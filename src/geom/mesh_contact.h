@@ -11,6 +11,11 @@
  *    the faces beside it and a convex edge or corner contact appears once.
  *    A centre right above an inactive seam (the point on the seam is its
  *    projection) is a face contact: the plane continues across the seam.
+ *    An active edge or corner contacts only when the centre lies in its
+ *    Voronoi region against the facets of the other groups beside it
+ *    (sd_mesh_feature_owns): over a neighbour's face that neighbour's
+ *    group makes the one contact, so a sphere rolling over a ridge is
+ *    never pushed by a face and an edge at once.
  *  - Any other body meets the group's plane as it would meet an infinite
  *    plane (contact/), its force weighted by w = A_clip / A, where A is the
  *    area of the body's section by the plane and A_clip the part of it
@@ -22,7 +27,10 @@
  *    supported area. A polyhedron's section is exact (the crossings of
  *    every pair of its vertices on the two sides of the plane, hulled);
  *    other shapes use the disc of radius sqrt(2 R_eq delta) about the
- *    contact point (the Hertzian patch of the equivalent sphere).
+ *    contact point (the Hertzian patch of the equivalent sphere). At a
+ *    convex edge to another group the contact of the plane the body sinks
+ *    deeper into gives way to the other (backend/items.h,
+ *    sd_item_mesh_ridge_yields, with sd_mesh_edge_convex here).
  *
  * Everything is computed in the mesh frame (the particle mapped into it);
  * normals and points go back to the world frame. Single source (SD_HD):
@@ -34,6 +42,7 @@
 #include "dynamics/meshwall.h"
 #include "dynamics/walls.h"
 #include "geom/clip.h"
+#include "shape/support.h"
 #include "geom/sphere.h"
 #include "shape/shape.h"
 
@@ -48,6 +57,72 @@ SD_HD static SD_INLINE void sd_mesh_group_plane(const sd_mesh_view *m, const sd_
     sd_vec3 n = m->group_normal[gr];
     *nw = sd_quat_rotate(wg->q, n);
     *p0 = sd_mesh_to_world(wg->q, wg->trans, sd_v3_scale(n, m->group_offset[gr]));
+}
+
+/* The corner of triangle nb that is not on edge (ia, ib). */
+SD_HD static SD_INLINE uint32_t sd_mesh_far_corner(const sd_mesh_view *m, uint32_t nb, uint32_t ia, uint32_t ib)
+{
+    const uint32_t *nv = m->tris[nb];
+    return nv[0] != ia && nv[0] != ib ? nv[0] : (nv[1] != ia && nv[1] != ib ? nv[1] : nv[2]);
+}
+
+/* The direction in the plane of triangle nb, square to its edge a -> b,
+ * pointing into nb (from the edge towards its far corner c). */
+SD_HD static SD_INLINE sd_vec3 sd_mesh_into(sd_vec3 a, sd_vec3 b, sd_vec3 c)
+{
+    sd_vec3 e = sd_v3_sub(b, a), u = sd_v3_sub(c, a);
+    return sd_v3_sub(u, sd_v3_scale(e, sd_v3_dot(u, e) / sd_v3_dot(e, e)));
+}
+
+/* The Voronoi rule of active features (issue 14: no double push at a
+ * convex edge between plane groups). xm's closest point on triangle t is
+ * p, on t's active edge or corner f. The feature makes the contact only
+ * when p is also the closest point of the facets of the other groups
+ * beside it: for an edge, xm - p must not point over the neighbour's face
+ * ((xm - p) . u <= 0, u into the neighbour square to the edge); for a
+ * corner v, (xm - v) . (w - v) <= 0 for every edge v -> w of the facets
+ * around it (walked through the neighbour links both ways, at most 64
+ * facets each). Otherwise the point of the mesh nearest the centre lies
+ * on another group's face or feature and that group makes the contact. */
+SD_HD static SD_INLINE int sd_mesh_feature_owns(const sd_mesh_view *m, uint32_t t, int f, sd_vec3 p, sd_vec3 xm,
+                                                sd_real r)
+{
+    if (!m->nbr)
+        return 1;
+    sd_vec3 d = sd_v3_sub(xm, p);
+    const uint32_t *tv = m->tris[t];
+    if (f < SD_CLIP_CORNER0) {
+        int k = f - SD_CLIP_EDGE0;
+        uint32_t nb = m->nbr[t][k];
+        if (nb == UINT32_MAX || m->group[nb] == m->group[t])
+            return 1;
+        uint32_t ia = tv[k], ib = tv[(k + 1) % 3];
+        sd_vec3 u = sd_mesh_into(m->verts[ia], m->verts[ib], m->verts[sd_mesh_far_corner(m, nb, ia, ib)]);
+        /* right above the edge the neighbour's face claims the centre (its
+         * seam tolerance), so the edge gives way there too */
+        return !(sd_v3_dot(d, u) > -SD_MESH_SEAM_TOL * r * sd_v3_norm(u));
+    }
+    uint32_t vtx = tv[f - SD_CLIP_CORNER0];
+    sd_vec3 v = m->verts[vtx];
+    for (int dir = 0; dir < 2; ++dir) {
+        uint32_t cur = t;
+        for (int step = 0; step < 64; ++step) {
+            const uint32_t *cv = m->tris[cur];
+            int kv = cv[0] == vtx ? 0 : (cv[1] == vtx ? 1 : 2);
+            /* the edges of other groups' facets (t's own group found the corner nearest) */
+            for (int q = 1; q <= 2 && m->group[cur] != m->group[t]; ++q) {
+                sd_vec3 ev = sd_v3_sub(m->verts[cv[(kv + q) % 3]], v);
+                if (sd_v3_dot(d, ev) > -SD_MESH_SEAM_TOL * r * sd_v3_norm(ev))
+                    return 0;
+            }
+            /* on to the facet across the edge leaving the corner (dir 0) or entering it (dir 1) */
+            uint32_t nb = m->nbr[cur][dir == 0 ? kv : (kv + 2) % 3];
+            if (nb == UINT32_MAX || nb == t)
+                break;
+            cur = nb;
+        }
+    }
+    return 1;
 }
 
 /* A sphere (centre x, radius r, world frame) against group gr through its
@@ -94,6 +169,8 @@ SD_HD static SD_INLINE int sd_mesh_sphere_geom(const sd_mesh_view *m, const sd_w
         unsigned bit = bf >= SD_CLIP_CORNER0 ? SD_MESH_CORNER_BIT(bf - SD_CLIP_CORNER0) : SD_MESH_EDGE_BIT(bf - SD_CLIP_EDGE0);
         if (!(m->flags[bt] & bit) || !(s > SD_R(0.0)))
             return 0; /* inactive: the faces beside it make the contact */
+        if (!sd_mesh_feature_owns(m, bt, bf, bp, xm, r))
+            return 0; /* the centre is over a neighbouring group's face: that group's contact */
         sd_real dist = sd_sqrt(best);
         nm = sd_v3_scale(d, SD_R(1.0) / dist);
         delta = r - dist;
@@ -223,6 +300,106 @@ SD_HD static SD_INLINE int sd_mesh_disc(sd_vec3 p, sd_real a, sd_vec3 e1, sd_vec
     for (int k = 0; k < 16; ++k)
         sec[k] = sd_v2(px + a * c8[k], py + a * c8[(k + 12) % 16]);
     return 16;
+}
+
+/* 1 when the far corner of nb (across edge k of t) lies behind t's group
+ * plane: the edge is a convex ridge seen from the particle side. */
+SD_HD static SD_INLINE int sd_mesh_edge_convex(const sd_mesh_view *m, uint32_t t, int k, uint32_t nb)
+{
+    const uint32_t *tv = m->tris[t];
+    uint32_t ia = tv[k], ib = tv[(k + 1) % 3];
+    sd_vec3 a = m->verts[ia], d = sd_v3_sub(m->verts[sd_mesh_far_corner(m, nb, ia, ib)], a);
+    return sd_v3_dot(m->group_normal[m->group[t]], d) < -SD_MESH_SEAM_TOL * sd_v3_norm(d);
+}
+
+/* Directions of the support-point section of a body without vertices
+ * (sd_mesh_convex_section): a disc's area comes out (24/2pi) sin(2pi/24)
+ * = 0.9886 of the true one, the same factor for its clipped part, so the
+ * weight w = A_clip / A is not biased by it. */
+#define SD_MESH_SECTION_DIRS 24
+#define SD_MESH_SECTION_ITERS 34
+
+/* The section's support in plane direction u (seed 000 §2.4's section,
+ * by LP duality): h_S(u) = min over t of h_K(u + t n) - t off, with
+ * t = tan(phi): f(phi) = (h_K(d) - sin(phi) off) / cos(phi), d = cos(phi)
+ * u + sin(phi) n, unimodal in phi on (-pi/2, pi/2). K is the rounded
+ * body (core support plus the swept radius), all in the mesh frame;
+ * *pt gets K's support point along d, a point of the section's rim at
+ * the minimum. */
+SD_HD static SD_INLINE sd_real sd_mesh_section_f(const sd_convex *c, const sd_wall_geom *wg, sd_vec3 u, sd_vec3 n,
+                                                 sd_real off, sd_real phi, sd_vec3 *pt)
+{
+    sd_real cp = sd_cos(phi), sp = sd_sin(phi);
+    sd_vec3 dm = sd_v3_add(sd_v3_scale(u, cp), sd_v3_scale(n, sp));
+    sd_vec3 dw = sd_quat_rotate(wg->q, dm);
+    sd_vec3 sw = sd_v3_madd(sd_convex_support_core(c, dw), c->shape->radius, dw);
+    *pt = sd_mesh_to_frame(wg->q, wg->trans, sw);
+    return (sd_v3_dot(*pt, dm) - sp * off) / cp;
+}
+
+/* The section of a posed convex body (any kind: spheres, ellipsoids,
+ * cylinders, cones, boxes, with their rounding) by the plane n . x = off
+ * of the mesh frame, as the polygon of its rim points in
+ * SD_MESH_SECTION_DIRS plane directions, hulled, in the plane basis
+ * (e1, e2); returns its vertex count (0 when the plane misses the body).
+ * Each rim point is the support point of the body at the minimum of
+ * sd_mesh_section_f, found by golden-section search (SD_MESH_SECTION_ITERS
+ * steps: phi to 1e-7 rad), then put on the plane. */
+SD_HD static SD_INLINE int sd_mesh_convex_section(const sd_convex *c, const sd_wall_geom *wg, sd_vec3 n, sd_real off,
+                                                  sd_vec3 e1, sd_vec3 e2, sd_vec2 *sec)
+{
+    const sd_real half = SD_R(1.5707963267948966) - SD_R(1e-9), g = SD_R(0.6180339887498949);
+    /* cos and sin of k 2 pi / 24 */
+    const sd_real cs[6] = {SD_R(1.0), SD_R(0.9659258262890683), SD_R(0.8660254037844386), SD_R(0.7071067811865476),
+                           SD_R(0.5), SD_R(0.25881904510252074)};
+    int np = 0;
+    for (int k = 0; k < SD_MESH_SECTION_DIRS; ++k) {
+        int q = k % 6, quad = k / 6;
+        sd_real ca = cs[q], sa = q == 0 ? SD_R(0.0) : cs[6 - q]; /* angle q pi / 12 in this quadrant */
+        sd_real cx = quad == 0 ? ca : (quad == 1 ? -sa : (quad == 2 ? -ca : sa));
+        sd_real cy = quad == 0 ? sa : (quad == 1 ? ca : (quad == 2 ? -sa : -ca));
+        sd_vec3 u = sd_v3_add(sd_v3_scale(e1, cx), sd_v3_scale(e2, cy));
+        sd_real a = -half, b = half;
+        sd_real x1 = b - g * (b - a), x2 = a + g * (b - a);
+        sd_vec3 p1, p2; /* the support points at x1, x2 (unused past the search) */
+        sd_real f1 = sd_mesh_section_f(c, wg, u, n, off, x1, &p1), f2 = sd_mesh_section_f(c, wg, u, n, off, x2, &p2);
+        for (int it = 0; it < SD_MESH_SECTION_ITERS; ++it) {
+            if (f1 <= f2) {
+                b = x2;
+                x2 = x1;
+                f2 = f1;
+                p2 = p1;
+                x1 = b - g * (b - a);
+                f1 = sd_mesh_section_f(c, wg, u, n, off, x1, &p1);
+            } else {
+                a = x1;
+                x1 = x2;
+                f1 = f2;
+                p1 = p2;
+                x2 = a + g * (b - a);
+                f2 = sd_mesh_section_f(c, wg, u, n, off, x2, &p2);
+            }
+        }
+        /* the support points at the bracket's ends: on a smooth rim both
+         * are on the plane; at a kink (an edge or a corner of a box, a
+         * cylinder's cap rim) they are the two ends of the edge crossing
+         * it, and the rim point is where that segment (inside the body)
+         * meets the plane */
+        sd_vec3 pa, pb;
+        (void)sd_mesh_section_f(c, wg, u, n, off, a, &pa);
+        (void)sd_mesh_section_f(c, wg, u, n, off, b, &pb);
+        sd_real ha = sd_v3_dot(n, pa) - off, hb = sd_v3_dot(n, pb) - off;
+        sd_vec3 p;
+        if ((ha <= SD_R(0.0) && hb >= SD_R(0.0)) || (ha >= SD_R(0.0) && hb <= SD_R(0.0)))
+            p = ha == hb ? pa : sd_v3_add(pa, sd_v3_scale(sd_v3_sub(pb, pa), ha / (ha - hb)));
+        else if (sd_fabs(ha) <= SD_R(1e-6) * (c->shape->bound > 0 ? c->shape->bound : SD_R(1.0)))
+            p = pa;
+        else
+            return 0; /* the rim is off the plane: the plane misses the body */
+        p = sd_v3_sub(p, sd_v3_scale(n, sd_v3_dot(n, p) - off));
+        sec[np++] = sd_v2(sd_v3_dot(p, e1), sd_v3_dot(p, e2));
+    }
+    return sd_clip_hull(sec, np);
 }
 
 #endif

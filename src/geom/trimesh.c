@@ -233,6 +233,7 @@ void sd_trimesh_free(sd_trimesh *m)
     sd_free(m->group_normal);
     sd_free(m->group_offset);
     sd_free(m->source);
+    sd_free(m->nbr);
     memset(m, 0, sizeof *m);
 }
 
@@ -596,7 +597,8 @@ sd_status sd_trimesh_build_side(const sd_v3d *v, size_t nv, const uint32_t (*t)[
     out->vertices = sd_malloc(nvo * sizeof *out->vertices);
     out->triangles = sd_malloc(n * sizeof *out->triangles);
     out->source = sd_malloc(n * sizeof *out->source);
-    if (!out->vertices || !out->triangles || !out->source) {
+    out->nbr = sd_malloc(n * sizeof *out->nbr);
+    if (!out->vertices || !out->triangles || !out->source || !out->nbr) {
         st = SD_TM_OOM(err);
         goto done;
     }
@@ -604,6 +606,11 @@ sd_status sd_trimesh_build_side(const sd_v3d *v, size_t nv, const uint32_t (*t)[
         out->vertices[i] = sd_v3((sd_real)p[i].x, (sd_real)p[i].y, (sd_real)p[i].z);
     memcpy(out->triangles, tri, n * sizeof *tri);
     memcpy(out->source, src, n * sizeof *src);
+    for (size_t j = 0; j < n; ++j)
+        for (int k = 0; k < 3; ++k) {
+            int64_t i = nbr[3 * j + (size_t)k];
+            out->nbr[j][k] = i >= 0 ? (uint32_t)i : UINT32_MAX;
+        }
     out->vertex_count = nvo;
     out->triangle_count = n;
     out->group_count = ng;

@@ -80,6 +80,10 @@ typedef struct sd_trimesh {
     sd_real *group_offset;
     /* per triangle: its facet index in the input (0-based) */
     uint32_t *source;
+    /* per triangle: the triangle across edge k (corner k -> k + 1), UINT32_MAX
+     * for a boundary or non-manifold edge (the contact's Voronoi tests at
+     * active edges and corners, geom/mesh_contact.h) */
+    uint32_t (*nbr)[3];
 } sd_trimesh;
 
 typedef struct sd_trimesh_report {

@@ -61,6 +61,7 @@ static void sd_mesh_refresh_view(sd_world *w, size_t k)
     v->tris = (const uint32_t(*)[3])s->m.triangles;
     v->group = s->m.group;
     v->flags = s->m.flags;
+    v->nbr = (const uint32_t(*)[3])s->m.nbr;
     v->group_normal = s->m.group_normal;
     v->group_offset = s->m.group_offset;
     v->h = s->h;

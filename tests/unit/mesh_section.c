@@ -1,0 +1,127 @@
+/* mesh_section.c — the section of a body without vertices by a facet
+ * plane (geom/mesh_contact.h, sd_mesh_convex_section: 24 rim points from
+ * support points, seed 000 §2.4's overlap area for every kind), against
+ * the analytic areas:
+ *  - a sphere (point core, radius 10 mm) cut 6 mm from its centre: a disc
+ *    of radius 8 mm; the 24-gon of rim points has (24/2pi) sin(2pi/24) of
+ *    its area, and every rim point lies on the circle;
+ *  - a rotated ellipsoid (semi-axes 30, 20, 10 mm) cut by a plane: an
+ *    ellipse of area pi a b c / sqrt(n^T M n) (1 - d^2 / n^T M n), M =
+ *    diag(a^2, b^2, c^2) in the body frame (the polygon within 1.5 %);
+ *  - a cylinder (radius 10 mm, half length 25 mm) lying along x, cut
+ *    4 mm below its axis: the rectangle 50 x 2 sqrt(100 - 16) mm, exact
+ *    (its corners are support points of the cap rims);
+ *  - a box (half edges 10, 15, 20 mm) cut parallel to a face: the 20 x 30
+ *    mm rectangle, exact;
+ *  - a plane that misses the body: no section;
+ *  - the weight of the sphere's section on a triangle holding half of it:
+ *    w = A_clip / A = 1/2 (the polygon is symmetric).
+ */
+#include "test.h"
+
+#include <string.h>
+
+#include "geom/clip.h"
+#include "geom/mesh_contact.h"
+
+#define PI 3.14159265358979323846
+
+static double sd_sec_area(sd_shape *sh, sd_vec3 x, sd_quat q, sd_vec3 n, double off, sd_vec2 *sec, int *ns)
+{
+    sd_convex c;
+    memset(&c, 0, sizeof c);
+    c.shape = sh;
+    c.x = x;
+    c.q = q;
+    sd_wall_geom wg;
+    memset(&wg, 0, sizeof wg);
+    wg.q = sd_quat_identity();
+    sd_vec3 e1, e2;
+    sd_clip_basis(n, &e1, &e2);
+    *ns = sd_mesh_convex_section(&c, &wg, n, (sd_real)off, e1, e2, sec);
+    return *ns >= 3 ? sd_clip_area(sec, *ns, NULL) : 0.0;
+}
+
+static sd_shape sd_sec_shape(int kind, double ax, double ay, double az, double radius)
+{
+    sd_shape sh;
+    memset(&sh, 0, sizeof sh);
+    sh.kind = kind;
+    sh.a = sd_v3(ax, ay, az);
+    sh.radius = radius;
+    sh.bound = sqrt(ax * ax + ay * ay + az * az) + radius;
+    return sh;
+}
+
+int main(void)
+{
+    sd_vec2 sec[SD_CLIP_MAX + 3];
+    int ns;
+    const double poly24 = 24.0 / (2 * PI) * sin(2 * PI / 24);
+
+    /* sphere: point core at z = 6 mm, radius 10 mm, cut by z = 0 */
+    sd_shape sp = sd_sec_shape(SD_SHAPE_SPHERE, 0, 0, 0, 0.01);
+    double a = sd_sec_area(&sp, sd_v3(0.001, -0.002, 0.006), sd_quat_identity(), sd_v3(0, 0, 1), 0.0, sec, &ns);
+    double disc = PI * (0.01 * 0.01 - 0.006 * 0.006);
+    printf("sphere section: %d rim points\n", ns);
+    CHECK(ns == 24);
+    CHECK_REL("sphere cut 6 mm off centre: area / (24-gon of the 8 mm disc)", a, poly24 * disc, 1e-6);
+    double rim = 0;
+    for (int k = 0; k < ns; ++k) {
+        sd_vec3 e1, e2;
+        sd_clip_basis(sd_v3(0, 0, 1), &e1, &e2);
+        /* the centre's coordinates in the plane basis */
+        double cx = 0.001 * e1.x - 0.002 * e1.y, cy = 0.001 * e2.x - 0.002 * e2.y;
+        rim = fmax(rim, fabs(hypot(sec[k].x - cx, sec[k].y - cy) - 0.008));
+    }
+    CHECK_NEAR("sphere: rim points off the 8 mm circle, max (m)", rim, 0.0, 1e-9);
+
+    /* the weight on a triangle holding the half x >= x_c of it */
+    {
+        sd_vec3 e1, e2;
+        sd_clip_basis(sd_v3(0, 0, 1), &e1, &e2);
+        sd_vec2 c0;
+        double a0 = sd_clip_area(sec, ns, &c0);
+        /* a big triangle whose edge runs through the disc's centre along e2 */
+        sd_vec2 t[3] = {{c0.x, c0.y - 1}, {c0.x + 2, c0.y}, {c0.x, c0.y + 1}};
+        sd_vec2 out[SD_CLIP_MAX + 3];
+        int no = sd_clip_triangle(sec, ns, t, out);
+        CHECK_NEAR("sphere section on a triangle holding half: w", sd_clip_area(out, no, NULL) / a0, 0.5, 1e-9);
+    }
+
+    /* ellipsoid, turned 40 degrees about (1, 1, 1) / sqrt 3, cut by the plane n . x = d */
+    {
+        sd_shape el = sd_sec_shape(SD_SHAPE_ELLIPSOID, 0.03, 0.02, 0.01, 0.0);
+        double s40 = sin(0.5 * 40 * PI / 180) / sqrt(3.0);
+        sd_quat q = sd_quat_make(cos(0.5 * 40 * PI / 180), s40, s40, s40);
+        sd_vec3 n = sd_v3_normalize(sd_v3(0.2, -0.3, 1.0));
+        double d = -0.004; /* the centre (origin) 4 mm in front of the plane */
+        a = sd_sec_area(&el, sd_v3(0, 0, 0), q, n, d, sec, &ns);
+        sd_vec3 nb = sd_quat_rotate_inv(q, n); /* the normal in the body frame */
+        double nmn = 0.03 * 0.03 * nb.x * nb.x + 0.02 * 0.02 * nb.y * nb.y + 0.01 * 0.01 * nb.z * nb.z;
+        double exact = PI * 0.03 * 0.02 * 0.01 / sqrt(nmn) * (1 - d * d / nmn);
+        printf("ellipsoid section: %d rim points, area %.6g m^2, analytic %.6g m^2, ratio %.5f\n", ns, a, exact,
+               a / exact);
+        CHECK_REL("tilted ellipsoid: section area vs the analytic ellipse (1.5 %)", a, exact, 0.015);
+    }
+
+    /* cylinder along x (its axis z turned onto x), cut 4 mm below the axis */
+    {
+        sd_shape cy = sd_sec_shape(SD_SHAPE_CYLINDER, 0.01, 0.01, 0.025, 0.0);
+        sd_quat q = sd_quat_make(cos(PI / 4), 0, sin(PI / 4), 0); /* 90 degrees about y: z -> x */
+        a = sd_sec_area(&cy, sd_v3(0, 0, 0.004), q, sd_v3(0, 0, 1), 0.0, sec, &ns);
+        double exact = 0.05 * 2 * sqrt(0.01 * 0.01 - 0.004 * 0.004);
+        CHECK_REL("lying cylinder: section area vs the rectangle", a, exact, 1e-7);
+    }
+
+    /* box cut parallel to its z faces */
+    {
+        sd_shape bx = sd_sec_shape(SD_SHAPE_BOX, 0.01, 0.015, 0.02, 0.0);
+        a = sd_sec_area(&bx, sd_v3(0, 0, 0.005), sd_quat_identity(), sd_v3(0, 0, 1), 0.0, sec, &ns);
+        CHECK_REL("box cut parallel to a face: section area vs 20 x 30 mm", a, 0.02 * 0.03, 1e-9);
+        a = sd_sec_area(&bx, sd_v3(0, 0, 0.05), sd_quat_identity(), sd_v3(0, 0, 1), 0.0, sec, &ns);
+        CHECK(ns == 0);
+        CHECK_NEAR("box 50 mm above the plane: no section", a, 0.0, 0.0);
+    }
+    return sd_test_summary();
+}
