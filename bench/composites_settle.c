@@ -6,6 +6,9 @@
  *   cubes     convex cubes of edge 2 r (GJK/EPA)
  *   clumps    multi-sphere clumps, 4 spheres of radius r on a tetrahedron
  *   crosses   3D crosses of 7 cubes of edge 1.4 r (composites of convex elements)
+ *   cross3d   seed 004's 3D cross: the cross3d preset, three cylinders of
+ *             diameter 1.4 r and length 4.2 r through one centre
+ *             (sd_world_add_composite_preset; overlapping elements)
  * Each case: particles on a loose lattice with random velocities, `warm`
  * steps to bring them into contact, then `steps` timed steps. Prints per
  * case particle-steps per second, element-pair tests per second (element
@@ -15,7 +18,10 @@
  *   cmake -S . -B build-release -DCMAKE_BUILD_TYPE=Release && cmake --build build-release -j 2 --target shapedem_lib
  *   cc -O2 -std=c17 -fopenmp -Isrc -Iinclude bench/composites_settle.c \
  *      build-release/libshapedem.a -lyaml -lhdf5 -lm -o build-release/composites_settle
- *   build-release/composites_settle [threads] [steps] [warm]
+ *   build-release/composites_settle [--json] [threads] [steps] [warm]
+ * --json: one JSON line per kind ({"case":"composites-settle","kind",
+ * "particles","steps","threads","wall_s","cpu_s","psps","element_pair_tests_per_s",
+ * "cost_vs_spheres","load1"}), as bench/run prints them.
  */
 #include <math.h>
 #include <stdio.h>
@@ -49,7 +55,22 @@ static double frand(unsigned *s)
 
 enum { N = 2000 };
 
-static void run(const char *kind, int threads, int steps, int warm, double *psps_out)
+static int json;
+
+static double load1(void)
+{
+    double l = -1;
+    FILE *f = fopen("/proc/loadavg", "r");
+    if (f) {
+        if (fscanf(f, "%lf", &l) != 1)
+            l = -1;
+        fclose(f);
+    }
+    return l;
+}
+
+static void run(const char *kind, int threads, int steps, int warm, double *psps_out, double *tests_out,
+                double *wall_out, double *cpu_out)
 {
     sd_error err;
     sd_world *w;
@@ -89,6 +110,12 @@ static void run(const char *kind, int threads, int steps, int warm, double *psps
         }
         cd.element_count = 4;
         shape = sd_world_add_composite(w, "clump", &cd, &err);
+    } else if (!strcmp(kind, "cross3d")) {
+        sd_composite_preset_def pd = sd_composite_preset_def_default();
+        pd.preset = "cross3d";
+        pd.diameter = 1.4 * r;
+        pd.length = 4.2 * r;
+        shape = sd_world_add_composite_preset(w, "cross3d", &pd, &err);
     } else if (!strcmp(kind, "crosses")) {
         s.kind = "box";
         double c = 1.4 * r;
@@ -154,7 +181,11 @@ static void run(const char *kind, int threads, int steps, int warm, double *psps
     double tt = threads == 1 ? c : t;
     double psps = (double)N * steps / tt;
     *psps_out = psps;
-    printf("%-8s threads %d: %8.0f particle-steps/s, %10.0f element-pair tests/s, %ld contacts, %ld wall contacts, "
+    *tests_out = tests / tt;
+    *wall_out = t;
+    *cpu_out = c;
+    if (!json)
+        printf("%-8s threads %d: %8.0f particle-steps/s, %10.0f element-pair tests/s, %ld contacts, %ld wall contacts, "
            "%zu candidate pairs, %.2f s wall, %.2f s CPU\n",
            kind, threads, psps, tests / tt, st.contacts, st.wall_contacts, st.pairs, t, c);
     fflush(stdout);
@@ -163,14 +194,28 @@ static void run(const char *kind, int threads, int steps, int warm, double *psps
 
 int main(int argc, char **argv)
 {
-    int threads = argc > 1 ? atoi(argv[1]) : 1, steps = argc > 2 ? atoi(argv[2]) : 1000,
-        warm = argc > 3 ? atoi(argv[3]) : 1000;
-    static const char *kinds[4] = {"spheres", "cubes", "clumps", "crosses"};
-    double p[4];
-    for (int k = 0; k < 4; ++k)
-        run(kinds[k], threads, steps, warm, &p[k]);
-    printf("cost per particle-step relative to spheres: cubes %.1fx, clumps of 4 spheres %.1fx, crosses of 7 cubes %.1fx "
-           "(crosses / cubes %.1fx)\n",
-           p[0] / p[1], p[0] / p[2], p[0] / p[3], p[1] / p[3]);
+    int a0 = 1;
+    if (argc > 1 && !strcmp(argv[1], "--json")) {
+        json = 1;
+        a0 = 2;
+    }
+    int threads = argc > a0 ? atoi(argv[a0]) : 1, steps = argc > a0 + 1 ? atoi(argv[a0 + 1]) : 1000,
+        warm = argc > a0 + 2 ? atoi(argv[a0 + 2]) : 1000;
+    enum { K = 5 };
+    static const char *kinds[K] = {"spheres", "cubes", "clumps", "crosses", "cross3d"};
+    double p[K], tests[K], wall[K], cpus[K];
+    for (int k = 0; k < K; ++k) {
+        run(kinds[k], threads, steps, warm, &p[k], &tests[k], &wall[k], &cpus[k]);
+        if (json)
+            printf("{\"case\":\"composites-settle\",\"kind\":\"%s\",\"particles\":%d,\"steps\":%d,\"threads\":%d,"
+                   "\"wall_s\":%.4g,\"cpu_s\":%.4g,\"psps\":%.4g,\"element_pair_tests_per_s\":%.4g,"
+                   "\"cost_vs_spheres\":%.3g,\"load1\":%.2f}\n",
+                   kinds[k], N, steps, threads, wall[k], cpus[k], p[k], tests[k], p[0] / p[k], load1());
+        fflush(stdout);
+    }
+    if (!json)
+        printf("cost per particle-step relative to spheres: cubes %.1fx, clumps of 4 spheres %.1fx, crosses of 7 cubes "
+               "%.1fx, cross3d %.1fx (crosses / cubes %.1fx)\n",
+               p[0] / p[1], p[0] / p[2], p[0] / p[3], p[0] / p[4], p[1] / p[3]);
     return 0;
 }

@@ -62,7 +62,9 @@ typedef struct sd_composite_part {
 
 /* Builds the composite: *out (kind SD_SHAPE_COMPOSITE, estart 0, ecount n)
  * and elems[0 .. n) in its principal frame. lattice: points per direction
- * when elements overlap, 0 = SD_COMPOSITE_LATTICE_DEFAULT; threads: OpenMP
+ * when elements overlap, 0 = SD_COMPOSITE_LATTICE_DEFAULT (over the box
+ * around the overlaps, or the same budget spent pair by pair over the
+ * overlapping pairs' own boxes when that gives finer cells); threads: OpenMP
  * threads for the lattice (<= 0: the runtime's choice; the result does not
  * depend on it). SD_ERR_INPUT with the key ("elements", "lattice") for a
  * bad input, SD_ERR_MEMORY on allocation failure. */
