@@ -11,9 +11,9 @@
  * Particles start on a lattice filling the cone and the cylinder's lower
  * part, so they meet the walls at once. Linear law, dt = 2e-5 s.
  *
- * Build (own build dir, RelWithDebInfo -O2):
- *   cc -std=c17 -O2 -fopenmp -Isrc -Iinclude bench/mesh_hopper.c build-meshengine/libshapedem.a -lm \
- *      -o build-meshengine/mesh_hopper
+ * Run by `bench/run --cases mesh-hopper`, which builds it as
+ *   cc -std=c17 -O2 -fopenmp -Isrc -Iinclude bench/mesh_hopper.c build-release/libshapedem.a -lm \
+ *      -o build-release/mesh_hopper
  * Run: mesh_hopper [steps, default 2000] [threads, default 2]
  * Output: one JSON line per mesh:
  *   {"case":"mesh-hopper","facets","particles","steps","threads","seconds","psps","facet_tests_per_s",
