@@ -467,7 +467,7 @@ sd_status sd_render_frame_load(const char *path, const char *field, sd_render_fr
     sd_status s;
     int is_shapes = !strncmp(base, "shapes_", 7);
     if (!sd_rd_exists(path))
-        return sd_error_set(err, SD_ERR_INPUT, path, 0, "", "no such file: %s", strerror(errno));
+        return sd_error_set(err, SD_ERR_INPUT, path, 0, "", "cannot read the frame: %s", strerror(errno));
     if (is_shapes) {
         snprintf(shapes, sizeof shapes, "%s", path);
         sd_rd_sibling(path, "shapes_", "walls_", ".vtp", walls, sizeof walls);
