@@ -1,7 +1,9 @@
 /* pairs.cu — the CUDA backend's kernels over particle pairs: one kernel
  * per interaction kind segment (contact/kinds.h), one thread per pair
  * calling that kind's item (backend/items.h), exactly as the CPU loops of
- * backend/cpu/pairs.c; no physics here.
+ * backend/cpu/pairs.c; no physics here. The volume law and the composite
+ * runs have files of their own (pairs_volume.cu, pairs_elements.cu): their
+ * kernels are the largest by far, and apart they compile in parallel.
  *
  * Invariants: an item writes only its own pair's slots, so the order of
  * the threads cannot change a bit. The volume law and the composite runs
@@ -15,26 +17,7 @@
  */
 #include <stdio.h>
 
-#include "backend/cuda/state.h"
-#include "backend/items.h"
-
-/* 3D tallies of pair e (the CPU's sd_tally3_add): evaluations, iterations
- * and support calls per sorted pair of shape kinds. */
-__device__ static void sd_k_tally3(const sd_step_view *v, const sd_pair_out *o, size_t e, unsigned long long *tally)
-{
-    if (o->supports[e] == 0)
-        return; /* culled by the bounding spheres */
-    int a = sd_item_shape_kind(v, o->i[e]), b = sd_item_shape_kind(v, o->j[e]);
-    if (a > b) {
-        int t = a;
-        a = b;
-        b = t;
-    }
-    unsigned long long *y = tally + ((size_t)a * SD_SHAPE_KIND_COUNT + (size_t)b) * 3;
-    atomicAdd(&y[0], 1ull);
-    atomicAdd(&y[1], (unsigned long long)o->iters[e]);
-    atomicAdd(&y[2], (unsigned long long)o->supports[e]);
-}
+#include "backend/cuda/tally.h"
 
 __global__ void sd_k_spheres(sd_step_view v, sd_pair_out o, size_t e0, size_t e1)
 {
@@ -50,32 +33,6 @@ __global__ void sd_k_convex(sd_step_view v, sd_pair_out o, size_t e0, size_t e1,
         return;
     sd_item_convex(&v, &o, e);
     sd_k_tally3(&v, &o, e, tally);
-}
-
-__global__ void sd_k_poly_volume(sd_step_view v, sd_pair_out o, size_t e0, size_t e1, sd_overlap_workspace *ws,
-                                 unsigned long long *tally)
-{
-    size_t t = SD_CUDA_ITEM(), e = e0 + t;
-    if (e >= e1)
-        return;
-    sd_item_poly_volume(&v, &o, e, &ws[t]);
-    sd_k_tally3(&v, &o, e, tally);
-}
-
-/* Pairs [e0, e1) of a batch of the ELEMENTS segment [s0, s1): the thread of
- * a run's first pair evaluates the run, which may end past e1. */
-__global__ void sd_k_elements(sd_step_view v, sd_pair_out o, size_t s0, size_t s1, size_t e0, size_t e1,
-                              sd_overlap_workspace *ws, unsigned long long *tally)
-{
-    size_t t = SD_CUDA_ITEM(), e = e0 + t;
-    if (e >= e1 || !sd_item_elements_starts(&o, s0, e))
-        return;
-    size_t end = e + 1;
-    while (end < s1 && !sd_item_elements_starts(&o, s0, end))
-        ++end;
-    (void)sd_item_elements(&v, &o, e, end, &ws[t]);
-    for (size_t k = e; k < end; ++k)
-        sd_k_tally3(&v, &o, k, tally);
 }
 
 __global__ void sd_k_convex2d(sd_step_view v, sd_pair_out o, size_t e0, size_t e1, unsigned long long *tally)
@@ -108,7 +65,6 @@ extern "C" void sd_cuda_forces(sd_stage *s, sd_pair_kind kind)
     if (e1 <= e0)
         return;
     unsigned long long *tally = (unsigned long long *)c->tally.p;
-    sd_overlap_workspace *ws = (sd_overlap_workspace *)c->ws.p;
     size_t nb = c->ws_count;
     const char *stage = "pair forces";
     if ((kind == SD_PAIR_POLY_VOLUME || kind == SD_PAIR_ELEMENTS) && nb == 0) {
@@ -130,11 +86,7 @@ extern "C" void sd_cuda_forces(sd_stage *s, sd_pair_kind kind)
         break;
     case SD_PAIR_POLY_VOLUME:
         stage = "polyhedron volume pairs";
-        for (size_t b = e0; b < e1 && nb > 0; b += nb) {
-            size_t end = b + nb < e1 ? b + nb : e1;
-            SD_CUDA_LAUNCH(sd_k_poly_volume, sd_cuda_blocks(end - b), SD_CUDA_BLOCK, c->stream, c->v, c->pairs, b,
-                           end, ws, tally);
-        }
+        sd_cuda_forces_volume(c, e0, e1); /* pairs_volume.cu */
         break;
     case SD_PAIR_CONVEX2D:
         SD_CUDA_LAUNCH(sd_k_convex2d, sd_cuda_blocks(e1 - e0), SD_CUDA_BLOCK, c->stream, c->v, c->pairs, e0, e1,
@@ -143,11 +95,7 @@ extern "C" void sd_cuda_forces(sd_stage *s, sd_pair_kind kind)
         break;
     case SD_PAIR_ELEMENTS:
         stage = "composite element pairs";
-        for (size_t b = e0; b < e1 && nb > 0; b += nb) {
-            size_t end = b + nb < e1 ? b + nb : e1;
-            SD_CUDA_LAUNCH(sd_k_elements, sd_cuda_blocks(end - b), SD_CUDA_BLOCK, c->stream, c->v, c->pairs, e0, e1,
-                           b, end, ws, tally);
-        }
+        sd_cuda_forces_elements(c, e0, e1); /* pairs_elements.cu */
         break;
     case SD_PAIR_KIND_COUNT:
         return;

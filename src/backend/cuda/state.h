@@ -2,7 +2,7 @@
  * views (backend/view.h), the small device buffers of the reductions, the
  * polyhedron overlap workspaces, the stream, and the first error; and the
  * stages each source implements (device.cu: memory and copies; particles.cu,
- * pairs.cu, walls.cu: the kernels), gathered into the stage table by
+ * pairs*.cu, walls*.cu: the kernels), gathered into the stage table by
  * table.c.
  *
  * Invariants: c->v, c->pairs, c->wpairs are the host stage's views with
@@ -176,6 +176,12 @@ static inline int sd_cuda_ok(const sd_stage *s) { return s->device && s->device-
 static inline unsigned sd_cuda_blocks(size_t n) { return (unsigned)((n + SD_CUDA_BLOCK - 1) / SD_CUDA_BLOCK); }
 /* grows a device array to at least bytes (contents lost); 1 on failure */
 int sd_cuda_reserve(sd_cuda_state *c, sd_cuda_buf *b, size_t bytes, const char *stage, const char *what);
+/* the batched segments of sd_cuda_forces (ws_count > 0): pairs_volume.cu,
+ * pairs_elements.cu; the mesh wall-pair kinds of sd_cuda_wall_forces:
+ * walls_mesh.cu (0 when kind is not a mesh kind) */
+void sd_cuda_forces_volume(sd_cuda_state *c, size_t e0, size_t e1);
+void sd_cuda_forces_elements(sd_cuda_state *c, size_t e0, size_t e1);
+int sd_cuda_mesh_wall_kind(sd_cuda_state *c, int kind, size_t e0, size_t e1);
 #endif
 
 #endif

@@ -1,7 +1,8 @@
 /* walls.cu — the CUDA backend's kernels over particle-wall pairs: one
  * kernel per wall-pair kind (contact/kinds.h), one thread per pair calling
  * its item (backend/items.h), as backend/cpu/walls.c; and the wall totals.
- * No physics here.
+ * No physics here. The mesh kinds are in walls_mesh.cu (large kernels that
+ * compile in parallel with these).
  *
  * Invariants: an item writes only its own wall pair's slots. The wall
  * totals keep the CPU's summation order exactly (sd_cpu_wall_totals: the
@@ -16,7 +17,7 @@
 #include "backend/cuda/state.h"
 #include "backend/items.h"
 
-/* One kernel per wall-pair kind but the composite runs (a template on the
+/* One kernel per plane and box wall-pair kind but the composite runs (a template on the
  * kind: each instance holds only its own item, so a cheap kind does not
  * carry the registers of the dearest), one item per pair. */
 template <int K> __global__ void sd_k_wall_kind(sd_step_view v, sd_wall_pair_out o, size_t e0, size_t e1)
@@ -32,14 +33,6 @@ template <int K> __global__ void sd_k_wall_kind(sd_step_view v, sd_wall_pair_out
         sd_item_wall_poly_volume(&v, &o, e);
     else if (K == SD_WALL_PAIR_CONVEX2D)
         sd_item_wall_convex2d(&v, &o, e);
-    else if (K == SD_WALL_PAIR_MESH_SPHERE)
-        sd_item_mesh_sphere(&v, &o, e);
-    else if (K == SD_WALL_PAIR_MESH_CONVEX)
-        sd_item_mesh_convex(&v, &o, e);
-    else if (K == SD_WALL_PAIR_MESH_POLY_VOLUME)
-        sd_item_mesh_poly_volume(&v, &o, e);
-    else if (K == SD_WALL_PAIR_MESH_CONVEX2D)
-        sd_item_mesh_convex2d(&v, &o, e);
 }
 
 /* one run of a composite's elements against one feature (seed 004 §2.6),
@@ -97,15 +90,14 @@ extern "C" void sd_cuda_wall_forces(sd_stage *s)
             SD_X_KIND(SD_WALL_PAIR_CONVEX)
             SD_X_KIND(SD_WALL_PAIR_POLY_VOLUME)
             SD_X_KIND(SD_WALL_PAIR_CONVEX2D)
-            SD_X_KIND(SD_WALL_PAIR_MESH_SPHERE)
-            SD_X_KIND(SD_WALL_PAIR_MESH_CONVEX)
-            SD_X_KIND(SD_WALL_PAIR_MESH_POLY_VOLUME)
-            SD_X_KIND(SD_WALL_PAIR_MESH_CONVEX2D)
 #undef SD_X_KIND
         case SD_WALL_PAIR_ELEMENTS:
             SD_CUDA_LAUNCH(sd_k_wall_elements, nb, SD_CUDA_BLOCK, c->stream, c->v, c->wpairs, e0, e1);
             break;
-        default: /* a kind without a case here: the CPU's loops and this switch disagree */
+        default:
+            if (sd_cuda_mesh_wall_kind(c, k, e0, e1)) /* walls_mesh.cu */
+                break;
+            /* a kind without a kernel: the CPU's loops and these switches disagree */
             c->status = SD_ERR_INTERNAL;
             snprintf(c->message, sizeof c->message, "CUDA backend, wall forces: no kernel for wall-pair kind %d", k);
             return;
