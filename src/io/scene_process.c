@@ -7,7 +7,9 @@
  *
  * Invariant: every error names the scene file, the line and the key (a
  * mix that does not sum to 1, a negative radius, a region outside the
- * periodic domain, a solver without insertion); an outlet that no
+ * periodic domain, a solver without insertion, a mesh region's file);
+ * a template entry takes the sphere size laws for its equivalent radius
+ * (size_classes scaled copies), and an outlet that no
  * particle can reach is a warning, kept with the scene for the CLI.
  */
 #include "io/scene_process.h"

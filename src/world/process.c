@@ -19,6 +19,14 @@
  * on without a new prepare (which would evaluate the pairs a second time
  * and advance their springs twice); the next step rebuilds the lists.
  *
+ * A region may be the inside of a closed triangle mesh: positions are
+ * drawn in its box until the winding number (the triangles' solid angles)
+ * puts one inside, with the bounding sphere clear of every triangle; its
+ * triangles live in w->region_meshes, outside sd_process (a checkpoint
+ * dataset of plain bytes). A template entry with a size law is a few
+ * scaled copies of the template (world/scaled.c), one per class of the
+ * law (sd_size_classes), each class's radius that of its mean volume.
+ *
  * Invariant: present = initial + inserted - removed after every event;
  * everything random comes from each insertion's own xoshiro stream seeded
  * from (simulation seed, insertion index), drawn in a fixed order, so the
