@@ -34,9 +34,7 @@ if grep -q "built without rendering" "$tmp/probe.err"; then
     exit $((fail > 0))
 fi
 
-# shellcheck source=../render/kinds.sh
-source "$root/tests/render/kinds.sh"
-kinds_write "$tmp"
+bash "$root/tests/render/kinds.sh" "$tmp"
 for k in sphere convex polyhedron planar composite; do
     "$bin" run "$tmp/$k.yaml" -o "$tmp/$k" --quiet >/dev/null 2>"$tmp/$k.err"
     rc=$?

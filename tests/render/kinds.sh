@@ -1,18 +1,20 @@
-# kinds.sh — writes one tiny scene per particle kind into $1 (sourced by
+#!/usr/bin/env bash
+# kinds.sh DIR — writes one tiny scene per particle kind into DIR (for
 # tests/cli/render.sh): sphere, convex (ellipsoid), polyhedron
 # (icosahedron), planar (2D ellipses and a polygon), composite (cross3d).
-kinds_write() {
-    local d="$1" mat="materials:
+set -eu
+d="$1"
+mat="materials:
   - {name: m, density: 2500, youngs_modulus: 1.0e7, poisson_ratio: 0.3, restitution: 0.5, friction: 0.5}"
-    local out="output: {every: 1, formats: [vtk, shapes]}"
-    cat >"$d/sphere.yaml" <<YAML
+out="output: {every: 1, formats: [vtk, shapes]}"
+cat >"$d/sphere.yaml" <<YAML
 simulation: {dt: 1.0e-6, steps: 1}
 $mat
 particles:
   - {generator: lattice, material: m, radius: 0.001, origin: [0, 0, 0], spacing: 0.003, count: [3, 2, 2]}
 $out
 YAML
-    cat >"$d/convex.yaml" <<YAML
+cat >"$d/convex.yaml" <<YAML
 simulation: {dt: 1.0e-6, steps: 1}
 $mat
 shapes:
@@ -21,7 +23,7 @@ particles:
   - {generator: lattice, material: m, shape: egg, orientation: random, origin: [0, 0, 0], spacing: 0.005, count: [3, 2, 1]}
 $out
 YAML
-    cat >"$d/polyhedron.yaml" <<YAML
+cat >"$d/polyhedron.yaml" <<YAML
 simulation: {dt: 1.0e-6, steps: 1}
 $mat
 shapes:
@@ -30,7 +32,7 @@ particles:
   - {generator: lattice, material: m, shape: d20, orientation: random, origin: [0, 0, 0], spacing: 0.005, count: [3, 2, 1]}
 $out
 YAML
-    cat >"$d/planar.yaml" <<YAML
+cat >"$d/planar.yaml" <<YAML
 simulation: {dimension: 2, dt: 1.0e-6, steps: 1, contact_law: linear, gravity: [0, -9.81, 0]}
 materials:
   - {name: m, density: 2700, stiffness: 1.0e7, restitution: 0.5, friction: 0.2}
@@ -42,7 +44,7 @@ particles:
   - {generator: lattice, material: m, shape: tri, orientation: random, origin: [0, 0.012, 0], spacing: 0.005, count: [3, 1, 1]}
 $out
 YAML
-    cat >"$d/composite.yaml" <<YAML
+cat >"$d/composite.yaml" <<YAML
 simulation: {dt: 1.0e-6, steps: 1}
 $mat
 shapes:
@@ -51,4 +53,3 @@ particles:
   - {generator: lattice, material: m, shape: jack, orientation: random, origin: [0, 0, 0], spacing: 0.006, count: [2, 2, 1]}
 $out
 YAML
-}
