@@ -27,8 +27,14 @@ if [[ $lib == *.so ]]; then
 else # a static-only build: its dependencies by hand
     link=("$lib" -lyaml -lm -fopenmp)
 fi
-cc -std=c17 -Wall -Wextra -Werror -pedantic -I"$root/include" "$root/examples/c/run_scene.c" "${link[@]}" \
-    -o "$tmp/run_scene" >"$tmp/cc.log" 2>&1
+# a sanitizer build's library (make test-sanitize) needs its runtime first
+# in the program: the example is built with the same sanitizers
+san=()
+if [[ $lib == *.so ]] && ldd "$lib" 2>/dev/null | grep -q 'libasan'; then
+    san=(-fsanitize=address,undefined)
+fi
+cc -std=c17 -Wall -Wextra -Werror -pedantic "${san[@]}" -I"$root/include" "$root/examples/c/run_scene.c" \
+    "${link[@]}" -o "$tmp/run_scene" >"$tmp/cc.log" 2>&1
 rc=$?
 check "examples/c/run_scene.c compiles against include/ and the library (got $rc)" "$([[ $rc == 0 ]] && echo 1 || echo 0)"
 ((rc == 0)) || head -5 "$tmp/cc.log"
