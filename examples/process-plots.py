@@ -6,6 +6,7 @@ CSV files their analysis: sections write.
   python3 examples/process-plots.py drum2d  out/drum-2d        -> drum-2d.png
   python3 examples/process-plots.py bed     out/fixed-bed      -> fixed-bed.png
   python3 examples/process-plots.py reactor out/reactor-fill   -> reactor-fill.png
+  python3 examples/process-plots.py heap    out/heap-pour      -> heap-pour.png
 
 drum: coordination.csv (mean Z, with and without the drum's contacts) and
   energy.csv (mean speed) against time, and surface_angle.csv's angle.
@@ -13,6 +14,7 @@ drum2d: velocity_field.csv averaged over its last 0.3 s (weighted by the
   particles per cell) as arrows on the drum's cross section, by speed.
 bed, reactor: the last block of the radial porosity profile
   (radial_porosity.csv) against r / R.
+heap: repose_angle.csv's angle and bed_height.csv's heights against time.
 Each prints the numbers it plots; the PNG goes into the output directory
 (and, with a third argument, into that directory too, e.g. docs/examples).
 Standard library for the numbers; matplotlib for the plots.
@@ -140,8 +142,34 @@ def profile(out, also, name):
     save(fig, out, name + ".png", also)
 
 
+def heap(out, also):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    ra = rows(out, "repose_angle.csv")
+    bh = rows(out, "bed_height.csv")
+    t = [float(r["time"]) for r in ra]
+    a = [float(r["angle_deg"]) for r in ra]
+    tb = [float(r["time"]) for r in bh]
+    top = [1e3 * float(r["top"]) for r in bh]
+    fh = [1e3 * float(r["fraction_height"]) for r in bh]
+    print("heap: angle of repose at %.2f s: %.1f deg (rms %s m over %s columns); top %.1f mm, 95 %% height %.1f mm"
+          % (t[-1], a[-1], ra[-1]["rms"], ra[-1]["columns"], top[-1], fh[-1]))
+    fig, ax = plt.subplots(2, 1, figsize=(6.4, 5.6), sharex=True)
+    ax[0].plot(t, a, "o-", ms=3)
+    ax[0].set_ylabel("angle of repose (deg)")
+    ax[1].plot(tb, top, label="highest point")
+    ax[1].plot(tb, fh, label="95 % of the mass below")
+    ax[1].set_ylabel("height (mm)")
+    ax[1].set_xlabel("time (s)")
+    ax[1].legend()
+    ax[0].set_title("heap-pour: angle of repose %.1f deg at %.2f s" % (a[-1], t[-1]))
+    fig.tight_layout()
+    save(fig, out, "heap-pour.png", also)
+
+
 def main(argv):
-    if len(argv) < 2 or argv[0] not in ("drum", "drum2d", "bed", "reactor"):
+    if len(argv) < 2 or argv[0] not in ("drum", "drum2d", "bed", "reactor", "heap"):
         print(__doc__)
         return 2
     out, also = argv[1], argv[2] if len(argv) > 2 else None
@@ -149,6 +177,8 @@ def main(argv):
         drum(out, also)
     elif argv[0] == "drum2d":
         drum2d(out, also)
+    elif argv[0] == "heap":
+        heap(out, also)
     else:
         profile(out, also, {"bed": "fixed-bed", "reactor": "reactor-fill"}[argv[0]])
     return 0
