@@ -59,14 +59,58 @@ static void sd_surface_add_point(sd_vec3 *pts, size_t *n, sd_vec3 p)
     pts[(*n)++] = p;
 }
 
-/* The hull of pts as triangles on the points they use. */
+/* The boundary loop of hull face f (its triangles' edges whose neighbour
+ * lies on another face), counter-clockwise from outside like the
+ * triangles, into loop[]; its length, or 0 when the edges do not close into
+ * one loop (then the face is written as its triangles). nxt[] is -1 for
+ * every point on entry and on return. */
+static int sd_surface_face_loop(const sd_hull *h, int f, int *nxt, int *loop, int cap)
+{
+    int edges = 0, start = -1;
+    for (int t = 0; t < h->ntri; ++t) {
+        if (h->face[t] != f)
+            continue;
+        for (int k = 0; k < 3; ++k)
+            if (h->face[h->nbr[t][k]] != f) {
+                int a = h->tri[t][k], b = h->tri[t][(k + 1) % 3];
+                if (nxt[a] >= 0)
+                    edges = -1000000; /* a corner twice: not one simple loop */
+                nxt[a] = b;
+                start = a;
+                ++edges;
+            }
+    }
+    int n = 0, ok = edges >= 3 && edges <= cap;
+    for (int a = start; ok && n < edges; a = nxt[a]) {
+        if (a < 0) {
+            ok = 0;
+            break;
+        }
+        loop[n++] = a;
+        if (nxt[a] == start)
+            break;
+    }
+    ok = ok && n == edges;
+    for (int t = 0; t < h->ntri; ++t) /* reset the marks */
+        if (h->face[t] == f)
+            for (int k = 0; k < 3; ++k)
+                nxt[h->tri[t][k]] = -1;
+    return ok ? n : 0;
+}
+
+/* The hull of pts as one polygon per planar face (a box's 6 quads, a
+ * cylinder's caps and side quads; a face whose edges do not form one loop
+ * stays its triangles), on the points they use. */
 static sd_status sd_surface_from_hull(const sd_vec3 *pts, size_t n, sd_surface *out, sd_error *err)
 {
     sd_hull_workspace *ws = sd_malloc(sizeof *ws);
     sd_hull *h = sd_malloc(sizeof *h);
     int *map = sd_malloc((n ? n : 1) * sizeof *map);
+    int *nxt = sd_malloc((n ? n : 1) * sizeof *nxt);
+    int *loops = sd_malloc((3 * (size_t)SD_HULL_MAX_TRIS + 1) * sizeof *loops);
+    int *lens = sd_malloc(((size_t)SD_HULL_MAX_TRIS + 1) * sizeof *lens);
     sd_status st = SD_OK;
-    if (!ws || !h || !map) {
+    if (!ws || !h || !map || !nxt || !loops || !lens) {
         st = sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory for a shape's surface");
         goto done;
     }
@@ -74,14 +118,30 @@ static sd_status sd_surface_from_hull(const sd_vec3 *pts, size_t n, sd_surface *
         st = sd_error_set(err, SD_ERR_INPUT, "", 0, "", "a shape's surface has no volume (its hull failed)");
         goto done;
     }
-    size_t used = 0;
     for (size_t k = 0; k < n; ++k)
-        map[k] = -1;
-    for (int t = 0; t < h->ntri; ++t)
-        for (int c = 0; c < 3; ++c)
-            if (map[h->tri[t][c]] < 0)
-                map[h->tri[t][c]] = (int)used++;
-    st = sd_surface_alloc(out, used, (size_t)h->ntri, 3 * (size_t)h->ntri, err);
+        map[k] = nxt[k] = -1;
+    /* cells: each face's loop, or its triangles; loops[] holds every cell's
+     * corners (input indices) one after another, lens[] their counts */
+    size_t cells = 0, conn = 0;
+    for (int f = 0; f < h->nface; ++f) {
+        int m = sd_surface_face_loop(h, f, nxt, loops + conn, 3 * SD_HULL_MAX_TRIS - (int)conn);
+        if (m > 0) {
+            lens[cells++] = m;
+            conn += (size_t)m;
+            continue;
+        }
+        for (int t = 0; t < h->ntri; ++t)
+            if (h->face[t] == f) {
+                for (int c = 0; c < 3; ++c)
+                    loops[conn++] = h->tri[t][c];
+                lens[cells++] = 3;
+            }
+    }
+    size_t used = 0;
+    for (size_t k = 0; k < conn; ++k)
+        if (map[loops[k]] < 0)
+            map[loops[k]] = (int)used++;
+    st = sd_surface_alloc(out, used, cells, conn, err);
     if (st != SD_OK)
         goto done;
     for (size_t k = 0; k < n; ++k)
@@ -91,15 +151,18 @@ static sd_status sd_surface_from_hull(const sd_vec3 *pts, size_t n, sd_surface *
             q[1] = (double)pts[k].y;
             q[2] = (double)pts[k].z;
         }
-    for (int t = 0; t < h->ntri; ++t) {
-        for (int c = 0; c < 3; ++c)
-            out->conn[3 * t + c] = map[h->tri[t][c]];
-        out->ends[t] = 3 * (int64_t)(t + 1);
-    }
+    int64_t end = 0;
+    for (size_t c = 0; c < cells; ++c)
+        out->ends[c] = end += lens[c];
+    for (size_t k = 0; k < conn; ++k)
+        out->conn[k] = map[loops[k]];
 done:
     sd_free(ws);
     sd_free(h);
     sd_free(map);
+    sd_free(nxt);
+    sd_free(loops);
+    sd_free(lens);
     return st;
 }
 

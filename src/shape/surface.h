@@ -11,9 +11,11 @@
  * is its elements' meshes placed in its frame; a planar (2D) outline is one
  * polygon in z = 0, its support points around the circle of directions.
  *
- * Invariant: 3D meshes are closed and wound counter-clockwise seen from
- * outside (outward normals), so the divergence theorem on their triangles
- * gives the enclosed volume (sd_surface_measure); a planar polygon is
+ * Cells are convex polygons: one per planar face of the hull (a box is 6
+ * quads, a cylinder N side quads and 2 caps), triangles where the surface
+ * curves. Invariant: 3D meshes are closed and every cell is wound
+ * counter-clockwise seen from outside (outward normals), so the divergence
+ * theorem on their fans gives the enclosed volume (sd_surface_measure); a planar polygon is
  * counter-clockwise, its shoelace sum its area. Host code: allocates through
  * the allocator hook, built once per template and only posed afterwards.
  */
@@ -34,7 +36,7 @@ typedef struct sd_surface {
     double *points;      /* m, x y z per point, principal frame */
     size_t cell_count;
     size_t conn_count;
-    int64_t *conn;       /* point indices of every cell, cell after cell */
+    int64_t *conn;       /* point indices of every cell (a convex polygon), cell after cell */
     int64_t *ends;       /* cell k is conn[ends[k-1] .. ends[k]) (ends[-1] = 0) */
     int planar;          /* one polygon in z = 0 (2D outlines), else triangles */
 } sd_surface;

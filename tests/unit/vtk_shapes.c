@@ -4,7 +4,8 @@
  * the shoelace area) within the tessellation error, and its points are the
  * template's surface posed at the particle's position and orientation.
  *
- * Expected volumes: flat shapes (sharp boxes, polyhedra, a composite of two
+ * Flat faces are one cell each (a box 6, an icosahedron 20, a sharp
+ * cylinder N + 2). Expected volumes: flat shapes (sharp boxes, polyhedra, a composite of two
  * apart boxes, planar polygons) exactly; a sharp cylinder or cone is a prism
  * or pyramid on the regular N-gon (N = the resolution), so its volume is
  * the template's times sin(2 pi / N) / (2 pi / N), and so is a circle's
@@ -210,6 +211,18 @@ static double check_world(sd_world *w, int res, int planar, int report)
                        rel > 0.0 && rel <= bound ? "ok" : "FAIL", label, vol, expected, rel, bound);
                 CHECK(rel > 0.0 && rel <= bound);
             }
+        }
+        /* flat faces are one polygon each: a box 6, an icosahedron 20, a
+         * sharp cylinder N sides and 2 caps, a cone N sides and its base */
+        long want = !strcmp(name, "brick") || !strcmp(name, "cube") ? 6
+                  : !strcmp(name, "d20")                           ? 20
+                  : !strcmp(name, "rod")                           ? res + 2
+                  : !strcmp(name, "peak")                          ? res + 1
+                  : !strcmp(name, "pair")                          ? 12
+                                                                   : -1;
+        if (report && want >= 0) {
+            snprintf(label, sizeof label, "%s cells (one per flat face)", name);
+            CHECK_NEAR(label, (double)(c1 - c0), (double)want, 0.0);
         }
         if (report) {
             snprintf(label, sizeof label, "%s pose: max |x - (x_c + R s)| (m)", name);
