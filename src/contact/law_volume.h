@@ -133,10 +133,10 @@ SD_HD static SD_INLINE sd_real sd_volume_dw(const sd_pair_params *p, sd_real kco
     if (p->law == SD_LAW_VOLUME_LINEAR)
         return area > SD_R(0.0) ? p->kv * volume / area : SD_R(0.0);
     if (volume < onset) {
-        sd_real c0 = sd_pow(onset, SD_R(1.0) / SD_R(3.0)); /* V0^(1/3) */
+        sd_real c0 = sd_cbrt(onset); /* V0^(1/3) */
         return kcoef * volume / (c0 * c0);
     }
-    return kcoef * sd_pow(volume, SD_R(1.0) / SD_R(3.0));
+    return kcoef * sd_cbrt(volume);
 }
 
 /* W(V) (J), the integral of W' from 0: c V^2 / (2 V0^(2/3)) below V0,
@@ -148,12 +148,12 @@ SD_HD static SD_INLINE sd_real sd_volume_w(const sd_pair_params *p, sd_real kcoe
     if (p->law == SD_LAW_VOLUME_LINEAR)
         return area > SD_R(0.0) ? SD_R(0.5) * p->kv * volume * volume / area : SD_R(0.0);
     if (onset > SD_R(0.0)) {
-        sd_real c0 = sd_pow(onset, SD_R(1.0) / SD_R(3.0));
+        sd_real c0 = sd_cbrt(onset);
         if (volume < onset)
             return SD_R(0.5) * kcoef * volume * volume / (c0 * c0);
-        return SD_R(0.75) * kcoef * sd_pow(volume, SD_R(4.0) / SD_R(3.0)) - SD_R(0.25) * kcoef * onset * c0;
+        return SD_R(0.75) * kcoef * volume * sd_cbrt(volume) - SD_R(0.25) * kcoef * onset * c0;
     }
-    return SD_R(0.75) * kcoef * sd_pow(volume, SD_R(4.0) / SD_R(3.0));
+    return SD_R(0.75) * kcoef * volume * sd_cbrt(volume); /* V^(4/3) */
 }
 
 /* Shape factor m = |S| d / V of the contact, in [1, 3]. */

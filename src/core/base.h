@@ -28,15 +28,33 @@
 #endif
 #endif
 
-/* One precision for state, chosen at build time (STYLE.md convention 6). */
+/* The engine's own elementary functions (core/math.h): the same bits on
+ * the CPU and the GPU. Included here, after SD_HD, so every numeric header
+ * that names sd_sin ... gets them. */
+#include "core/math.h"
+
+/* One precision for state, chosen at build time (STYLE.md convention 6).
+ *
+ * sd_sin, sd_cos, sd_atan2, sd_cbrt are what the numerics (SD_HD code)
+ * call: in double, the single-source ones of core/math.h, so a GPU kernel
+ * and a CPU loop round alike; sqrt, fabs and floor are exact in IEEE 754 on
+ * both and stay libm's. sd_host_* are the platform's libm for host-only
+ * set-up code (template mass properties, outlines, Fourier fits), whose
+ * results reach a kernel only as data uploaded once. sd_log, sd_exp and
+ * sd_pow are host-only too: no SD_HD code calls them
+ * (tests/cli/sd_hd_libm.sh checks it). */
 #if defined(SHAPEDEM_SINGLE)
 typedef float sd_real;
 #define SD_R(x) x##f
 #define sd_sqrt sqrtf
 #define sd_fabs fabsf
-#define sd_sin sinf
+#define sd_sin sinf /* single precision keeps libm: no same-bits promise */
 #define sd_cos cosf
 #define sd_atan2 atan2f
+#define sd_cbrt cbrtf
+#define sd_host_sin sinf
+#define sd_host_cos cosf
+#define sd_host_atan2 atan2f
 #define sd_log logf
 #define sd_exp expf
 #define sd_pow powf
@@ -46,9 +64,13 @@ typedef double sd_real;
 #define SD_R(x) x
 #define sd_sqrt sqrt
 #define sd_fabs fabs
-#define sd_sin sin
-#define sd_cos cos
-#define sd_atan2 atan2
+#define sd_sin sd_math_sin
+#define sd_cos sd_math_cos
+#define sd_atan2 sd_math_atan2
+#define sd_cbrt sd_math_cbrt
+#define sd_host_sin sin
+#define sd_host_cos cos
+#define sd_host_atan2 atan2
 #define sd_log log
 #define sd_exp exp
 #define sd_pow pow

