@@ -13,6 +13,7 @@
  * floating point is computed here.
  */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "backend/cuda/state.h"
@@ -85,6 +86,13 @@ int sd_cuda_check(sd_cuda_state *c, cudaError_t e, const char *stage, const char
     return 1;
 }
 
+int sd_cuda_launched(sd_cuda_state *c, const char *stage)
+{
+    if (sd_cuda_check(c, cudaGetLastError(), stage, "the kernel launch"))
+        return 1;
+    return c->sync_stages && sd_cuda_check(c, cudaStreamSynchronize(c->stream), stage, "the kernels");
+}
+
 int sd_cuda_reserve(sd_cuda_state *c, sd_cuda_buf *b, size_t bytes, const char *stage, const char *what)
 {
     if (bytes <= b->cap)
@@ -113,6 +121,8 @@ static sd_cuda_state *sd_cuda_state_of(sd_stage *s)
         return NULL;
     s->device = c;
     c->status = SD_OK;
+    const char *sync = getenv("SD_CUDA_SYNC_STAGES");
+    c->sync_stages = sync && sync[0] == '1';
     if (sd_cuda_check(c, cudaSetDevice(0), "start", "cudaSetDevice(0)"))
         return c;
     (void)sd_cuda_check(c, cudaStreamCreate(&c->stream), "start", "cudaStreamCreate");

@@ -100,5 +100,5 @@ extern "C" void sd_cuda_forces(sd_stage *s, sd_pair_kind kind)
     case SD_PAIR_KIND_COUNT:
         return;
     }
-    (void)sd_cuda_check(c, cudaGetLastError(), stage, "the kernel launch");
+    (void)sd_cuda_launched(c, stage);
 }

@@ -72,11 +72,6 @@ __global__ void sd_k_ghosts(sd_step_view v)
         sd_item_ghost(&v, k);
 }
 
-static void sd_cuda_launched(sd_cuda_state *c, const char *stage)
-{
-    (void)sd_cuda_check(c, cudaGetLastError(), stage, "the kernel launch");
-}
-
 extern "C" void sd_cuda_kick_drift(sd_stage *s)
 {
     if (!sd_cuda_ok(s) || s->v.n_owned == 0)
@@ -85,7 +80,7 @@ extern "C" void sd_cuda_kick_drift(sd_stage *s)
     const sd_step_view *v = &c->v;
     SD_CUDA_LAUNCH(sd_k_kick_drift, sd_cuda_blocks(v->n_owned), SD_CUDA_BLOCK, c->stream, *v, sd_item_kick_mode(v),
                    v->damping, v->gravity, SD_R(0.5) * v->dt, v->dt);
-    sd_cuda_launched(c, "kick and drift");
+    (void)sd_cuda_launched(c, "kick and drift");
 }
 
 static void sd_cuda_gather_any(sd_stage *s, int what, const char *stage)
@@ -96,7 +91,7 @@ static void sd_cuda_gather_any(sd_stage *s, int what, const char *stage)
     const sd_step_view *v = &c->v;
     SD_CUDA_LAUNCH(sd_k_gather, sd_cuda_blocks(v->n_owned), SD_CUDA_BLOCK, c->stream, *v, c->pairs, c->wpairs, what,
                    sd_item_kick_mode(v), v->damping, v->gravity, SD_R(0.5) * v->dt, v->dt);
-    sd_cuda_launched(c, stage);
+    (void)sd_cuda_launched(c, stage);
 }
 
 extern "C" void sd_cuda_gather(sd_stage *s) { sd_cuda_gather_any(s, 0, "gather"); }
@@ -116,7 +111,7 @@ static int sd_cuda_flag(sd_stage *s, int finite, const char *stage)
         SD_CUDA_LAUNCH(sd_k_finite, sd_cuda_blocks(c->v.n_owned), SD_CUDA_BLOCK, c->stream, c->v, flag);
     else
         SD_CUDA_LAUNCH(sd_k_skin, sd_cuda_blocks(c->v.n_owned), SD_CUDA_BLOCK, c->stream, c->v, flag);
-    sd_cuda_launched(c, stage);
+    (void)sd_cuda_launched(c, stage);
     if (sd_cuda_check(c, cudaMemcpyAsync(&host, flag, sizeof host, cudaMemcpyDeviceToHost, c->stream), stage,
                       "the flag") ||
         sd_cuda_check(c, cudaStreamSynchronize(c->stream), stage, "the flag"))
@@ -139,7 +134,7 @@ extern "C" sd_real sd_cuda_min_radius(sd_stage *s)
                       "the minimum"))
         return inf;
     SD_CUDA_LAUNCH(sd_k_min_radius, sd_cuda_blocks(c->v.n_owned), SD_CUDA_BLOCK, c->stream, c->v, bits);
-    sd_cuda_launched(c, "min radius");
+    (void)sd_cuda_launched(c, "min radius");
     if (sd_cuda_check(c, cudaMemcpyAsync(&host, bits, sizeof host, cudaMemcpyDeviceToHost, c->stream), "min radius",
                       "the minimum") ||
         sd_cuda_check(c, cudaStreamSynchronize(c->stream), "min radius", "the minimum"))
@@ -154,5 +149,5 @@ extern "C" void sd_cuda_exchange_ghosts(sd_stage *s)
         return;
     sd_cuda_state *c = s->device;
     SD_CUDA_LAUNCH(sd_k_ghosts, sd_cuda_blocks(c->v.n_total - c->v.n_owned), SD_CUDA_BLOCK, c->stream, c->v);
-    sd_cuda_launched(c, "ghosts");
+    (void)sd_cuda_launched(c, "ghosts");
 }

@@ -134,6 +134,7 @@ typedef struct sd_cuda_state {
 #else
     void *stream;
 #endif
+    int sync_stages;               /* SD_CUDA_SYNC_STAGES=1: wait for each stage's kernels (profiles) */
     sd_status status;              /* SD_OK, or the first failure */
     char message[512];             /* its message, naming the stage */
 } sd_cuda_state;
@@ -172,6 +173,11 @@ void sd_cuda_wall_totals(sd_stage *s);
  * sd_cuda_ok says whether the stages may still run. */
 int sd_cuda_check(sd_cuda_state *c, cudaError_t e, const char *stage, const char *what);
 static inline int sd_cuda_ok(const sd_stage *s) { return s->device && s->device->status == SD_OK; }
+/* after a stage's launches: their launch error, and with sync_stages the
+ * wait for them, so that sd_profile times the stage's kernels rather than
+ * their launch (kernels are asynchronous: without it a stage's time shows
+ * in the next stage that waits, a copy back); 1 on failure */
+int sd_cuda_launched(sd_cuda_state *c, const char *stage);
 /* blocks of SD_CUDA_BLOCK threads for n items */
 static inline unsigned sd_cuda_blocks(size_t n) { return (unsigned)((n + SD_CUDA_BLOCK - 1) / SD_CUDA_BLOCK); }
 /* grows a device array to at least bytes (contents lost); 1 on failure */

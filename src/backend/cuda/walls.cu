@@ -102,7 +102,7 @@ extern "C" void sd_cuda_wall_forces(sd_stage *s)
             snprintf(c->message, sizeof c->message, "CUDA backend, wall forces: no kernel for wall-pair kind %d", k);
             return;
         }
-        if (sd_cuda_check(c, cudaGetLastError(), "wall forces", "the kernel launch"))
+        if (sd_cuda_launched(c, "wall forces"))
             return;
     }
 }
@@ -117,7 +117,7 @@ extern "C" void sd_cuda_wall_totals(sd_stage *s)
     size_t nw = c->v.wall_count;
     sd_vec3 *f = (sd_vec3 *)c->wall_force.p, *t = (sd_vec3 *)c->wall_torque.p;
     SD_CUDA_LAUNCH(sd_k_wall_totals, sd_cuda_blocks(nw), SD_CUDA_BLOCK, c->stream, c->v, c->wpairs, f, t);
-    if (sd_cuda_check(c, cudaGetLastError(), "wall totals", "the kernel launch") ||
+    if (sd_cuda_launched(c, "wall totals") ||
         sd_cuda_check(c, cudaMemcpyAsync(s->wall_force, f, nw * sizeof *f, cudaMemcpyDeviceToHost, c->stream),
                       "wall totals", "the copy back") ||
         sd_cuda_check(c, cudaMemcpyAsync(s->wall_torque, t, nw * sizeof *t, cudaMemcpyDeviceToHost, c->stream),
