@@ -739,6 +739,24 @@ int sd_world_add_insertion(sd_world *w, const sd_insert_def *d, sd_error *err)
         sd_error_set(err, SD_ERR_INPUT, "", 0, "insert.mix", "the mix fractions sum to %.9g, not 1", sum);
         return -1;
     }
+    /* every entry's template, material and size law before any scaled
+     * copy is made, so a refused insertion adds no template */
+    for (int e = 0; e < d->entry_count; ++e) {
+        const sd_insert_entry *en = &d->entries[e];
+        sd_shape_info si;
+        if (en->material < 0 || (size_t)en->material >= w->material_count) {
+            sd_error_set(err, SD_ERR_INPUT, "", 0, "insert.mix.material", "entry %d: unknown material index %d", e,
+                         en->material);
+            return -1;
+        }
+        if (en->shape >= 0 && sd_world_get_shape(w, (size_t)en->shape, &si) != SD_OK) {
+            sd_error_set(err, SD_ERR_INPUT, "", 0, "insert.mix.shape", "entry %d: unknown template index %d", e,
+                         en->shape);
+            return -1;
+        }
+        if ((en->shape < 0 || sd_entry_scaled(en)) && sd_size_check(&en->size, "insert.mix.radius", err) != SD_OK)
+            return -1;
+    }
     sum = 0;
     int dpow = w->def.dimension == 2 ? 2 : 3;
     double vol_c = w->def.dimension == 2 ? sd_pi : 4.0 / 3.0 * sd_pi;

@@ -16,7 +16,9 @@
  *    number fractions the masses imply (chi square at 1 %);
  *  - 2D: polygons graded by a sieve table by mass: the counts per sieve
  *    class follow the number fractions f / E[r^2] (chi square at 1 %);
- *  - bad input: a negative radius for a template's law, too many classes.
+ *  - bad input: a negative radius for a template's law, too many classes,
+ *    a later entry's unknown material: each refused with its key and no
+ *    scaled copy left behind.
  */
 #include <math.h>
 #include <string.h>
@@ -541,6 +543,17 @@ static void test_bad(void)
     CHECK(sd_world_add_insertion(w, &in, &err) == -1);
     printf("     %s: %s\n", err.key, err.msg);
     CHECK(strcmp(err.key, "insert.mix.size_classes") == 0);
+    /* a later entry's bad material: refused before entry 0's copies are made */
+    in.entries[0].size_classes = 4;
+    in.entries[0].fraction = 0.5;
+    in.entry_count = 2;
+    in.entries[1] = in.entries[0];
+    in.entries[1].shape = -1;
+    in.entries[1].material = 7;
+    CHECK(sd_world_add_insertion(w, &in, &err) == -1);
+    printf("     %s: %s\n", err.key, err.msg);
+    CHECK(strcmp(err.key, "insert.mix.material") == 0);
+    printf("     templates after three refused insertions: %zu (expected 1)\n", sd_world_shape_count(w));
     CHECK(sd_world_shape_count(w) == 1); /* nothing added for refused insertions */
     sd_world_destroy(w);
 }
