@@ -70,12 +70,14 @@ SD_HD static SD_INLINE int sd_clip_triangle(const sd_vec2 *p, int n, const sd_ve
             sd_vec2 v3 = src[k];
             sd_real s3 = sd_clip_cross(dir, sd_v2(v3.x - v0.x, v3.y - v0.y));
             int in3 = s3 >= SD_R(0.0), in2 = s2 >= SD_R(0.0);
-            if (in3 != in2) {
+            /* a convex subject gains at most one vertex per edge; the bound
+             * keeps a degenerate one inside the workspace */
+            if (in3 != in2 && q < SD_CLIP_MAX + 3) {
                 /* eqs. 10-11: the crossing of segment v2 v3 with the edge line */
                 sd_real tt = s2 / (s2 - s3);
                 dst[q++] = sd_v2(v2.x + (v3.x - v2.x) * tt, v2.y + (v3.y - v2.y) * tt);
             }
-            if (in3)
+            if (in3 && q < SD_CLIP_MAX + 3)
                 dst[q++] = v3; /* in -> in, out -> in: keep v3 */
             v2 = v3;
             s2 = s3;
@@ -145,30 +147,43 @@ SD_HD static SD_INLINE sd_vec3 sd_clip_closest(sd_vec3 p, sd_vec3 a, sd_vec3 b, 
 }
 
 /* Counter-clockwise convex hull (in place, returns its size) of n points
- * (n <= SD_CLIP_MAX): gift wrapping, enough for a polyhedron's section. */
+ * (at most SD_CLIP_MAX are read): Andrew's monotone chain on the points
+ * sorted by (x, y), so duplicated and collinear points (a section whose
+ * crossings coincide, rounding) are dropped and the result is always a
+ * convex polygon of at most n vertices, starting at the lowest-leftmost
+ * point. (Gift wrapping could cycle on near-duplicates and return
+ * SD_CLIP_MAX points that were not convex, whose clipping then overran
+ * sd_clip_triangle's workspace: mesh-drum crashed at step 165,000.) */
 SD_HD static SD_INLINE int sd_clip_hull(sd_vec2 *p, int n)
 {
+    if (n > SD_CLIP_MAX)
+        n = SD_CLIP_MAX;
     if (n < 3)
         return n;
-    sd_vec2 h[SD_CLIP_MAX];
-    int start = 0;
-    for (int k = 1; k < n; ++k)
-        if (p[k].x < p[start].x || (p[k].x == p[start].x && p[k].y < p[start].y))
-            start = k;
-    int m = 0, cur = start;
-    do {
-        h[m++] = p[cur];
-        int next = (cur + 1) % n;
-        for (int k = 0; k < n; ++k) {
-            sd_real c = sd_clip_cross(sd_v2(p[next].x - p[cur].x, p[next].y - p[cur].y),
-                                      sd_v2(p[k].x - p[cur].x, p[k].y - p[cur].y));
-            sd_real d2k = sd_sq(p[k].x - p[cur].x) + sd_sq(p[k].y - p[cur].y);
-            sd_real d2n = sd_sq(p[next].x - p[cur].x) + sd_sq(p[next].y - p[cur].y);
-            if (c < 0 || (c == 0 && d2k > d2n))
-                next = k;
+    for (int i = 1; i < n; ++i) { /* insertion sort: few points */
+        sd_vec2 v = p[i];
+        int j = i - 1;
+        while (j >= 0 && (p[j].x > v.x || (p[j].x == v.x && p[j].y > v.y))) {
+            p[j + 1] = p[j];
+            --j;
         }
-        cur = next;
-    } while (cur != start && m < SD_CLIP_MAX);
+        p[j + 1] = v;
+    }
+    sd_vec2 h[2 * SD_CLIP_MAX + 1];
+    int m = 0;
+    for (int i = 0; i < n; ++i) { /* lower chain, left to right */
+        while (m >= 2 && sd_clip_cross(sd_v2(h[m - 1].x - h[m - 2].x, h[m - 1].y - h[m - 2].y),
+                                       sd_v2(p[i].x - h[m - 2].x, p[i].y - h[m - 2].y)) <= SD_R(0.0))
+            --m;
+        h[m++] = p[i];
+    }
+    for (int i = n - 2, lo = m + 1; i >= 0; --i) { /* upper chain, right to left */
+        while (m >= lo && sd_clip_cross(sd_v2(h[m - 1].x - h[m - 2].x, h[m - 1].y - h[m - 2].y),
+                                        sd_v2(p[i].x - h[m - 2].x, p[i].y - h[m - 2].y)) <= SD_R(0.0))
+            --m;
+        h[m++] = p[i];
+    }
+    --m; /* the chain ends where it started */
     for (int k = 0; k < m; ++k)
         p[k] = h[k];
     return m;

@@ -200,7 +200,7 @@ SD_HD static SD_INLINE int sd_mesh_in_triangle(sd_vec2 q, const sd_vec2 t[3])
 SD_HD static SD_INLINE int sd_mesh_poly_section(const sd_convex *c, const sd_wall_geom *wg, sd_vec3 n, sd_real off,
                                                 sd_vec3 e1, sd_vec3 e2, sd_vec2 *sec)
 {
-    enum { MAXV = 64, MAXP = 256 };
+    enum { MAXV = 64 };
     const sd_shape *sh = c->shape;
     uint32_t nv = sh->vcount < (uint32_t)MAXV ? sh->vcount : (uint32_t)MAXV;
     sd_vec3 vm[MAXV];
@@ -210,30 +210,28 @@ SD_HD static SD_INLINE int sd_mesh_poly_section(const sd_convex *c, const sd_wal
         vm[k] = sd_mesh_to_frame(wg->q, wg->trans, vw);
         hv[k] = sd_v3_dot(n, vm[k]) - off;
     }
-    sd_vec2 pts[MAXP];
+    /* every crossing goes into sec; a full workspace is hulled (a section
+     * has few corners) and filling goes on, so no crossing is left out */
     int np = 0;
-    for (uint32_t i = 0; i < nv && np < MAXP; ++i) {
+    for (uint32_t i = 0; i < nv; ++i) {
         if (hv[i] > 0)
             continue;
-        if (hv[i] == 0) {
-            pts[np++] = sd_v2(sd_v3_dot(vm[i], e1), sd_v3_dot(vm[i], e2));
-            continue;
-        }
-        for (uint32_t j = 0; j < nv && np < MAXP; ++j) {
-            if (!(hv[j] > 0))
+        for (uint32_t j = 0; j < nv; ++j) {
+            if (hv[i] == 0 ? j > 0 : !(hv[j] > 0))
                 continue;
-            /* the segment between two points of a convex body lies in it:
-             * every crossing is in the section, and the section's corners
-             * (crossings of its edges) are among them */
-            sd_real u = hv[i] / (hv[i] - hv[j]);
-            sd_vec3 p = sd_v3_add(vm[i], sd_v3_scale(sd_v3_sub(vm[j], vm[i]), u));
-            pts[np++] = sd_v2(sd_v3_dot(p, e1), sd_v3_dot(p, e2));
+            sd_vec3 p = vm[i];
+            if (hv[i] < 0) {
+                /* the segment between two points of a convex body lies in
+                 * it: every crossing is in the section, and the section's
+                 * corners (crossings of its edges) are among them */
+                sd_real u = hv[i] / (hv[i] - hv[j]);
+                p = sd_v3_add(vm[i], sd_v3_scale(sd_v3_sub(vm[j], vm[i]), u));
+            }
+            if (np == SD_CLIP_MAX && (np = sd_clip_hull(sec, np)) == SD_CLIP_MAX)
+                return np; /* SD_CLIP_MAX corners already: the section as it is */
+            sec[np++] = sd_v2(sd_v3_dot(p, e1), sd_v3_dot(p, e2));
         }
     }
-    if (np > SD_CLIP_MAX)
-        np = SD_CLIP_MAX; /* beyond the workspace: the section of the first crossings */
-    for (int k = 0; k < np; ++k)
-        sec[k] = pts[k];
     return sd_clip_hull(sec, np);
 }
 

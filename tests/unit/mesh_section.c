@@ -15,7 +15,12 @@
  *    mm rectangle, exact;
  *  - a plane that misses the body: no section;
  *  - the weight of the sphere's section on a triangle holding half of it:
- *    w = A_clip / A = 1/2 (the polygon is symmetric).
+ *    w = A_clip / A = 1/2 (the polygon is symmetric);
+ *  - a polyhedron with 1,024 crossings (a 32-gon prism cut half way): the
+ *    32-gon exactly (sd_mesh_poly_section keeps every crossing);
+ *  - sd_clip_hull of 64 points with duplicates and collinear runs: the
+ *    convex square (the old gift wrapping could return 64 points that
+ *    were not convex, and their clipping overran its workspace).
  */
 #include "test.h"
 
@@ -122,6 +127,58 @@ int main(void)
         a = sd_sec_area(&bx, sd_v3(0, 0, 0.05), sd_quat_identity(), sd_v3(0, 0, 1), 0.0, sec, &ns);
         CHECK(ns == 0);
         CHECK_NEAR("box 50 mm above the plane: no section", a, 0.0, 0.0);
+    }
+    /* a polyhedron with many crossings: a prism over a regular 32-gon
+     * (64 vertices) cut half way up: 32 x 32 crossings, every one kept
+     * (they used to be cut at the first 64), the section the 32-gon */
+    {
+        static sd_vec3 pv[64];
+        for (int k = 0; k < 32; ++k)
+            for (int z = 0; z < 2; ++z)
+                pv[2 * k + z] = sd_v3(0.01 * cos(2 * PI * k / 32), 0.01 * sin(2 * PI * k / 32), z ? 0.01 : -0.01);
+        sd_shape pr;
+        memset(&pr, 0, sizeof pr);
+        pr.kind = SD_SHAPE_POLYHEDRON;
+        pr.vcount = 64;
+        sd_convex c;
+        memset(&c, 0, sizeof c);
+        c.shape = &pr;
+        c.verts = pv;
+        c.x = sd_v3(0, 0, 0.002);
+        c.q = sd_quat_identity();
+        sd_wall_geom wg;
+        memset(&wg, 0, sizeof wg);
+        wg.q = sd_quat_identity();
+        sd_vec3 e1, e2;
+        sd_clip_basis(sd_v3(0, 0, 1), &e1, &e2);
+        ns = sd_mesh_poly_section(&c, &wg, sd_v3(0, 0, 1), 0.0, e1, e2, sec);
+        double gon = 0.5 * 32 * 0.01 * 0.01 * sin(2 * PI / 32);
+        printf("32-gon prism section: %d corners\n", ns);
+        CHECK(ns >= 32); /* the 32 corners, and edge midpoints kept by round-off */
+        CHECK_REL("32-gon prism cut half way: section area vs the 32-gon", ns >= 3 ? sd_clip_area(sec, ns, NULL) : 0.0,
+                  gon, 1e-12);
+    }
+    /* the hull of points with duplicates and collinear runs: convex, the square */
+    {
+        sd_vec2 pts[SD_CLIP_MAX];
+        int n = 0;
+        for (int r = 0; r < 4 && n < SD_CLIP_MAX; ++r)
+            for (int k = 0; k <= 10 && n + 4 <= SD_CLIP_MAX; ++k) {
+                double t = 0.1 * k;
+                pts[n++] = sd_v2(t, 0);
+                pts[n++] = sd_v2(1, t);
+                pts[n++] = sd_v2(1 - t, 1);
+                pts[n++] = sd_v2(0, 1 - t + 1e-17 * k); /* duplicates to round-off */
+            }
+        int m = sd_clip_hull(pts, n);
+        int convex = 1;
+        for (int k = 0; k < m; ++k) {
+            sd_vec2 pa = pts[k], pb = pts[(k + 1) % m], pc = pts[(k + 2) % m];
+            convex &= sd_clip_cross(sd_v2(pb.x - pa.x, pb.y - pa.y), sd_v2(pc.x - pa.x, pc.y - pa.y)) > 0;
+        }
+        printf("hull of %d points with duplicates and collinear runs: %d corners\n", n, m);
+        CHECK(convex && m == 4);
+        CHECK_NEAR("that hull's area", sd_clip_area(pts, m, NULL), 1.0, 1e-15);
     }
     return sd_test_summary();
 }
