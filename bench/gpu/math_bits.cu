@@ -1,5 +1,6 @@
 /* math_bits.cu — the engine's own elementary functions (src/core/math.h)
- * on the GPU give the CPU's bits: a million arguments per function (the
+ * on the GPU give the CPU's bits: a million arguments per function (sin,
+ * cos, atan2, cbrt, exp of y 200 in [-600, 600], log of |x|; the
  * kinds unit.math uses: the numerics' angles, the whole double range,
  * neighbours of multiples of pi/2, cube roots of grain volumes), each
  * function evaluated by a kernel and by the host, every result compared
@@ -16,7 +17,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#define SD_MB_FUNCS 4
+#define SD_MB_FUNCS 6
 
 #if defined(__CUDACC__)
 __global__ void sd_mb_kernel(const double *x, const double *y, double *out, int n)
@@ -24,10 +25,12 @@ __global__ void sd_mb_kernel(const double *x, const double *y, double *out, int 
     int i = (int)(blockIdx.x * blockDim.x + threadIdx.x);
     if (i >= n)
         return;
-    out[4 * i] = sd_math_sin(x[i]);
-    out[4 * i + 1] = sd_math_cos(x[i]);
-    out[4 * i + 2] = sd_math_atan2(y[i], x[i]);
-    out[4 * i + 3] = sd_math_cbrt(x[i]);
+    out[6 * i] = sd_math_sin(x[i]);
+    out[6 * i + 1] = sd_math_cos(x[i]);
+    out[6 * i + 2] = sd_math_atan2(y[i], x[i]);
+    out[6 * i + 3] = sd_math_cbrt(x[i]);
+    out[6 * i + 4] = sd_math_exp(y[i] * 200.0);
+    out[6 * i + 5] = sd_math_log(fabs(x[i]));
 }
 #endif
 
@@ -76,10 +79,12 @@ int main(int argc, char **argv)
     }
     sd_mb_args(x, y, n);
     for (int i = 0; i < n; i++) {
-        host[4 * i] = sd_math_sin(x[i]);
-        host[4 * i + 1] = sd_math_cos(x[i]);
-        host[4 * i + 2] = sd_math_atan2(y[i], x[i]);
-        host[4 * i + 3] = sd_math_cbrt(x[i]);
+        host[6 * i] = sd_math_sin(x[i]);
+        host[6 * i + 1] = sd_math_cos(x[i]);
+        host[6 * i + 2] = sd_math_atan2(y[i], x[i]);
+        host[6 * i + 3] = sd_math_cbrt(x[i]);
+        host[6 * i + 4] = sd_math_exp(y[i] * 200.0);
+        host[6 * i + 5] = sd_math_log(fabs(x[i]));
     }
     printf("math_bits: %d arguments x %d functions, host digest %016llx\n", n, SD_MB_FUNCS,
            (unsigned long long)sd_mb_digest(host, SD_MB_FUNCS * (size_t)n));
@@ -103,8 +108,8 @@ int main(int argc, char **argv)
         fprintf(stderr, "math_bits: kernel: %s\n", cudaGetErrorString(err));
         return 2;
     }
-    static const char *names[SD_MB_FUNCS] = {"sin", "cos", "atan2", "cbrt"};
-    long differ[SD_MB_FUNCS] = {0, 0, 0, 0};
+    static const char *names[SD_MB_FUNCS] = {"sin", "cos", "atan2", "cbrt", "exp", "log"};
+    long differ[SD_MB_FUNCS] = {0, 0, 0, 0, 0, 0};
     for (size_t i = 0; i < SD_MB_FUNCS * (size_t)n; i++)
         if (sd_math_bits(host[i]) != sd_math_bits(dev[i])) {
             if (differ[i % SD_MB_FUNCS]++ == 0)

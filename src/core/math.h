@@ -1,5 +1,7 @@
 /* math.h — the engine's own elementary functions (sd_math_*): sin, cos,
- * atan2 and cbrt in double precision, written once for the CPU and the GPU.
+ * atan2, cbrt, exp and log in double precision, written once for the CPU
+ * and the GPU (the numerics call the first four; exp and log are here for
+ * the device code that will need them).
  *
  * Invariant: the same argument gives the same bits on every build. libm and
  * CUDA's libdevice each round sin, cos, atan2, cbrt ... in their own way
@@ -28,6 +30,9 @@
  *  - cbrt: exponent divided by 3 on the bits, a quadratic first guess on
  *    [1, 8), Halley steps, one Newton correction with the residual a - y^3
  *    computed exactly.
+ *  - exp: x = k ln 2 + r (Cody–Waite, ln 2 in two pieces), Taylor to r^15
+ *    with 1 + r exact; log: 2 atanh((m - 1)/(m + 1)) on m in
+ *    [sqrt(1/2), sqrt 2), the quotient as a double-double.
  * Constants: hexadecimal literals from MPFR (pi, 2/pi, atan(j/8), 1/n!),
  * each the correctly rounded double or the next double-double part.
  *
@@ -447,6 +452,102 @@ SD_HD static SD_INLINE double sd_math_cbrt(double x)
     double ce = cu.lo + y * sq.lo;
     y += ((a - cu.hi) - ce) / (3.0 * sq.hi);
     return sd_math_copysign(y * sd_math_pow2(q + adj), sd_math_from_bits(sign));
+}
+
+
+/* ---- exp and log --------------------------------------------------------- */
+
+/* ln 2 = L1 + L2, L1 of 41 bits so that k L1 is exact for |k| < 2^12 */
+#define SD_MATH_LN2_1 0x1.62e42fefa2p-1
+#define SD_MATH_LN2_2 0x1.9ef35793c7673p-41
+
+/* e^x: x = k ln 2 + r, |r| <= ln 2 / 2 as a double-double, e^r = 1 + r +
+ * r^2 (1/2! + r/3! + ... + r^13/15!) with 1 + r exact in double-double,
+ * then 2^k in one or two exact scalings (the second, into the subnormal
+ * range, is the only rounding there). */
+SD_HD static SD_INLINE double sd_math_exp(double x)
+{
+    if (x != x)
+        return x + x;
+    if (x > 0x1.62e42fefa39efp+9) /* above ln(DBL_MAX): overflow */
+        return sd_math_from_bits(UINT64_C(0x7ff0000000000000));
+    if (x < -0x1.74910d52d3052p+9) /* below ln(2^-1075): rounds to +0 */
+        return 0.0;
+    if (fabs(x) < 0x1p-54)
+        return 1.0 + x;
+    double k = (SD_MATH_MUL(x, 0x1.71547652b82fep+0) + 0x1.8p52) - 0x1.8p52; /* round(x / ln 2) */
+    sd_math_dd r = sd_math_two_sum(x - SD_MATH_MUL(k, SD_MATH_LN2_1), -SD_MATH_MUL(k, SD_MATH_LN2_2));
+    double z = r.hi;
+    double p = 0x1.ae7f3e733b81fp-41;  /* 1/15! */
+    p = p * z + 0x1.93974a8c07c9dp-37; /* 1/14! */
+    p = p * z + 0x1.6124613a86d09p-33; /* 1/13! */
+    p = p * z + 0x1.1eed8eff8d898p-29; /* 1/12! */
+    p = p * z + 0x1.ae64567f544e4p-26; /* 1/11! */
+    p = p * z + 0x1.27e4fb7789f5cp-22; /* 1/10! */
+    p = p * z + 0x1.71de3a556c734p-19; /* 1/9!  */
+    p = p * z + 0x1.a01a01a01a01ap-16; /* 1/8!  */
+    p = p * z + 0x1.a01a01a01a01ap-13; /* 1/7!  */
+    p = p * z + 0x1.6c16c16c16c17p-10; /* 1/6!  */
+    p = p * z + 0x1.1111111111111p-7;  /* 1/5!  */
+    p = p * z + 0x1.5555555555555p-5;  /* 1/4!  */
+    p = p * z + 0x1.5555555555555p-3;  /* 1/3!  */
+    p = p * z + 0.5;
+    sd_math_dd s = sd_math_two_sum(1.0, z);
+    double y = s.hi + (s.lo + (r.lo * (1.0 + z) + z * z * p));
+    int n = (int)k;
+    if (n > 1023)
+        return y * sd_math_pow2(n - 1) * 2.0;
+    if (n < -1021)
+        return y * sd_math_pow2(n + 54) * 0x1p-54;
+    return y * sd_math_pow2(n);
+}
+
+/* ln x: x = 2^e m with m in [sqrt(1/2), sqrt 2), ln m = 2 atanh(s),
+ * s = (m - 1)/(m + 1) as a double-double (|s| <= 0.172), the series
+ * 2 s + 2 s^3 (1/3 + s^2/5 + ... + s^18/21), and e ln 2 in double-double. */
+SD_HD static SD_INLINE double sd_math_log(double x)
+{
+    if (x != x)
+        return x + x;
+    if (x < 0.0)
+        return sd_math_from_bits(UINT64_C(0x7ff8000000000000)); /* NaN */
+    if (x == 0.0)
+        return sd_math_from_bits(UINT64_C(0xfff0000000000000)); /* -inf */
+    if (!(x <= 0x1.fffffffffffffp1023))
+        return x; /* +inf */
+    uint64_t u = sd_math_bits(x);
+    int e = 0;
+    if (u < (UINT64_C(1) << 52)) { /* subnormal */
+        u = sd_math_bits(x * 0x1p54);
+        e = -54;
+    }
+    e += (int)(u >> 52) - 1023;
+    double m = sd_math_from_bits((u & ((UINT64_C(1) << 52) - 1)) | (UINT64_C(1023) << 52)); /* [1, 2) */
+    if (m > 0x1.6a09e667f3bcdp+0) {
+        m *= 0.5;
+        e += 1;
+    }
+    double f = m - 1.0; /* exact (Sterbenz) */
+    sd_math_dd num = {f, 0.0};
+    sd_math_dd s = sd_math_dd_div(num, sd_math_two_sum(2.0, f));
+    double z = s.hi * s.hi;
+    double p = 0x1.8618618618618p-5;  /* 1/21 */
+    p = p * z + 0x1.af286bca1af28p-5; /* 1/19 */
+    p = p * z + 0x1.e1e1e1e1e1e1ep-5; /* 1/17 */
+    p = p * z + 0x1.1111111111111p-4; /* 1/15 */
+    p = p * z + 0x1.3b13b13b13b14p-4; /* 1/13 */
+    p = p * z + 0x1.745d1745d1746p-4; /* 1/11 */
+    p = p * z + 0x1.c71c71c71c71cp-4; /* 1/9  */
+    p = p * z + 0x1.2492492492492p-3; /* 1/7  */
+    p = p * z + 0x1.999999999999ap-3; /* 1/5  */
+    p = p * z + 0x1.5555555555555p-2; /* 1/3  */
+    sd_math_dd r = {2.0 * s.hi, 2.0 * s.lo};
+    r = sd_math_dd_add_d(r, 2.0 * s.hi * z * p);
+    double de = (double)e;
+    sd_math_dd l = sd_math_two_prod(de, SD_MATH_LN2_2);
+    l = sd_math_dd_add_d(l, de * SD_MATH_LN2_1); /* e L1 exact */
+    r = sd_math_dd_add(l, r);
+    return r.hi + r.lo;
 }
 
 #endif

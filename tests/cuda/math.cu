@@ -12,7 +12,7 @@
 #endif
 
 /* One argument per thread: every function, every path (the reductions
- * included), written to out[4 i .. 4 i + 3]. */
+ * included), written to out[6 i .. 6 i + 5]. */
 SD_KERNEL void sd_check_math(const double *x, const double *y, double *out, int n)
 {
 #if defined(__CUDACC__)
@@ -22,10 +22,12 @@ SD_KERNEL void sd_check_math(const double *x, const double *y, double *out, int 
 #endif
     if (i >= n)
         return;
-    out[4 * i] = sd_math_sin(x[i]);
-    out[4 * i + 1] = sd_math_cos(x[i]);
-    out[4 * i + 2] = sd_math_atan2(y[i], x[i]);
-    out[4 * i + 3] = sd_math_cbrt(x[i]);
+    out[6 * i] = sd_math_sin(x[i]);
+    out[6 * i + 1] = sd_math_cos(x[i]);
+    out[6 * i + 2] = sd_math_atan2(y[i], x[i]);
+    out[6 * i + 3] = sd_math_cbrt(x[i]);
+    out[6 * i + 4] = sd_math_exp(y[i]);
+    out[6 * i + 5] = sd_math_log(x[i]);
 }
 
 #if !defined(__CUDACC__)

@@ -1,7 +1,7 @@
 /* math.c — the engine's own elementary functions (core/math.h) against
  * MPFR's correctly rounded results, and against libm.
  *
- * For sin, cos, atan2 and cbrt: 0.3 to 0.9 million arguments each (uniform
+ * For sin, cos, atan2, cbrt, exp and log: 0.3 to 0.9 million arguments each (uniform
  * over the ranges the numerics use, log-uniform over the whole double
  * range, doubles next to multiples of pi/2 and near the reduction's
  * thresholds, subnormals), the maximum error in ulps of the exact result
@@ -39,6 +39,9 @@ static double ulp_error(double got)
         return (isinf(got) && (got > 0) == (mpfr_sgn(g_exact) > 0)) ? 0.0 : (double)INFINITY;
     if (mpfr_zero_p(g_exact))
         return got == 0.0 ? 0.0 : (double)INFINITY;
+    double rounded = mpfr_get_d(g_exact, MPFR_RNDN); /* beyond DBL_MAX: its double is inf */
+    if (isinf(rounded))
+        return (isinf(got) && (got > 0) == (rounded > 0)) ? 0.0 : (double)INFINITY;
     long e = mpfr_get_exp(g_exact); /* exact = f 2^e, f in [1/2, 1) */
     long ue = e - 53;
     if (ue < -1074)
@@ -72,8 +75,8 @@ static void record(fn_stat *s, double ours, double theirs, double x, double y)
     s->count++;
 }
 
-enum { F_SIN, F_COS, F_ATAN2, F_CBRT, F_COUNT };
-static const char *fn_name[F_COUNT] = {"sin", "cos", "atan2", "cbrt"};
+enum { F_SIN, F_COS, F_ATAN2, F_CBRT, F_EXP, F_LOG, F_COUNT };
+static const char *fn_name[F_COUNT] = {"sin", "cos", "atan2", "cbrt", "exp", "log"};
 static fn_stat stats[F_COUNT];
 
 static void one(int f, double x, double y)
@@ -93,9 +96,17 @@ static void one(int f, double x, double y)
         mpfr_atan2(g_exact, g_y, g_x, MPFR_RNDN);
         record(&stats[f], sd_math_atan2(y, x), atan2(y, x), x, y);
         break;
-    default:
+    case F_CBRT:
         mpfr_cbrt(g_exact, g_x, MPFR_RNDN);
         record(&stats[f], sd_math_cbrt(x), cbrt(x), x, 0);
+        break;
+    case F_EXP:
+        mpfr_exp(g_exact, g_x, MPFR_RNDN);
+        record(&stats[f], sd_math_exp(x), exp(x), x, 0);
+        break;
+    default:
+        mpfr_log(g_exact, g_x, MPFR_RNDN);
+        record(&stats[f], sd_math_log(x), log(x), x, 0);
         break;
     }
 }
@@ -168,6 +179,14 @@ int main(void)
         one(F_CBRT, log_uniform(&r, -90, -20), 0);
         double c = (double)(1 + (long)(sd_rng_next(&r) % 100000));
         one(F_CBRT, next_up(c * c * c, (long)(sd_rng_next(&r) % 7) - 3), 0);
+        /* exp over its whole finite range and near 0; log over every
+         * positive double, near 1 and at the sqrt 2 seam */
+        one(F_EXP, sd_rng_range(&r, -746.0, 710.0), 0);
+        one(F_EXP, log_uniform(&r, -60, 3), 0);
+        one(F_LOG, fabs(log_uniform(&r, -1074, 1023)), 0);
+        one(F_LOG, 1.0 + sd_rng_range(&r, -1e-3, 1e-3), 0);
+        one(F_LOG, next_up(0x1.6a09e667f3bcdp+0 * ldexp(1.0, (int)(sd_rng_next(&r) % 200) - 100),
+                           (long)(sd_rng_next(&r) % 2001) - 1000), 0);
     }
     /* next to multiples of pi/2, where the reduction cancels: k pi/2 rounded
      * and its neighbours, k up to 2^36, and the hardest known double
@@ -235,6 +254,20 @@ int main(void)
     check_special("cbrt(-8)", sd_math_cbrt(-8.0), -2.0);
     check_special("cbrt(2^-1074)", sd_math_cbrt(0x1p-1074), 0x1p-358);
     check_special("cbrt(2^999)", sd_math_cbrt(0x1p999), 0x1p333);
+    check_special("exp(0)", sd_math_exp(0.0), 1.0);
+    check_special("exp(-inf)", sd_math_exp(-inf), 0.0);
+    check_special("exp(+inf)", sd_math_exp(inf), inf);
+    check_special("exp(nan)", sd_math_exp(nan_), nan_);
+    check_special("exp(710)", sd_math_exp(710.0), inf);
+    check_special("exp(-746)", sd_math_exp(-746.0), 0.0);
+    check_special("exp(-745.1)", sd_math_exp(-745.1), 0x1p-1074);
+    check_special("log(1)", sd_math_log(1.0), 0.0);
+    check_special("log(+0)", sd_math_log(0.0), -inf);
+    check_special("log(-0)", sd_math_log(-0.0), -inf);
+    check_special("log(-1)", sd_math_log(-1.0), nan_);
+    check_special("log(+inf)", sd_math_log(inf), inf);
+    check_special("log(nan)", sd_math_log(nan_), nan_);
+    check_special("log(2)", sd_math_log(2.0), 0x1.62e42fefa39efp-1);
     mpfr_clears(g_exact, g_diff, g_ulp, g_x, g_y, (mpfr_ptr)0);
     mpfr_free_cache();
     return sd_test_summary();
