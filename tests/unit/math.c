@@ -20,7 +20,7 @@
 #include <string.h>
 
 typedef struct fn_stat {
-    double max_ulp, max_ulp_libm, worst_arg, worst_arg2;
+    double max_ulp, max_ulp_libm, worst_arg, worst_arg2, worst_libm;
     long count, differ_libm;
 } fn_stat;
 
@@ -69,8 +69,10 @@ static void record(fn_stat *s, double ours, double theirs, double x, double y)
         s->worst_arg = x;
         s->worst_arg2 = y;
     }
-    if (el > s->max_ulp_libm)
+    if (el > s->max_ulp_libm) {
         s->max_ulp_libm = el;
+        s->worst_libm = x;
+    }
     s->differ_libm += !same_bits(ours, theirs);
     s->count++;
 }
@@ -211,12 +213,12 @@ int main(void)
     one(F_SIN, next_up(0x1p-27, -1), 0);
     one(F_COS, 0x1p-27, 0);
 
-    printf("%-6s %10s %14s %14s %14s   worst argument\n", "fn", "arguments", "max ulp", "libm max ulp",
-           "differ libm");
+    printf("%-6s %10s %14s %14s %14s   worst argument (ours; libm's x)\n", "fn", "arguments", "max ulp",
+           "libm max ulp", "differ libm");
     for (int f = 0; f < F_COUNT; f++) {
         fn_stat *s = &stats[f];
-        printf("%-6s %10ld %14.4f %14.4f %14ld   %a %a\n", fn_name[f], s->count, s->max_ulp, s->max_ulp_libm,
-               s->differ_libm, s->worst_arg, s->worst_arg2);
+        printf("%-6s %10ld %14.4f %14.4f %14ld   %a %a; %a\n", fn_name[f], s->count, s->max_ulp, s->max_ulp_libm,
+               s->differ_libm, s->worst_arg, s->worst_arg2, s->worst_libm);
     }
     for (int f = 0; f < F_COUNT; f++) {
         char label[64];
