@@ -296,7 +296,9 @@ void sd_check_print_output(FILE *f, const sd_scene *s, const sd_world *w, size_t
     sd_output_def od = {.directory = ".",
                         .vtk = (s->output.formats & SD_OUT_VTK) != 0,
                         .csv = (s->output.formats & SD_OUT_CSV) != 0,
-                        .scene = s->path};
+                        .scene = s->path,
+                        .shapes = (s->output.formats & SD_OUT_SHAPES) != 0,
+                        .shape_resolution = s->output.shape_resolution};
     sd_output_size osz;
     sd_error oerr;
     memset(&oerr, 0, sizeof oerr);
@@ -304,7 +306,7 @@ void sd_check_print_output(FILE *f, const sd_scene *s, const sd_world *w, size_t
         return;
     char tb[32], fb[32];
     sd_check_format_bytes(osz.total, tb, sizeof tb);
-    sd_check_format_bytes(osz.frame_particles + osz.frame_walls, fb, sizeof fb);
+    sd_check_format_bytes(osz.frame_particles + osz.frame_walls + osz.frame_shapes, fb, sizeof fb);
     fprintf(f, "output       about %s (%.0f bytes): ", tb, osz.total);
     if (od.vtk)
         fprintf(f, "%ld frames x %s%s", frames, fb, poured ? " (at most: all poured spheres in)" : "");

@@ -756,6 +756,19 @@ sd_status sd_output_estimate(const sd_output_def *def, const sd_world *w, size_t
             s = sd_vtk_write_collection(fp[0], 2, sets, err);
         out->pvd = fixed + (double)frames * ((double)ftell(fp[0]) - fixed);
     }
+    if (s == SD_OK && o.vtk && def && def->shapes) {
+        /* the shapes file of the world as it is, per particle times the
+         * particles a frame will hold (inserted ones like those present) */
+        sd_vtk_shapes *t = NULL;
+        s = sd_vtk_shapes_make(w, def->shape_resolution ? def->shape_resolution : 24, &t, err);
+        rewind(fp[0]);
+        if (s == SD_OK)
+            s = sd_vtk_write_shapes(fp[0], w, t, err);
+        sd_vtk_shapes_free(t);
+        fflush(fp[0]);
+        size_t n = sd_world_particle_count(w);
+        out->frame_shapes = n ? (double)ftell(fp[0]) * (double)particles / (double)n : 0.0;
+    }
     if (s == SD_OK && o.csv) {
         o.stats = fp[1];
         o.biaxial = fp[2];
@@ -796,7 +809,7 @@ sd_status sd_output_estimate(const sd_output_def *def, const sd_world *w, size_t
     if (s != SD_OK)
         return s;
     double nf = o.vtk ? (double)frames : 0.0, nr = o.csv ? (double)rows : 0.0;
-    out->total = nf * (out->frame_particles + out->frame_walls) + out->pvd + out->stats_header +
+    out->total = nf * (out->frame_particles + out->frame_walls + out->frame_shapes) + out->pvd + out->stats_header +
                  nr * out->stats_row + (out->biaxial_row > 0 ? out->biaxial_header + nr * out->biaxial_row : 0.0) +
                  (out->walls_row > 0 ? out->walls_header + nr * out->walls_row : 0.0) +
                  out->summary + (double)sizeof "This directory was written by shapedem" + 160.0;

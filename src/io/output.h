@@ -44,6 +44,7 @@ sd_status sd_output_stats(sd_output *o, const sd_world *w, sd_error *err);
  * nothing to disk. def gives the formats (NULL: both). */
 typedef struct sd_output_size {
     double frame_particles, frame_walls, pvd;
+    double frame_shapes; /* def->shapes: one shapes file, the world's particles scaled to `particles` */
     double stats_header, stats_row, biaxial_header, biaxial_row;
     double walls_header, walls_row;   /* walls.csv (0 without walls) */
     double summary, total;
