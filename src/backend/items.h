@@ -381,12 +381,31 @@ SD_HD static SD_INLINE int sd_item_element_geom(const sd_step_view *v, sd_pair_o
     return 1;
 }
 
-/* Element pair e of two sharp polyhedra under a volume law: the exact
- * overlap volume of the posed elements (seed 000 eqs. 12-22), lever arms
- * from the particles' centres. */
-SD_HD static SD_INLINE void sd_item_element_volume(const sd_step_view *v, sd_pair_out *o, size_t e,
-                                                   const sd_pair_params *prm, sd_body a, sd_body b,
-                                                   sd_overlap_workspace *ws)
+/* Element pair e of two sharp polyhedra under a volume law, the exact
+ * overlap of the posed elements (seed 000 eqs. 12-22): its geometry (1
+ * and *g when they overlap; the pair's interior-point hint updated). */
+SD_HD static SD_INLINE int sd_item_element_volume_geom(const sd_step_view *v, sd_pair_out *o, size_t e,
+                                                       sd_overlap_workspace *ws, sd_volume_geom *g)
+{
+    uint32_t si, sj;
+    sd_item_element_subs(o, e, &si, &sj);
+    sd_shape ti, tj;
+    sd_real ri, rj;
+    sd_convex ci = sd_item_element_of(v, o->i[e], si, &ti, &ri), cj = sd_item_element_of(v, o->j[e], sj, &tj, &rj);
+    sd_narrow_count ns = {0, 0};
+    int t = 0;
+    if (sd_shape_is_sharp_polyhedron(ci.shape) && sd_shape_is_sharp_polyhedron(cj.shape))
+        t = sd_pair_poly_geom(&ci, &cj, &o->x0[e], &o->x0_ok[e], ws, &ns, g); /* else refused at prepare time */
+    o->iters[e] = ns.iterations;
+    o->supports[e] = ns.supports;
+    return t;
+}
+
+/* ... and its law, lever arms from the particles' centres, the dashpot's
+ * mass at cm (the run's centroid of overlap points). */
+SD_HD static SD_INLINE void sd_item_element_volume_apply(const sd_step_view *v, sd_pair_out *o, size_t e,
+                                                         const sd_pair_params *prm, sd_body a, sd_body b,
+                                                         const sd_volume_geom *g, sd_vec3 cm)
 {
     uint32_t si, sj;
     sd_item_element_subs(o, e, &si, &sj);
@@ -395,18 +414,13 @@ SD_HD static SD_INLINE void sd_item_element_volume(const sd_step_view *v, sd_pai
     sd_convex ci = sd_item_element_of(v, o->i[e], si, &ti, &ri), cj = sd_item_element_of(v, o->j[e], sj, &tj, &rj);
     int flip = o->flip[e];
     sd_vec3 ds = flip ? sd_v3_neg(o->ds[e]) : o->ds[e];
-    sd_narrow_count ns = {0, 0};
-    sd_pair_result r;
     /* the onset area reads the bodies' radii: the elements' */
     a.radius = ci.shape->bound;
     b.radius = cj.shape->bound;
-    if (sd_shape_is_sharp_polyhedron(ci.shape) && sd_shape_is_sharp_polyhedron(cj.shape))
-        r = sd_pair_poly(prm, &a, &b, &ci, &cj, ri, rj, &ds, &o->x0[e], &o->x0_ok[e], ws, v->dt, &ns);
-    else
-        r = sd_pair_none(&ds); /* refused at prepare time (world/material.c) */
+    sd_real kcoef = prm->young_a / ri + prm->young_b / rj;  /* eq. 13 */
+    sd_real ktcoef = prm->shear_a / ri + prm->shear_b / rj; /* eq. 19 */
+    sd_pair_result r = sd_pair_volume_apply_at(prm, &a, &b, g, kcoef, ktcoef, &ds, v->dt, cm);
     sd_item_store(o, e, flip, ds, &r);
-    o->iters[e] = ns.iterations;
-    o->supports[e] = ns.supports;
 }
 
 /* Model A's damping for N_c contact points (seed 004 eq. 18): gamma_n of
@@ -425,29 +439,6 @@ SD_HD static SD_INLINE sd_pair_params sd_item_params_sum(const sd_pair_params *p
     for (int k = 0; k < SD_VOLUME_ZETA_N; ++k)
         p.zeta[k] *= s;
     return p;
-}
-
-/* Model A under a volume law needs N_c before the law runs, and the
- * overlap volume is geometry and law in one: a geometry-only probe, 1
- * when element pair e overlaps (bounding spheres, then the narrow phase's
- * depth above 1e-9 of the two bounding radii: glued neighbours that only
- * share a face plane with the other body's element touch at depth 0 and
- * must not count). Sharp polyhedra only, as sd_item_element_volume. */
-SD_HD static SD_INLINE int sd_item_element_probe(const sd_step_view *v, sd_pair_out *o, size_t e)
-{
-    uint32_t si, sj;
-    sd_item_element_subs(o, e, &si, &sj);
-    sd_shape ti, tj;
-    sd_real ri, rj;
-    sd_convex ci = sd_item_element_of(v, o->i[e], si, &ti, &ri), cj = sd_item_element_of(v, o->j[e], sj, &tj, &rj);
-    if (!sd_shape_is_sharp_polyhedron(ci.shape) || !sd_shape_is_sharp_polyhedron(cj.shape))
-        return 0;
-    sd_real reach = ci.shape->bound + cj.shape->bound;
-    if (sd_v3_norm2(sd_v3_sub(ci.x, cj.x)) >= reach * reach)
-        return 0;
-    sd_vec3 warm = o->warm[e]; /* the volume pass keeps its own hint */
-    sd_convex_contact c = sd_convex_collide(&ci, &cj, &warm);
-    return c.touching && c.delta > SD_R(1e-9) * reach;
 }
 
 /* Most touching element pairs of one run whose geometry is kept between
@@ -486,21 +477,54 @@ SD_HD static SD_INLINE int sd_item_elements(const sd_step_view *v, sd_pair_out *
     sd_body a = sd_item_body(v, i), b = sd_item_body(v, j);
     int nc = 0;
     if (sd_law_is_volume(prm->law)) {
-        /* the overlap volume is the geometry and the law in one: one pass,
-         * after a geometry-only probe for model A's N_c (eq. 18) */
-        sd_pair_params sumv;
-        if (v->multi_contact == SD_MULTI_CONTACT_SUM) {
-            int np = 0;
-            for (size_t e = e0; e < e1; ++e)
-                np += sd_item_element_probe(v, o, e);
-            if (np > 1) {
-                sumv = sd_item_params_sum(prm, np);
-                prm = &sumv;
+        /* as the depth laws: the overlap geometry of every pair first, N_c
+         * and the centroid of the overlaps, then the law, model A's zeta
+         * divided by sqrt(N_c) (eq. 18), the dashpot's mass at the
+         * centroid */
+        sd_volume_geom vkeep[SD_ITEM_RUN_CAP];
+        sd_vec3 cmv = sd_v3_zero();
+        for (size_t e = e0; e < e1; ++e) {
+            sd_volume_geom g;
+            if (sd_item_element_volume_geom(v, o, e, ws, &g)) {
+                if (nc < SD_ITEM_RUN_CAP)
+                    vkeep[nc] = g;
+                cmv = sd_v3_add(cmv, g.point);
+                ++nc;
+                o->delta[e] = SD_R(1.0); /* marks the overlapping pairs for the second pass */
+            } else {
+                int flip = o->flip[e];
+                sd_vec3 ds = o->ds[e];
+                sd_pair_result r = sd_pair_none(&ds);
+                sd_item_store(o, e, flip, ds, &r);
             }
         }
-        for (size_t e = e0; e < e1; ++e) {
-            sd_item_element_volume(v, o, e, prm, a, b, ws);
-            nc += o->delta[e] > SD_R(0.0);
+        if (nc == 0)
+            return 0;
+        cmv = sd_v3_scale(cmv, SD_R(1.0) / (sd_real)nc);
+        sd_pair_params sumv;
+        if (v->multi_contact == SD_MULTI_CONTACT_SUM && nc > 1) {
+            sumv = sd_item_params_sum(prm, nc);
+            prm = &sumv;
+        }
+        int k = 0;
+        for (size_t e = e0; e < e1 && k < nc; ++e) {
+            if (!(o->delta[e] > SD_R(0.0)))
+                continue;
+            sd_volume_geom g;
+            int ok = 1;
+            if (k < SD_ITEM_RUN_CAP)
+                g = vkeep[k];
+            else /* beyond the workspace: the same overlap again, from its updated hint */
+                ok = sd_item_element_volume_geom(v, o, e, ws, &g);
+            ++k;
+            if (ok) {
+                sd_item_element_volume_apply(v, o, e, prm, a, b, &g, cmv);
+            } else {
+                int flip = o->flip[e];
+                sd_vec3 ds = o->ds[e];
+                sd_pair_result r = sd_pair_none(&ds);
+                sd_item_store(o, e, flip, ds, &r);
+            }
         }
         if (v->multi_contact == SD_MULTI_CONTACT_AVERAGE)
             sd_item_elements_average(o, e0, e1, nc);
@@ -769,6 +793,116 @@ SD_HD static SD_INLINE int sd_item_wall_element_geom(const sd_step_view *v, cons
     return sd_convex_wall_geom(c, *p0, *nw, g, &ns);
 }
 
+/* The overlap of element e's sharp polyhedron with its wall feature's
+ * plane (seed 000's half-space overlap), for a mesh weighted by its
+ * section clipped to the group's near triangles (*wgt, *shift; 1 and 0
+ * off meshes): 1 and *g when they overlap (and, on a mesh, the weight is
+ * positive). *c and *req: the posed element and its equivalent radius. */
+SD_HD static SD_INLINE int sd_item_wall_element_volume_geom(const sd_step_view *v, const sd_wall_pair_out *o, size_t e,
+                                                            sd_convex *c, sd_shape *tmp, sd_real *req,
+                                                            sd_volume_geom *g, sd_real *wgt, sd_vec3 *shift)
+{
+    const sd_wall_view *wl = &v->walls[o->wall[e]];
+    sd_contact_geom cg;
+    sd_vec3 p0, nw;
+    int has_plane;
+    (void)sd_item_wall_element_geom(v, o, e, c, tmp, req, &cg, &p0, &nw, &has_plane, wgt, shift);
+    *wgt = SD_R(1.0);
+    *shift = sd_v3_zero();
+    if (!has_plane || !sd_shape_is_sharp_polyhedron(c->shape) || !sd_pair_poly_wall_geom(c, p0, nw, g))
+        return 0;
+    if (wl->g.kind == SD_WALL_MESH) {
+        *wgt = sd_item_mesh_weight(o, e, wl, &v->meshes[wl->g.mesh], c, g->point, g->depth, *req, shift);
+        return *wgt > SD_R(0.0);
+    }
+    return 1;
+}
+
+/* SD_WALL_PAIR_ELEMENTS under a volume law: the run's half-space overlaps
+ * first (N_c, the centroid of their points), then the law on each, model
+ * A's zeta divided by sqrt(N_c) (eq. 18), the dashpot's mass at the
+ * centroid, as the depth laws' runs. a: the particle, its motion relative
+ * to the wall. Returns N_c. */
+SD_HD static SD_INLINE int sd_item_wall_elements_volume(const sd_step_view *v, sd_wall_pair_out *o, size_t e0,
+                                                        size_t e1, const sd_pair_params *prm, sd_body a)
+{
+    sd_volume_geom keep[SD_ITEM_RUN_CAP];
+    sd_real keep_w[SD_ITEM_RUN_CAP];
+    sd_vec3 keep_s[SD_ITEM_RUN_CAP];
+    sd_vec3 cm = sd_v3_zero();
+    int nc = 0;
+    for (size_t e = e0; e < e1; ++e) {
+        sd_convex c;
+        sd_shape tmp;
+        sd_real req, wgt;
+        sd_vec3 shift;
+        sd_volume_geom g;
+        if (sd_item_wall_element_volume_geom(v, o, e, &c, &tmp, &req, &g, &wgt, &shift)) {
+            if (nc < SD_ITEM_RUN_CAP) {
+                keep[nc] = g;
+                keep_w[nc] = wgt;
+                keep_s[nc] = shift;
+            }
+            cm = sd_v3_add(cm, g.point);
+            ++nc;
+            o->delta[e] = SD_R(1.0); /* marks the overlapping elements for the second pass */
+        } else {
+            sd_pair_result r = sd_pair_none(&o->ds[e]);
+            sd_item_wall_store(o, e, c.x, &r);
+        }
+    }
+    if (nc == 0)
+        return 0;
+    cm = sd_v3_scale(cm, SD_R(1.0) / (sd_real)nc);
+    sd_pair_params sum;
+    if (v->multi_contact == SD_MULTI_CONTACT_SUM && nc > 1) {
+        sum = sd_item_params_sum(prm, nc);
+        prm = &sum;
+    }
+    const sd_wall_view *wl = &v->walls[o->wall[e0]];
+    int k = 0;
+    for (size_t e = e0; e < e1 && k < nc; ++e) {
+        if (!(o->delta[e] > SD_R(0.0)))
+            continue;
+        sd_shape tmp;
+        sd_real req, wgt = SD_R(1.0);
+        sd_vec3 shift = sd_v3_zero();
+        sd_volume_geom g;
+        /* the posed element again (cheap) for its radius; its overlap
+         * from the first pass, or again beyond the workspace */
+        sd_convex c = sd_item_element_of(v, o->i[e], o->elem[e], &tmp, &req);
+        int ok = 1;
+        if (k < SD_ITEM_RUN_CAP) {
+            g = keep[k];
+            wgt = keep_w[k];
+            shift = keep_s[k];
+        } else {
+            ok = sd_item_wall_element_volume_geom(v, o, e, &c, &tmp, &req, &g, &wgt, &shift);
+        }
+        ++k;
+        if (!ok) {
+            sd_pair_result r = sd_pair_none(&o->ds[e]);
+            sd_item_wall_store(o, e, c.x, &r);
+            continue;
+        }
+        sd_body ae = a;
+        ae.radius = c.shape->bound; /* the onset area reads the element's radius */
+        sd_pair_result r = sd_pair_poly_wall_at(prm, &ae, &g, req, &o->ds[e], v->dt, cm);
+        if (wl->g.kind == SD_WALL_MESH)
+            sd_item_mesh_scale(&r, wgt, shift);
+        sd_item_wall_store(o, e, sd_v3_add(g.point, shift), &r);
+    }
+    if (v->multi_contact == SD_MULTI_CONTACT_AVERAGE && nc > 1) {
+        sd_real s = SD_R(1.0) / (sd_real)nc;
+        for (size_t e = e0; e < e1; ++e) {
+            o->f[e] = sd_v3_scale(o->f[e], s);
+            o->t[e] = sd_v3_scale(o->t[e], s);
+            o->energy[e] *= s;
+        }
+    }
+    return nc;
+}
+
 /* SD_WALL_PAIR_ELEMENTS: the run [e0, e1) of the elements of one particle
  * against one wall feature (a mesh: one plane group), evaluated and
  * combined as the particle pairs are (two passes, the dashpot's mass at
@@ -789,28 +923,8 @@ SD_HD static SD_INLINE int sd_item_wall_elements(const sd_step_view *v, sd_wall_
      * above) */
     if (wl->g.kind == SD_WALL_DRUM || wl->g.kind == SD_WALL_MESH)
         sd_item_drum_relative(wl, &a);
-    int volume = sd_law_is_volume(prm->law);
-    sd_pair_params sumv;
-    if (volume && v->multi_contact == SD_MULTI_CONTACT_SUM) {
-        /* model A's N_c before the half-space overlaps: the elements whose
-         * support point is below the feature's plane (for a mesh, with
-         * some of their section on the group's triangles) */
-        int np = 0;
-        for (size_t e = e0; e < e1; ++e) {
-            sd_convex c;
-            sd_shape tmp;
-            sd_real req, wgt;
-            sd_contact_geom g;
-            sd_vec3 p0, nw, shift;
-            int has_plane;
-            np += sd_item_wall_element_geom(v, o, e, &c, &tmp, &req, &g, &p0, &nw, &has_plane, &wgt, &shift) &&
-                  has_plane && sd_shape_is_sharp_polyhedron(c.shape);
-        }
-        if (np > 1) {
-            sumv = sd_item_params_sum(prm, np);
-            prm = &sumv;
-        }
-    }
+    if (sd_law_is_volume(prm->law))
+        return sd_item_wall_elements_volume(v, o, e0, e1, prm, a);
     sd_contact_geom keep[SD_ITEM_RUN_CAP];
     sd_real keep_r[SD_ITEM_RUN_CAP], keep_w[SD_ITEM_RUN_CAP];
     sd_vec3 keep_s[SD_ITEM_RUN_CAP];
@@ -824,29 +938,6 @@ SD_HD static SD_INLINE int sd_item_wall_elements(const sd_step_view *v, sd_wall_
         sd_vec3 p0, nw, shift;
         int has_plane;
         int t = sd_item_wall_element_geom(v, o, e, &c, &tmp, &req, &g, &p0, &nw, &has_plane, &wgt, &shift);
-        if (volume) {
-            /* the half-space overlap is geometry and law in one (seed 000) */
-            sd_body ae = a;
-            ae.radius = c.shape->bound;
-            sd_vec3 point = c.x;
-            sd_pair_result r = has_plane && sd_shape_is_sharp_polyhedron(c.shape)
-                                   ? sd_pair_poly_wall(prm, &ae, &c, p0, nw, req, &o->ds[e], v->dt, &point)
-                                   : sd_pair_none(&o->ds[e]);
-            if (r.delta > SD_R(0.0) && wl->g.kind == SD_WALL_MESH) {
-                const sd_mesh_view *m = &v->meshes[wl->g.mesh];
-                wgt = sd_item_mesh_weight(o, e, wl, m, &c, point, r.delta, req, &shift);
-                if (wgt > SD_R(0.0)) {
-                    sd_item_mesh_scale(&r, wgt, shift);
-                    point = sd_v3_add(point, shift);
-                } else {
-                    r = sd_pair_none(&o->ds[e]);
-                    point = c.x;
-                }
-            }
-            sd_item_wall_store(o, e, point, &r);
-            nc += r.delta > SD_R(0.0);
-            continue;
-        }
         if (t) {
             if (nc < SD_ITEM_RUN_CAP) {
                 keep[nc] = g;
@@ -862,7 +953,7 @@ SD_HD static SD_INLINE int sd_item_wall_elements(const sd_step_view *v, sd_wall_
             sd_item_wall_store(o, e, c.x, &r);
         }
     }
-    if (nc > 0 && !volume) {
+    if (nc > 0) {
         cm = sd_v3_scale(cm, SD_R(1.0) / (sd_real)nc);
         sd_pair_params sum;
         if (v->multi_contact == SD_MULTI_CONTACT_SUM && nc > 1) {

@@ -29,18 +29,22 @@ SD_HD static SD_INLINE int sd_shape_is_sharp_polyhedron(const sd_shape *s)
     return s->kind == SD_SHAPE_POLYHEDRON && s->radius == SD_R(0.0);
 }
 
-/* Applies a volume contact of known geometry to the two bodies. */
-SD_HD static SD_INLINE sd_pair_result sd_pair_volume_apply(const sd_pair_params *prm, const sd_body *a, const sd_body *b,
-                                                           const sd_volume_geom *g, sd_real kcoef, sd_real ktcoef,
-                                                           sd_vec3 *ds, sd_real dt)
+/* Applies a volume contact of known geometry to the two bodies, the
+ * dashpot's effective mass (eq. 15's m_eff) taken at point cm: the contact
+ * point itself for one contact (sd_pair_volume_apply); for a composite's
+ * run of element contacts their centroid (backend/items.h), so N contacts
+ * over a face damp like one at its centre, as the depth laws' runs do. */
+SD_HD static SD_INLINE sd_pair_result sd_pair_volume_apply_at(const sd_pair_params *prm, const sd_body *a,
+                                                              const sd_body *b, const sd_volume_geom *g,
+                                                              sd_real kcoef, sd_real ktcoef, sd_vec3 *ds, sd_real dt,
+                                                              sd_vec3 cm)
 {
     sd_pair_result r;
     sd_vec3 arm_i = sd_v3_sub(g->point, a->x);
     sd_vec3 arm_j = sd_v3_sub(g->point, b->x);
     sd_vec3 vi = sd_v3_add(a->v, sd_v3_cross(a->w, arm_i));
     sd_vec3 vj = sd_v3_add(b->v, sd_v3_cross(b->w, arm_j));
-    /* eq. 15's m_eff, taken at the contact point as for the other laws */
-    sd_real inv = sd_body_inv_mass_at(a, arm_i, g->n) + sd_body_inv_mass_at(b, arm_j, g->n);
+    sd_real inv = sd_body_inv_mass_at(a, sd_v3_sub(cm, a->x), g->n) + sd_body_inv_mass_at(b, sd_v3_sub(cm, b->x), g->n);
     sd_real m_star = inv > SD_R(0.0) ? SD_R(1.0) / inv : SD_R(0.0);
     /* the regularisation's onset from constants of the pair (law_volume.h):
      * the smaller bounding radius (a wall has none) and the translational
@@ -57,6 +61,14 @@ SD_HD static SD_INLINE sd_pair_result sd_pair_volume_apply(const sd_pair_params 
     r.delta = g->depth;
     r.energy = o.energy;
     return r;
+}
+
+/* Applies a volume contact of known geometry to the two bodies. */
+SD_HD static SD_INLINE sd_pair_result sd_pair_volume_apply(const sd_pair_params *prm, const sd_body *a, const sd_body *b,
+                                                           const sd_volume_geom *g, sd_real kcoef, sd_real ktcoef,
+                                                           sd_vec3 *ds, sd_real dt)
+{
+    return sd_pair_volume_apply_at(prm, a, b, g, kcoef, ktcoef, ds, dt, g->point);
 }
 
 /* The law's geometry from an overlap of A = i and B = j (normal from A
@@ -84,6 +96,34 @@ SD_HD static SD_INLINE void sd_overlap_count(const sd_overlap *ov, sd_narrow_cou
     ns->supports = ov->vertices > 0 ? ov->vertices : 1;
 }
 
+/* The overlap geometry of two sharp polyhedra: 1 and *g when they overlap
+ * (x0 / x0_ok the pair's interior-point hint, read and updated; ws the
+ * calling thread's overlap workspace), else 0 with the hint dropped. */
+SD_HD static SD_INLINE int sd_pair_poly_geom(const sd_convex *ca, const sd_convex *cb, sd_vec3 *x0, uint8_t *x0_ok,
+                                             sd_overlap_workspace *ws, sd_narrow_count *ns, sd_volume_geom *g)
+{
+    ns->iterations = 0;
+    ns->supports = 0;
+    sd_real reach = ca->shape->bound + cb->shape->bound;
+    if (sd_v3_norm2(sd_v3_sub(ca->x, cb->x)) >= reach * reach) {
+        *x0_ok = 0;
+        return 0;
+    }
+    sd_overlap ov = sd_overlap_polyhedra(ca, cb, *x0, *x0_ok, ws);
+    sd_overlap_count(&ov, ns);
+    if (ov.status != SD_OVERLAP_OK || !(ov.volume > SD_R(0.0)) || !(ov.area > SD_R(0.0))) {
+        *x0_ok = 0;
+        return 0;
+    }
+    *x0 = ov.x0;
+    *x0_ok = 1;
+    /* how far A reaches into B along the normal (the damping's exponent) */
+    sd_vec3 nab = ov.normal;
+    sd_real depth = sd_v3_dot(nab, sd_v3_sub(sd_convex_support_core(ca, nab), sd_convex_support_core(cb, sd_v3_neg(nab))));
+    *g = sd_volume_geom_of(&ov, depth);
+    return 1;
+}
+
 /* Two sharp polyhedra; ra, rb the radii of their equal-volume spheres (m);
  * x0 / x0_ok the pair's interior-point hint (read and updated); ws the
  * calling thread's overlap workspace. */
@@ -92,56 +132,60 @@ SD_HD static SD_INLINE sd_pair_result sd_pair_poly(const sd_pair_params *prm, co
                                                    sd_vec3 *ds, sd_vec3 *x0, uint8_t *x0_ok,
                                                    sd_overlap_workspace *ws, sd_real dt, sd_narrow_count *ns)
 {
-    ns->iterations = 0;
-    ns->supports = 0;
-    sd_real reach = ca->shape->bound + cb->shape->bound;
-    if (sd_v3_norm2(sd_v3_sub(ca->x, cb->x)) >= reach * reach) {
-        *x0_ok = 0;
+    sd_volume_geom g;
+    if (!sd_pair_poly_geom(ca, cb, x0, x0_ok, ws, ns, &g))
         return sd_pair_none(ds);
-    }
-    sd_overlap ov = sd_overlap_polyhedra(ca, cb, *x0, *x0_ok, ws);
-    sd_overlap_count(&ov, ns);
-    if (ov.status != SD_OVERLAP_OK || !(ov.volume > SD_R(0.0)) || !(ov.area > SD_R(0.0))) {
-        *x0_ok = 0;
-        return sd_pair_none(ds);
-    }
-    *x0 = ov.x0;
-    *x0_ok = 1;
-    /* how far A reaches into B along the normal (the damping's exponent) */
-    sd_vec3 nab = ov.normal;
-    sd_real depth = sd_v3_dot(nab, sd_v3_sub(sd_convex_support_core(ca, nab), sd_convex_support_core(cb, sd_v3_neg(nab))));
-    sd_volume_geom g = sd_volume_geom_of(&ov, depth);
     sd_real kcoef = prm->young_a / ra + prm->young_b / rb;   /* eq. 13 */
     sd_real ktcoef = prm->shear_a / ra + prm->shear_b / rb;  /* eq. 19 */
     return sd_pair_volume_apply(prm, a, b, &g, kcoef, ktcoef, ds, dt);
 }
 
-/* A sharp polyhedron against a wall plane through p0 with unit normal nw
- * into free space; a's velocity is relative to the wall. The wall is flat
- * (R = infinity): only the particle's E/R enters eqs. 13 and 19. */
-SD_HD static SD_INLINE sd_pair_result sd_pair_poly_wall(const sd_pair_params *prm, const sd_body *a, const sd_convex *ca,
-                                                        sd_vec3 p0, sd_vec3 nw, sd_real ra, sd_vec3 *ds, sd_real dt,
-                                                        sd_vec3 *point)
+/* The half-space overlap of a sharp polyhedron with the wall plane
+ * through p0, unit normal nw into free space: 1 and *g when they overlap. */
+SD_HD static SD_INLINE int sd_pair_poly_wall_geom(const sd_convex *ca, sd_vec3 p0, sd_vec3 nw, sd_volume_geom *g)
 {
     sd_vec3 n = sd_v3_neg(nw);
     sd_real h = -sd_v3_dot(nw, p0);
-    *point = a->x;
     if (sd_halfspace_depth(ca, n, h) <= SD_R(0.0))
-        return sd_pair_none(ds);
+        return 0;
     sd_overlap ov = sd_overlap_halfspace(ca, n, h);
     if (ov.status != SD_OVERLAP_OK)
-        return sd_pair_none(ds);
-    sd_volume_geom g = sd_volume_geom_of(&ov, sd_halfspace_depth(ca, n, h));
+        return 0;
+    *g = sd_volume_geom_of(&ov, sd_halfspace_depth(ca, n, h));
+    return 1;
+}
+
+/* A wall contact of known geometry g, the dashpot's mass at cm (as
+ * sd_pair_volume_apply_at); the wall is flat (R = infinity): only the
+ * particle's E/R enters eqs. 13 and 19. */
+SD_HD static SD_INLINE sd_pair_result sd_pair_poly_wall_at(const sd_pair_params *prm, const sd_body *a,
+                                                           const sd_volume_geom *g, sd_real ra, sd_vec3 *ds,
+                                                           sd_real dt, sd_vec3 cm)
+{
     sd_body wall;
-    wall.x = ov.point;
+    wall.x = g->point;
     wall.v = sd_v3_zero();
     wall.w = sd_v3_zero();
     wall.radius = SD_R(0.0);
     wall.inv_mass = SD_R(0.0);
     wall.inv_inertia = sd_v3_zero();
     wall.q = sd_quat_identity();
-    *point = ov.point;
-    return sd_pair_volume_apply(prm, a, &wall, &g, prm->young_a / ra, prm->shear_a / ra, ds, dt);
+    return sd_pair_volume_apply_at(prm, a, &wall, g, prm->young_a / ra, prm->shear_a / ra, ds, dt, cm);
+}
+
+/* A sharp polyhedron against a wall plane through p0 with unit normal nw
+ * into free space; a's velocity is relative to the wall; *point: where
+ * the force acts (the overlap's centroid, else the centre). */
+SD_HD static SD_INLINE sd_pair_result sd_pair_poly_wall(const sd_pair_params *prm, const sd_body *a, const sd_convex *ca,
+                                                        sd_vec3 p0, sd_vec3 nw, sd_real ra, sd_vec3 *ds, sd_real dt,
+                                                        sd_vec3 *point)
+{
+    *point = a->x;
+    sd_volume_geom g;
+    if (!sd_pair_poly_wall_geom(ca, p0, nw, &g))
+        return sd_pair_none(ds);
+    *point = g.point;
+    return sd_pair_poly_wall_at(prm, a, &g, ra, ds, dt, g.point);
 }
 
 #endif
