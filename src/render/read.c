@@ -351,7 +351,8 @@ static sd_status sd_rd_polys(const sd_vtkfile *f, double **pts, int64_t **conn, 
 
 /* ---- a frame ------------------------------------------------------------ */
 
-/* dir/prefix + the digits of base's NNNNNN + suffix. */
+/* dir/prefix + the digits of base's NNNNNN + suffix; path's base name
+ * starts with `from` (the caller checks). */
 static void sd_rd_sibling(const char *path, const char *from, const char *prefix, const char *suffix, char *out,
                           size_t size)
 {
@@ -468,19 +469,21 @@ sd_status sd_render_frame_load(const char *path, const char *field, sd_render_fr
     int is_shapes = !strncmp(base, "shapes_", 7);
     if (!sd_rd_exists(path))
         return sd_error_set(err, SD_ERR_INPUT, path, 0, "", "cannot read the frame: %s", strerror(errno));
+    int is_particles = !strncmp(base, "particles_", 10);
+    shapes[0] = walls[0] = 0; /* a file of another name has no siblings */
     if (is_shapes) {
         snprintf(shapes, sizeof shapes, "%s", path);
         sd_rd_sibling(path, "shapes_", "walls_", ".vtp", walls, sizeof walls);
-    } else {
+    } else if (is_particles) {
         sd_rd_sibling(path, "particles_", "shapes_", ".vtp", shapes, sizeof shapes);
         sd_rd_sibling(path, "particles_", "walls_", ".vtp", walls, sizeof walls);
     }
-    if (is_shapes || (!strncmp(base, "particles_", 10) && sd_rd_exists(shapes))) {
+    if (is_shapes || (is_particles && sd_rd_exists(shapes))) {
         s = sd_rd_shapes(shapes, field, out, err);
     } else {
         s = sd_rd_spheres(path, field, out, err);
     }
-    if (s == SD_OK && (!strncmp(base, "particles_", 10) || is_shapes) && sd_rd_exists(walls))
+    if (s == SD_OK && (is_particles || is_shapes) && sd_rd_exists(walls))
         s = sd_rd_walls(walls, out, err);
     if (s != SD_OK) {
         sd_render_frame_free(out);

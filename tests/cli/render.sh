@@ -77,6 +77,13 @@ check "reference picture moved one pixel: MAD $shift1 < $TOL (passes)" "$(lt "$s
 check "reference picture in the gray map: MAD $gray > $TOL (fails)" "$(lt $TOL "$gray")"
 check "reference picture in the coolwarm map: MAD $warm > $TOL (fails)" "$(lt $TOL "$warm")"
 
+# A particle frame under another name (no siblings to look for): spheres, and a note.
+cp "$tmp/simple/particles_000000.vtu" "$tmp/a.vtu"
+"$bin" render "$tmp/a.vtu" -o "$tmp/a.png" --size 64x48 2>"$tmp/a.err"
+rc=$?
+check "a frame named a.vtu: exit $rc, a picture, the bounding-sphere note on stderr" \
+    "$([[ $rc == 0 && -s $tmp/a.png ]] && grep -q "bounding spheres" "$tmp/a.err" && echo 1 || echo 0)"
+
 # A movie of a two-frame run.
 "$bin" run "$root/tests/render/simple.yaml" -o "$tmp/two" --steps 2 --quiet >/dev/null
 mkdir -p "$tmp/movie"
