@@ -41,7 +41,9 @@ typedef struct sd_backend {
     void (*forces)(sd_stage *s, sd_pair_kind kind);
     /* forces of every particle-wall pair, kind by kind */
     void (*wall_forces)(sd_stage *s);
-    /* total force and torque on each wall (s->wall_force, s->wall_torque) */
+    /* total force and torque on each wall (s->wall_force, s->wall_torque);
+     * when no wall moves (s->v.walls_moving 0) a device backend may leave
+     * them to read_back, which sums the same pairs in the same order */
     void (*wall_totals)(sd_stage *s);
     /* each particle sums its pairs in list order */
     void (*gather)(sd_stage *s);

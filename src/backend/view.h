@@ -81,6 +81,8 @@ typedef struct sd_step_view {
     int dim2;                      /* the planar mode */
     int has_shapes;                /* some particle is not a plain sphere */
     int multi_contact;             /* sd_multi_contact: how element contacts combine (seed 004 §2.6) */
+    int walls_moving;              /* some wall moves: its motion reads the wall totals every step (servo);
+                                      else only output and queries read them, with the state */
 } sd_step_view;
 
 /* The particle-particle pair list as the items read and write it

@@ -121,6 +121,7 @@ static sd_status sd_stage_check_finite(sd_world *w, const sd_backend *be, sd_err
     sd_status st = be->status(&w->stage, err);
     if (st != SD_OK)
         return st;
+    sd_world_views_wall_totals(w); /* a device may sum them only with the read back (fixed walls) */
     if (bad) {
         if (sd_world_guard_nonfinite(w, err) != SD_OK)
             return SD_ERR_PHYSICS;
@@ -161,6 +162,7 @@ sd_status sd_cells_prepare(sd_world *w, sd_error *err)
     sd_profile_lap(w, SD_PROFILE_INTEGRATION, &t, 0);
     if ((st = be->status(&w->stage, err)) != SD_OK)
         return st;
+    sd_world_views_wall_totals(w);
     w->prepared = 1;
     return SD_OK;
 }

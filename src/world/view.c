@@ -118,6 +118,7 @@ sd_status sd_world_views(sd_world *w)
     v->dim2 = w->dim2;
     v->has_shapes = w->has_shapes;
     v->multi_contact = w->def.multi_contact;
+    v->walls_moving = w->walls_moving;
     s->exec.threads = w->threads;
     s->exec.parallel = w->parallel;
     s->narrow = w->narrow;

@@ -315,7 +315,9 @@ extern "C" void sd_cuda_read_back(sd_stage *s)
     sd_cuda_state *c = s->device;
     if (!c || c->status != SD_OK)
         return;
-    int bad = 0;
+    if (c->totals_pending) /* into s->wall_force, s->wall_torque (walls.cu) */
+        sd_cuda_wall_totals_now(s);
+    int bad = c->status != SD_OK;
 #define SD_X_GET(view, member, type, count, back)                                                              \
     if (back && !bad && c->held[SD_CUDA_##view##_##member])                                                   \
         bad = sd_cuda_check(c,                                                                                 \

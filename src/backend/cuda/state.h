@@ -134,6 +134,7 @@ typedef struct sd_cuda_state {
 #else
     void *stream;
 #endif
+    int totals_pending;            /* the wall totals wait for the next read back (no wall moves) */
     int sync_stages;               /* SD_CUDA_SYNC_STAGES=1: wait for each stage's kernels (profiles) */
     sd_status status;              /* SD_OK, or the first failure */
     char message[512];             /* its message, naming the stage */
@@ -188,6 +189,8 @@ int sd_cuda_reserve(sd_cuda_state *c, sd_cuda_buf *b, size_t bytes, const char *
 void sd_cuda_forces_volume(sd_cuda_state *c, size_t e0, size_t e1);
 void sd_cuda_forces_elements(sd_cuda_state *c, size_t e0, size_t e1);
 int sd_cuda_mesh_wall_kind(sd_cuda_state *c, int kind, size_t e0, size_t e1);
+/* walls.cu: the wall totals now (read_back's, when they wait) */
+void sd_cuda_wall_totals_now(sd_stage *s);
 #endif
 
 #endif

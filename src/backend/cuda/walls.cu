@@ -108,12 +108,29 @@ extern "C" void sd_cuda_wall_forces(sd_stage *s)
 }
 
 /* On the device, then the few totals back to the host's s->wall_force and
- * s->wall_torque, which the world's walls (servo control, queries) read. */
+ * s->wall_torque, which the world's walls (servo control, queries) read.
+ * A serial walk of the wall pairs per wall: when no wall moves nothing
+ * reads the totals before the state comes back, so read_back sums them
+ * then (sd_cuda_wall_totals_now), from the same pairs of the last force
+ * evaluation in the same order: the same bits, once per call rather than
+ * every step. */
 extern "C" void sd_cuda_wall_totals(sd_stage *s)
 {
     if (!sd_cuda_ok(s) || s->v.wall_count == 0)
         return;
+    if (!s->device->v.walls_moving) {
+        s->device->totals_pending = 1;
+        return;
+    }
+    sd_cuda_wall_totals_now(s);
+}
+
+void sd_cuda_wall_totals_now(sd_stage *s)
+{
+    if (!sd_cuda_ok(s) || s->v.wall_count == 0)
+        return;
     sd_cuda_state *c = s->device;
+    c->totals_pending = 0;
     size_t nw = c->v.wall_count;
     sd_vec3 *f = (sd_vec3 *)c->wall_force.p, *t = (sd_vec3 *)c->wall_torque.p;
     SD_CUDA_LAUNCH(sd_k_wall_totals, sd_cuda_blocks(nw), SD_CUDA_BLOCK, c->stream, c->v, c->wpairs, f, t);
