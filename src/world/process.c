@@ -811,7 +811,7 @@ int sd_world_add_insertion(sd_world *w, const sd_insert_def *d, sd_error *err)
                 int n = sd_size_classes(&en->size, k, dpow, f, p, rep);
                 mean_mass = 0;
                 for (int c = 0; c < n; ++c) {
-                    char name[64];
+                    char name[96]; /* room for the widest counters (gcc's -Wformat-truncation) */
                     double sc = rep[c] / si.equivalent_radius;
                     snprintf(name, sizeof name, "%.40s_i%zue%ds%d", si.name,
                              w->process ? w->process->insertion_count : (size_t)0, e, c);
