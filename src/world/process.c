@@ -810,10 +810,14 @@ int sd_world_add_insertion(sd_world *w, const sd_insert_def *d, sd_error *err)
                 }
                 int n = sd_size_classes(&en->size, k, dpow, f, p, rep);
                 mean_mass = 0;
+                /* si.name points into the world's template table, which each
+                 * added copy may move: keep the base name */
+                char base[48];
+                snprintf(base, sizeof base, "%.40s", si.name ? si.name : "shape");
                 for (int c = 0; c < n; ++c) {
                     char name[96]; /* room for the widest counters (gcc's -Wformat-truncation) */
                     double sc = rep[c] / si.equivalent_radius;
-                    snprintf(name, sizeof name, "%.40s_i%zue%ds%d", si.name,
+                    snprintf(name, sizeof name, "%s_i%zue%ds%d", base,
                              w->process ? w->process->insertion_count : (size_t)0, e, c);
                     int idx = sd_world_add_scaled_shape(w, en->shape, sc, name, err);
                     if (idx < 0) {
