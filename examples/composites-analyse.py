@@ -29,8 +29,14 @@ import re
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, '..', 'scripts'))
-import frame_to_csv  # noqa: E402  (the repository's frame reader)
+import importlib.util  # noqa: E402
+
+# the repository's frame reader (scripts/frame_to_csv.py), loaded by path:
+# it is a file of this tree, not an installed module
+_spec = importlib.util.spec_from_file_location(
+    'frame_to_csv', os.path.join(HERE, '..', 'scripts', 'frame_to_csv.py'))
+frame_to_csv = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(frame_to_csv)
 
 
 def last_frame(out):

@@ -48,19 +48,15 @@ def tracked(repo, pattern):
 def python_imports(repo):
     """(module, "file:line") for every top-level module a tracked script imports."""
     found = []
-    scripts = tracked(repo, "*.py")
-    # the project's own modules: any tracked script, wherever it lives (an
-    # example may put scripts/ on sys.path to import the frame reader)
-    own = {os.path.splitext(os.path.basename(f))[0] for f in scripts}
-    for rel in scripts:
+    for rel in tracked(repo, "*.py"):
         path = os.path.join(repo, rel)
         try:
             tree = ast.parse(open(path, encoding="utf-8").read(), rel)
         except SyntaxError as e:
             found.append(("<syntax error: %s>" % e.msg, "%s:%s" % (rel, e.lineno)))
             continue
-        local = own | {os.path.splitext(f)[0] for f in os.listdir(os.path.dirname(path) or ".")
-                       if f.endswith(".py")}
+        local = {os.path.splitext(f)[0] for f in os.listdir(os.path.dirname(path) or ".")
+                 if f.endswith(".py")}
         for node in ast.walk(tree):
             names = []
             if isinstance(node, ast.Import):
