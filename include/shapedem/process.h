@@ -186,7 +186,8 @@ void sd_world_get_process(const sd_world *w, sd_process_info *out);
  * through `center` (the middle of the axis) along `axis`, between the end
  * caps at +-length/2 (each may be left open: a drum open at both ends with
  * its axis along a periodic axis of the domain has periodic axial
- * boundaries). It turns at rpm about +axis (right-handed): the law sees
+ * boundaries). It turns at rpm about +axis (right-handed), from `start`
+ * on, spun up linearly over `ramp` (both 0: at rpm from t = 0): the law sees
  * the particle's velocity relative to the surface, omega x r. Contact for
  * spheres (exact), convex shapes and polyhedra (the tangent plane at the
  * particle's radial projection) and composite elements (the turning speed
@@ -196,6 +197,7 @@ typedef struct sd_drum_def {
     sd_v3d center, axis;  /* m; any length > 0 */
     double radius, length;/* m */
     double rpm;           /* rev/min about +axis */
+    double start, ramp;   /* s: it turns from `start`, its speed rising linearly from 0 to rpm over `ramp` */
     int open_lo, open_hi; /* leave out the cap at center - length/2 axis (lo) or + (hi) */
     int material;
     int cookie;

@@ -671,6 +671,7 @@ typedef struct sd_wall_info {
     sd_v3d lo, hi;            /* box: corners */
     unsigned open_faces;      /* box: open faces mask */
     int material;
+    sd_v3d velocity, angular_velocity; /* m/s, rad/s: its motion this step (a drum's spin, ramp included) */
 } sd_wall_info;
 
 sd_status sd_world_get_wall(const sd_world *w, size_t index, sd_wall_info *out);

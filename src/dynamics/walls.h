@@ -79,6 +79,26 @@ SD_HD static SD_INLINE sd_real sd_wall_drum_coords(const sd_wall_geom *w, sd_vec
     return s;
 }
 
+/* The path (distance or angle per unit speed) and speed fraction of a
+ * motion that starts at `start` and whose speed rises linearly from 0 to
+ * 1 over `ramp` (s; 0 = at once): speed = clamp((t - start) / ramp, 0, 1),
+ * path its integral. The mesh motions (world/mesh.c) and the drum's
+ * spin-up (world/process.c) both follow it. */
+SD_HD static SD_INLINE double sd_wall_ramp_path(double t, double start, double ramp, double *speed)
+{
+    double tau = t - start;
+    if (tau <= 0) {
+        *speed = 0;
+        return 0;
+    }
+    if (ramp > 0 && tau < ramp) {
+        *speed = tau / ramp;
+        return 0.5 * tau * tau / ramp;
+    }
+    *speed = 1;
+    return ramp > 0 ? tau - 0.5 * ramp : tau;
+}
+
 /* The call data of one box face: the plane axis = value with inward
  * normal sign dir (+1 at lo, -1 at hi), as geom/sphere.h's
  * sd_sphere_box_face takes it. */

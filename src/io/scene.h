@@ -132,6 +132,7 @@ typedef struct sd_scene_wall {
     char warning[400];            /* repairs made to the mesh (dropped, turned facets), or "" */
     /* kind 3, the analytic rotating drum (sd_world_add_drum) */
     double drum_radius, drum_length, drum_rpm; /* m, m, rev/min about +axis */
+    double drum_start, drum_ramp;              /* s: turns from start, spun up linearly over ramp */
     int drum_open_lo, drum_open_hi; /* end caps left out (caps: keys) */
 } sd_scene_wall;
 

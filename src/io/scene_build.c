@@ -565,6 +565,8 @@ static sd_status sd_build(const sd_scene *s, sd_world *w, sd_scene_spheres *sp, 
             dd.radius = wl->drum_radius;
             dd.length = wl->drum_length;
             dd.rpm = wl->drum_rpm;
+            dd.start = wl->drum_start;
+            dd.ramp = wl->drum_ramp;
             dd.open_lo = wl->drum_open_lo;
             dd.open_hi = wl->drum_open_hi;
             dd.material = wl->material;

@@ -461,8 +461,13 @@ const sd_scene_key sd_scene_keys[] = {
     {SD_SEC_WALL, "length", SD_KT_NUMBER, SD_KR_POS, NULL, DRUM, DRUM, "m", "required",
      "drum: distance between the end caps, centred on center"},
     {SD_SEC_WALL, "rpm", SD_KT_NUMBER, SD_KR_ANY, NULL, DRUM, 0, "rev/min", "0",
-     "drum: turning speed about +axis from t = 0 (negative turns the other way); contacts see the "
+     "drum: turning speed about +axis once spun up (start, ramp; negative turns the other way); contacts see the "
      "particle's motion relative to the turning wall"},
+    {SD_SEC_WALL, "start", SD_KT_NUMBER, SD_KR_NONNEG, NULL, DRUM, 0, "s", "0",
+     "drum: the time it starts to turn (before it, it rests: fill and settle a bed, then turn it)"},
+    {SD_SEC_WALL, "ramp", SD_KT_NUMBER, SD_KR_NONNEG, NULL, DRUM, 0, "s", "0",
+     "drum: spin-up time: from start its speed rises linearly from 0 to rpm over ramp (0: at once), "
+     "as a rotating mesh's motion.ramp"},
     {SD_SEC_WALL, "caps", SD_KT_ENUM, SD_KR_ANY, "both|none|low|high", DRUM, 0, "", "both",
      "drum: the closed end caps (low: the one at center - length/2 axis); none with the axis along a "
      "periodic axis of simulation.domain gives periodic axial boundaries ([Rakotonirina 2019] §4.2)"},

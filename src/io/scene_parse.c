@@ -419,6 +419,8 @@ static sd_status sd_parse_drum_wall(sd_parse *p, yaml_node_t *m, sd_scene_wall *
     sd_yaml_get(&p->y, m, SD_SEC_WALL, "length", path, &v);
     w->drum_length = v.num;
     w->drum_rpm = sd_yaml_get(&p->y, m, SD_SEC_WALL, "rpm", path, &v) ? v.num : 0.0;
+    w->drum_start = sd_yaml_get(&p->y, m, SD_SEC_WALL, "start", path, &v) ? v.num : 0.0;
+    w->drum_ramp = sd_yaml_get(&p->y, m, SD_SEC_WALL, "ramp", path, &v) ? v.num : 0.0;
     /* caps: both|none|low|high, the closed ones */
     int caps = sd_yaml_get(&p->y, m, SD_SEC_WALL, "caps", path, &v) ? v.choice : 0;
     w->drum_open_lo = caps == 1 || caps == 3;

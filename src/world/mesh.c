@@ -161,23 +161,6 @@ int sd_world_add_mesh(sd_world *w, const char *name, const sd_mesh_def *def, sd_
 
 /* ---- motion ----------------------------------------------------------------- */
 
-/* Distance (or angle) covered by a motion of unit speed that starts at
- * `start` and ramps its speed linearly from 0 over `ramp`, and that speed. */
-static double sd_ramp_path(double t, double start, double ramp, double *speed)
-{
-    double tau = t - start;
-    if (tau <= 0) {
-        *speed = 0;
-        return 0;
-    }
-    if (ramp > 0 && tau < ramp) {
-        *speed = tau / ramp;
-        return 0.5 * tau * tau / ramp;
-    }
-    *speed = 1;
-    return ramp > 0 ? tau - 0.5 * ramp : tau;
-}
-
 /* Displacement d, angle a (rad) and their rates of a TABLE motion at t. */
 static void sd_table_at(const sd_mesh_store *s, double t, double d[3], double *a, double dd[3], double *da)
 {
@@ -237,7 +220,7 @@ static void sd_mesh_pose_at(const sd_mesh_store *s, sd_wall *wl, double t)
     double speed;
     switch (m->kind) {
     case SD_MESH_TRANSLATE: {
-        double path = sd_ramp_path(t, m->start, m->ramp, &speed);
+        double path = sd_wall_ramp_path(t, m->start, m->ramp, &speed);
         sd_vec3 v = sd_v3_of_d(m->velocity);
         trans = sd_v3_scale(v, (sd_real)path);
         vel = sd_v3_scale(v, (sd_real)speed);
@@ -246,7 +229,7 @@ static void sd_mesh_pose_at(const sd_mesh_store *s, sd_wall *wl, double t)
     }
     case SD_MESH_ROTATE: {
         double w0 = m->rpm * 2.0 * SD_PI_D / 60.0; /* rad/s */
-        double angle = w0 * sd_ramp_path(t, m->start, m->ramp, &speed);
+        double angle = w0 * sd_wall_ramp_path(t, m->start, m->ramp, &speed);
         q = sd_axis_angle(axis, angle);
         trans = sd_v3_sub(c, sd_quat_rotate(q, c)); /* x' = R (x - c) + c */
         omega = sd_v3_scale(axis, (sd_real)(w0 * speed));

@@ -1401,6 +1401,11 @@ int sd_world_add_drum(sd_world *w, const sd_drum_def *d, sd_error *err)
         return -1;
     }
     double an = sqrt(sd_d3_dot(d->axis, d->axis));
+    if (!(d->start >= 0) || !(d->ramp >= 0) || !isfinite(d->start) || !isfinite(d->ramp)) {
+        sd_error_set(err, SD_ERR_INPUT, "", 0, "ramp", "drum: expected start >= 0 s and ramp >= 0 s, got %g and %g",
+                     d->start, d->ramp);
+        return -1;
+    }
     if (!(an > 0) || !(d->radius > 0) || !(d->length > 0) || !isfinite(d->rpm)) {
         sd_error_set(err, SD_ERR_INPUT, "", 0, "walls", "a drum needs a non-zero axis, a radius > 0, a length > 0 and "
                                                         "a finite rpm");
@@ -1420,11 +1425,33 @@ int sd_world_add_drum(sd_world *w, const sd_drum_def *d, sd_error *err)
     wl.open_faces = (d->open_lo ? SD_WALL_DRUM_CAP_LO : 0u) | (d->open_hi ? SD_WALL_DRUM_CAP_HI : 0u);
     wl.centre = wl.point;
     wl.q = sd_quat_identity();
-    /* rad/s: 2 pi rpm / 60 about +axis */
-    wl.omega = sd_v3_scale(wl.normal, (sd_real)(2.0 * sd_pi * d->rpm / 60.0));
+    /* rad/s: 2 pi rpm / 60 about +axis, once spun up */
+    wl.drum_w0 = 2.0 * sd_pi * d->rpm / 60.0;
+    wl.drum_start = d->start;
+    wl.drum_ramp = d->ramp;
+    double frac = 1; /* without start and ramp: at rpm from the first step on */
+    if (d->start > 0 || d->ramp > 0)
+        (void)sd_wall_ramp_path(w->time, wl.drum_start, wl.drum_ramp, &frac);
+    wl.omega = sd_v3_scale(wl.normal, (sd_real)(wl.drum_w0 * frac));
+    /* a drum that spins up changes its speed in the walls' drift of each
+     * step; one at constant speed needs no drift (and keeps its bits) */
+    if (d->start > 0 || d->ramp > 0)
+        w->walls_moving = 1;
     wl.material = d->material;
     snprintf(wl.name, sizeof wl.name, "%s", d->name && d->name[0] ? d->name : "drum");
     return sd_world_push_wall(w, &wl, err);
+}
+
+void sd_world_drums_spin(sd_world *w, double t)
+{
+    for (size_t k = 0; k < w->wall_count; ++k) {
+        sd_wall *wl = &w->walls[k];
+        if (wl->kind != SD_WALL_DRUM || (wl->drum_start <= 0 && wl->drum_ramp <= 0))
+            continue;
+        double frac;
+        (void)sd_wall_ramp_path(t, wl->drum_start, wl->drum_ramp, &frac);
+        wl->omega = sd_v3_scale(wl->normal, (sd_real)(wl->drum_w0 * frac));
+    }
 }
 
 /* ---- the step ---------------------------------------------------------------- */

@@ -116,6 +116,7 @@ sd_status sd_world_walls_drift(sd_world *w, double t, sd_error *err)
         return SD_OK;
     /* mesh walls: pose and velocity are functions of time (world/mesh.c) */
     sd_world_meshes_pose(w, t + (double)w->dt);
+    sd_world_drums_spin(w, t + (double)w->dt); /* a drum's spin-up, as a mesh's ramp */
     const sd_wall_pair_list *l = &w->wpairs;
     size_t nm = w->material_count;
     for (size_t k = 0; k < w->wall_count; ++k)

@@ -640,5 +640,7 @@ sd_status sd_world_get_wall(const sd_world *w, size_t k, sd_wall_info *out)
     out->hi = sd_v3d_of(wl->hi);
     out->open_faces = wl->open_faces;
     out->material = wl->material;
+    out->velocity = sd_v3d_of(wl->velocity);
+    out->angular_velocity = sd_v3d_of(wl->omega);
     return SD_OK;
 }

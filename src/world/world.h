@@ -93,6 +93,8 @@ typedef struct sd_wall {
     sd_vec3 omega;          /* rad/s, angular velocity (mesh walls; 0 otherwise) */
     sd_vec3 torque_point;   /* m, the point sd_world_get_wall's torque is about (a mesh's: mesh frame) */
     int has_torque_point;   /* set by sd_world_set_wall_torque_point (meshes always have one) */
+    /* drum (sd_drum_def): full angular speed (rad/s about normal) and its spin-up; from the scene */
+    double drum_w0, drum_start, drum_ramp;
 } sd_wall;
 
 /* Below this many particles the CPU loops run serially. */
@@ -200,6 +202,8 @@ void sd_particles_permute(sd_particles *p, const uint32_t *perm, void *scratch, 
  * rebuild; marks the wall positions at a rebuild. */
 sd_status sd_world_walls_drift(sd_world *w, double t, sd_error *err);
 int sd_world_walls_moved(const sd_world *w);
+/* Sets each drum's angular velocity at time t (its spin-up ramp, world/process.c). */
+void sd_world_drums_spin(sd_world *w, double t);
 void sd_world_walls_mark(sd_world *w);
 
 /* world.c: appends a wall (checks its material); its index or -1. */

@@ -6,7 +6,10 @@
  * reaches mu Fn, near the angle where gravity's pull along the wall exceeds
  * what Coulomb friction carries, sin(theta) = mu (cos(theta) + omega^2 rho
  * / g) (rolling resistance set high so it cannot roll down instead). Also: the caps hold a sphere pushed along
- * the axis, and a drum open at both ends along a periodic axis is taken.
+ * the axis, and a drum open at both ends along a periodic axis is taken;
+ * a drum with a spin-up (start, ramp) rests until start, then its speed
+ * and a sphere carried on its mantle follow the linear ramp: speed
+ * omega (t - start) / ramp, angle omega (t - start)^2 / (2 ramp).
  */
 #include <math.h>
 #include <string.h>
@@ -17,7 +20,7 @@
 
 static const double R = 0.1, r = 0.005, omega = 1.0, mu = 0.3; /* m, m, rad/s, - */
 
-static sd_world *drum_world(int caps_open, int *mat)
+static sd_world *drum_world_ramp(int caps_open, int *mat, double start, double ramp)
 {
     sd_error err;
     sd_world *w;
@@ -40,9 +43,13 @@ static sd_world *drum_world(int caps_open, int *mat)
     dd.rpm = omega * 60 / (2 * 3.14159265358979323846);
     dd.open_lo = dd.open_hi = caps_open;
     dd.material = *mat;
+    dd.start = start;
+    dd.ramp = ramp;
     sd_test_require(sd_world_add_drum(w, &dd, &err) >= 0, "drum", &err);
     return w;
 }
+
+static sd_world *drum_world(int caps_open, int *mat) { return drum_world_ramp(caps_open, mat, 0, 0); }
 
 static double polar(const sd_world *w, double *speed)
 {
@@ -165,9 +172,63 @@ static void test_caps(void)
     }
 }
 
+/* The spin-up: at rest until start = 0.02 s (the sphere settles on the
+ * mantle), then alpha = omega / ramp = 10 rad/s^2 for ramp = 0.1 s, a
+ * tangential pull alpha rho ~ 0.1 g that friction (mu = 0.3) carries, so
+ * the sphere turns with the wall all along the ramp. */
+static void test_ramp(void)
+{
+    sd_error err;
+    int mat;
+    const double start = 0.02, ramp = 0.1, rho = R - r;
+    sd_world *w = drum_world_ramp(0, &mat, start, ramp);
+    sd_sphere_def s;
+    memset(&s, 0, sizeof s);
+    s.position = sd_test_v(0, 0, -rho);
+    s.radius = r;
+    s.material = mat;
+    sd_test_require(sd_world_add_spheres(w, 1, &s, &err) == SD_OK, "sphere", &err);
+    double th0 = 0, worst_w = 0, worst_v = 0, worst_th = 0;
+    for (int k = 1; k <= 16; ++k) {
+        sd_test_require(sd_world_step(w, 1000, &err) == SD_OK, "step", &err); /* 0.01 s */
+        double t = sd_world_time(w), v, th = polar(w, &v);
+        sd_wall_info wi;
+        sd_world_get_wall(w, 0, &wi);
+        double tau = fmin(fmax(t - start, 0), ramp), frac = tau / ramp;
+        double w_exp = omega * frac, th_exp = omega * (0.5 * tau * tau / ramp + fmax(t - start - ramp, 0));
+        if (k == 2)
+            th0 = th; /* where it settled (0 up to the rest overlap's jitter) */
+        printf("     t %.3f s: drum %.5f rad/s (expected %.5f), sphere %.5f m/s (%.5f), angle %.5f rad (%.5f)\n", t,
+               wi.angular_velocity.y, w_exp, v, w_exp * rho, th - th0, th_exp);
+        worst_w = fmax(worst_w, fabs(wi.angular_velocity.y - w_exp));
+        if (k >= 2) {
+            worst_v = fmax(worst_v, fabs(v - w_exp * rho));
+            worst_th = fmax(worst_th, fabs(th - th0 - th_exp));
+        }
+    }
+    printf("     largest errors: drum speed %.3g rad/s, sphere speed %.3g m/s, angle %.3g rad\n", worst_w, worst_v,
+           worst_th);
+    /* the wall's speed is the ramp at t + dt (the drift sets the next step's speed) */
+    CHECK(worst_w <= omega * 1e-5 / ramp * 1.0001);
+    CHECK_NEAR("sphere speed vs omega(t) rho, worst over the ramp (m/s)", worst_v, 0, 0.02 * omega * rho);
+    CHECK_NEAR("sphere angle vs the ramp's angle, worst (rad)", worst_th, 0, 2e-3);
+    sd_world_destroy(w);
+    sd_drum_def dd = sd_drum_def_default();
+    dd.radius = R;
+    dd.length = 0.05;
+    dd.ramp = -1;
+    sd_world_def d = sd_world_def_default();
+    sd_test_require(sd_world_create(&d, &w, &err) == SD_OK, "world", &err);
+    int k = sd_world_add_drum(w, &dd, &err);
+    printf("     ramp -1 s: %s\n", k < 0 ? err.msg : "taken");
+    CHECK(k < 0 && strcmp(err.key, "ramp") == 0);
+    sd_world_destroy(w);
+}
+
 int main(void)
 {
     test_turn_then_slip();
     test_caps();
+    test_ramp();
     return sd_test_summary();
 }
