@@ -25,7 +25,7 @@ set -euo pipefail
 # PNG files with cairo's image surfaces (the build leaves render out without it).
 need_pkgs=(build-essential cmake pkg-config libyaml-dev libhdf5-dev libccd-dev libqhull-dev
   python3 python3-matplotlib git clang libclang-rt-dev valgrind libmpfr-dev
-  libcairo2-dev)
+  libcairo2-dev openmpi-bin libopenmpi-dev)
 if [[ "${SHAPEDEM_WITH_BENCH:-0}" == 1 ]]; then
   need_pkgs+=(liggghts)
 fi

@@ -496,7 +496,9 @@ static uint32_t sd_bins_candidates(const sd_bins *b, const sd_bins_input *in, si
                         if (own_a == own_b)
                             continue;
                         size_t o = ghost_a ? bb : a, g = ghost_a ? own_a : own_b;
-                        if (!(in->id[o] < in->id[g]))
+                        /* a ghost of another rank: the pair is evaluated on
+                         * both ranks, each gathering its own side */
+                        if (g != SD_GHOST_REMOTE && !(in->id[o] < in->id[g]))
                             continue;
                     }
                     int kind = sd_bins_pair_kind(ca, sd_bins_class(in, bb), sd_bins_volume(in, ma, in->material[bb]));
@@ -753,14 +755,18 @@ static sd_status sd_bins_pairs(sd_bins *b, const sd_bins_input *in, sd_pair_list
     memset(l->gstart, 0, (no + 1) * sizeof *l->gstart);
     for (size_t e = 0; e < total; ++e) {
         l->gstart[l->i[e] + 1]++;
-        l->gstart[sd_bins_owner(in, l->j[e]) + 1]++;
+        size_t o = sd_bins_owner(in, l->j[e]);
+        if (o != SD_GHOST_REMOTE)
+            l->gstart[o + 1]++;
     }
     for (size_t i = 0; i < no; ++i)
         l->gstart[i + 1] += l->gstart[i];
     memcpy(cnt, l->gstart, no * sizeof *cnt);
     for (size_t e = 0; e < total; ++e) {
         l->gidx[cnt[l->i[e]]++] = (uint32_t)(2 * e);
-        l->gidx[cnt[sd_bins_owner(in, l->j[e])]++] = (uint32_t)(2 * e + 1);
+        size_t o = sd_bins_owner(in, l->j[e]);
+        if (o != SD_GHOST_REMOTE)
+            l->gidx[cnt[o]++] = (uint32_t)(2 * e + 1);
     }
     return SD_OK;
 }

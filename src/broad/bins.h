@@ -99,6 +99,12 @@ typedef struct sd_bins {
     int use_items;
 } sd_bins;
 
+/* The ghost_owner of a ghost whose owner lives on another rank (src/mpi/):
+ * its pairs with owned particles are all kept (the other rank evaluates the
+ * same pair for its own side, none is dropped by the id rule) and its side
+ * of a pair is gathered by no one here. */
+#define SD_GHOST_REMOTE UINT32_MAX
+
 /* Bytes of scratch per particle sd_bins_sort lends for the permutation. */
 #define SD_BINS_PERMUTE_SCRATCH 32
 
@@ -110,6 +116,13 @@ sd_status sd_bins_sort(sd_bins *b, const sd_bins_input *in, const uint32_t **per
  * carrying the history of the previous lists by key. */
 sd_status sd_bins_build(sd_bins *b, const sd_bins_input *in, sd_pair_list *l, sd_wall_pair_list *wl);
 void sd_bins_free(sd_bins *b);
+/* The canonical order of a decomposed run (broad/canonical.c): every pair
+ * evaluated with the lower stable id as i (flip 0), and each owned
+ * particle's gather entries sorted by (partner id, own sub-index, partner
+ * sub-index), so that its force sum depends on its neighbours' ids only,
+ * never on storage order, cells or ranks. The serial run keeps the order of
+ * the search (its state hashes). */
+sd_status sd_pairs_canonical(const sd_bins_input *in, sd_pair_list *l);
 
 /* The kinds of a pair and of a wall pair, from the classes and whether the
  * pair of materials has a volume law. */

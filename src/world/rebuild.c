@@ -213,6 +213,26 @@ static int sd_periodic_images(const sd_world *w, size_t k, sd_real band, sd_vec3
     return count;
 }
 
+sd_status sd_world_ghosts_reserve(sd_world *w, size_t ng)
+{
+    if (ng > w->ghost_cap) {
+        size_t cap = ng + ng / 2 + 16;
+        uint32_t *o = sd_realloc(w->ghost_owner, cap * sizeof *o);
+        if (!o)
+            return SD_ERR_MEMORY;
+        w->ghost_owner = o;
+        sd_vec3 *s = sd_realloc(w->ghost_shift, cap * sizeof *s);
+        if (!s)
+            return SD_ERR_MEMORY;
+        w->ghost_shift = s;
+        w->ghost_cap = cap;
+    }
+    sd_particles *p = &w->p;
+    if (p->n + ng > p->cap && sd_particles_reserve(p, p->n + ng) != SD_OK)
+        return SD_ERR_MEMORY;
+    return SD_OK;
+}
+
 /* Makes the ghosts of the (sorted) owned particles: counts, room after the
  * owned ones, then each image a copy of its owner with the shift. */
 static sd_status sd_periodic_ghosts(sd_world *w)
@@ -226,19 +246,7 @@ static sd_status sd_periodic_ghosts(sd_world *w)
     size_t ng = 0;
     for (size_t k = 0; k < n; ++k)
         ng += (size_t)sd_periodic_images(w, k, band, NULL);
-    if (ng > w->ghost_cap) {
-        size_t cap = ng + ng / 2 + 16;
-        uint32_t *o = sd_realloc(w->ghost_owner, cap * sizeof *o);
-        if (!o)
-            return SD_ERR_MEMORY;
-        w->ghost_owner = o;
-        sd_vec3 *s = sd_realloc(w->ghost_shift, cap * sizeof *s);
-        if (!s)
-            return SD_ERR_MEMORY;
-        w->ghost_shift = s;
-        w->ghost_cap = cap;
-    }
-    if (n + ng > p->cap && sd_particles_reserve(p, n + ng) != SD_OK)
+    if (sd_world_ghosts_reserve(w, ng) != SD_OK)
         return SD_ERR_MEMORY;
     size_t g = 0;
     for (size_t k = 0; k < n; ++k) {
@@ -333,17 +341,29 @@ sd_status sd_world_rebuild(sd_world *w, sd_error *err)
     sd_particles *p = &w->p;
     /* the threading policy: small worlds stay serial (forking threads costs
      * more than it saves) */
+    w->n_ghost = 0; /* made again below, after the owned particles are sorted */
+    if (w->comm) {
+        /* a decomposed run: the particles that left this rank's sub-domain
+         * go to their new owners first (collective: every rank, even one
+         * holding nothing) */
+        sd_status mst = w->comm->migrate(w->comm_ctx, w, err);
+        if (mst != SD_OK)
+            return mst;
+    }
     w->parallel = w->threads > 1 && p->n >= SD_PARALLEL_MIN_PARTICLES;
     if (p->n == 0) {
+        if (w->comm) { /* this rank still takes part in the ghost exchange */
+            sd_status gst = w->comm->ghosts(w->comm_ctx, w, err);
+            if (gst != SD_OK)
+                return gst;
+        }
         memset(&w->pairs.kind_start, 0, sizeof w->pairs.kind_start);
         memset(&w->wpairs.kind_start, 0, sizeof w->wpairs.kind_start);
         w->pairs.n = 0;
         w->wpairs.n = 0;
-        w->n_ghost = 0;
         w->rebuilds++;
         return SD_OK;
     }
-    w->n_ghost = 0; /* made again below, after the owned particles are sorted */
     if (w->def.periodic) {
         sd_status pst = w->dirty ? sd_periodic_check(w, err) : SD_OK;
         if (pst != SD_OK)
@@ -374,6 +394,8 @@ sd_status sd_world_rebuild(sd_world *w, sd_error *err)
             sd_particles_permute(p, perm, scratch, w->threads, w->parallel);
             if (w->def.periodic)
                 st = sd_periodic_ghosts(w);
+            if (st == SD_OK && w->comm)
+                st = w->comm->ghosts(w->comm_ctx, w, err);
             /* the arrays may have grown for the ghosts */
             in.x = p->x;
             in.q = p->q;
@@ -385,6 +407,9 @@ sd_status sd_world_rebuild(sd_world *w, sd_error *err)
             in.ghost_owner = w->ghost_owner;
             if (st == SD_OK)
                 st = sd_bins_build(&w->bins, &in, &w->pairs, &w->wpairs);
+            /* a decomposed run sums in the order of stable ids (bins.h) */
+            if (st == SD_OK && w->comm)
+                st = sd_pairs_canonical(&in, &w->pairs);
         }
         sd_rebuild_tables_free(&tables);
     }

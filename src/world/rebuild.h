@@ -18,6 +18,10 @@ sd_status sd_world_check_periodic_def(const sd_world_def *def, sd_error *err);
  * rebuilds an owned particle may stand up to half the skin outside it);
  * leaves it alone in a world without periodic axes. */
 void sd_world_wrap_periodic(const sd_world *w, sd_v3d *x);
+/* Room for ng ghosts after the owned particles: the ghost tables and the
+ * particle arrays (periodic images here, other ranks' particles in
+ * src/mpi/). */
+sd_status sd_world_ghosts_reserve(sd_world *w, size_t ng);
 /* The memory of the pair lists, bins and ghosts. */
 void sd_world_broad_free(sd_world *w);
 

@@ -21,6 +21,8 @@
  * solver's half of the solver interface, world/solver.h). The CUDA backend
  * will provide the same stages on device copies of the same views.
  */
+#include <math.h>
+
 #include "backend/backend.h"
 #include "core/error.h"
 #include "world/profile.h"
@@ -51,7 +53,10 @@ static const sd_backend *sd_backend_of(const sd_world *w)
 static sd_status sd_stage_rebuild(sd_world *w, const sd_backend *be, sd_error *err)
 {
     double t = sd_profile_now();
-    if (w->dirty || sd_world_walls_moved(w) || be->needs_rebuild(&w->stage)) {
+    int need = w->dirty || sd_world_walls_moved(w) || be->needs_rebuild(&w->stage);
+    if (w->comm) /* the ranks rebuild together (migration and ghosts are collective) */
+        need = w->comm->any(w->comm_ctx, need);
+    if (need) {
         sd_status st = be->rebuild(w, err);
         if (st != SD_OK)
             return st;
@@ -63,6 +68,8 @@ static sd_status sd_stage_rebuild(sd_world *w, const sd_backend *be, sd_error *e
             return st;
     }
     be->exchange_ghosts(&w->stage);
+    if (w->comm)
+        w->comm->exchange(w->comm_ctx, w); /* other ranks' particles: their owners' state of this step */
     sd_profile_lap(w, SD_PROFILE_REBUILD, &t, 1);
     return SD_OK;
 }
@@ -148,7 +155,10 @@ sd_status sd_cells_prepare(sd_world *w, sd_error *err)
         return st;
     if (w->def.skin > 0)
         w->skin = (sd_real)w->def.skin;
-    else if (w->p.n > 0)
+    else if (w->comm) { /* the same skin on every rank: from the smallest radius of all */
+        double rmin = w->comm->min(w->comm_ctx, w->p.n > 0 ? (double)be->min_radius(&w->stage) : (double)INFINITY);
+        w->skin = isfinite(rmin) ? SD_R(0.2) * (sd_real)rmin : SD_R(0.0);
+    } else if (w->p.n > 0)
         w->skin = SD_R(0.2) * be->min_radius(&w->stage);
     else
         w->skin = SD_R(0.0);

@@ -169,6 +169,10 @@ struct sd_world {
     size_t n_ghost, ghost_cap;
     uint32_t *ghost_owner;
     sd_vec3 *ghost_shift;
+    /* a decomposed run (src/mpi/): this rank's side of the exchanges, NULL
+     * in a serial run (then nothing below changes a bit of it) */
+    const struct sd_world_comm *comm;
+    void *comm_ctx;
     struct sd_grid_state *grid_state; /* solver grid (src/grid), NULL otherwise */
     const struct sd_solver_ops *solver; /* the engine, chosen at creation (world/solver.h) */
     const struct sd_backend *backend; /* the cells solver's stages, chosen at creation (world/backend.c) */
@@ -185,6 +189,26 @@ struct sd_world {
     int guards_off;           /* tests only: sd_world_guards skips the speed and overlap guards (a set-up
                                * overlapped on purpose, e.g. tests/unit/broad.c); the NaN check stays */
 };
+
+/* The hooks a domain decomposition (src/mpi/) gives the cells solver; each
+ * is collective: every rank calls it at the same point of the same step.
+ * With a comm set, the pair lists are put in the canonical order of
+ * sd_pairs_canonical (broad/bins.h), so a particle sums its pairs in an
+ * order fixed by stable ids, the same on any rank count. */
+typedef struct sd_world_comm {
+    /* the logical or of flag over the ranks (the rebuild decision) */
+    int (*any)(void *ctx, int flag);
+    /* the least of v over the ranks (the skin from the smallest radius) */
+    double (*min)(void *ctx, double v);
+    /* at a rebuild, before the sort: owned particles that left this rank's
+     * sub-domain go to their new rank, with their contact history */
+    sd_status (*migrate)(void *ctx, sd_world *w, sd_error *err);
+    /* at a rebuild, after the sort: the ghosts of other ranks' particles
+     * (ghost_owner SD_GHOST_REMOTE), appended after the owned ones */
+    sd_status (*ghosts)(void *ctx, sd_world *w, sd_error *err);
+    /* each step, after the drift: the ghosts take their owners' state */
+    void (*exchange)(void *ctx, sd_world *w);
+} sd_world_comm;
 
 /* Grows the particle arrays to hold at least cap particles. */
 sd_status sd_particles_reserve(sd_particles *p, size_t cap);

@@ -1,0 +1,621 @@
+/* comm.c — the decomposed run's exchanges (mpi.h): the world's hooks
+ * (sd_world_comm) over MPI_COMM_WORLD.
+ *
+ * A particle travels as one row: every field of SD_PARTICLE_FIELDS in
+ * turn, copied byte for byte, so a ghost or a migrated particle is the
+ * same bits as its owner's copy (the rows follow the list: a new field
+ * travels without a change here). All traffic is one MPI_Alltoallv per
+ * exchange: any rank may send to any other, so a slab thinner than the
+ * contact reach still gets every ghost it needs.
+ */
+#include <mpi.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/alloc.h"
+#include "backend/backend.h"
+#include "core/error.h"
+#include "mpi/mpi.h"
+#include "world/remove.h"
+#include "world/solver.h"
+#include "world/world.h"
+
+struct sd_mpi {
+    MPI_Comm comm;
+    int rank, size;
+    sd_mpi_cut *cuts;          /* size - 1 */
+    int *scount, *sdispl, *rcount, *rdispl; /* per rank, in bytes */
+    /* the ghost rows this rank sends each step: owned storage indices,
+     * grouped by destination rank; and where the received ones sit */
+    uint32_t *send_idx;
+    size_t send_n, send_cap;
+    int *ghost_count;          /* per rank, rows sent (then received) */
+    int *ghost_recv;           /* per rank, rows received */
+    size_t ghost_base, ghost_n;
+    unsigned char *sbuf, *rbuf;
+    size_t sbuf_cap, rbuf_cap;
+    size_t migrated;           /* particles this rank sent away, since attach */
+};
+
+/* ---- rows ------------------------------------------------------------------ */
+
+static size_t sd_row_size(void)
+{
+    size_t s = 0;
+#define SD_X_SIZE(type, name, ...) s += sizeof(type);
+    SD_PARTICLE_FIELDS(SD_X_SIZE)
+#undef SD_X_SIZE
+    return s;
+}
+
+static unsigned char *sd_row_pack(const sd_particles *p, size_t k, unsigned char *b)
+{
+#define SD_X_PACK(type, name, ...)            \
+    memcpy(b, &p->name[k], sizeof(type)); \
+    b += sizeof(type);
+    SD_PARTICLE_FIELDS(SD_X_PACK)
+#undef SD_X_PACK
+    return b;
+}
+
+static const unsigned char *sd_row_unpack(sd_particles *p, size_t k, const unsigned char *b)
+{
+#define SD_X_UNPACK(type, name, ...)          \
+    memcpy(&p->name[k], b, sizeof(type)); \
+    b += sizeof(type);
+    SD_PARTICLE_FIELDS(SD_X_UNPACK)
+#undef SD_X_UNPACK
+    return b;
+}
+
+static int sd_grow(unsigned char **buf, size_t *cap, size_t need)
+{
+    if (need <= *cap)
+        return 0;
+    size_t c = need + need / 2 + 64;
+    unsigned char *q = sd_realloc(*buf, c);
+    if (!q)
+        return -1;
+    *buf = q;
+    *cap = c;
+    return 0;
+}
+
+/* One all-to-all of bytes: scount (per rank) from sbuf, the counts
+ * exchanged first; the received bytes in rbuf, rcount per rank. Returns the
+ * bytes received, or (size_t)-1 without memory. */
+static size_t sd_alltoall(sd_mpi *m)
+{
+    MPI_Alltoall(m->scount, 1, MPI_INT, m->rcount, 1, MPI_INT, m->comm);
+    size_t sn = 0, rn = 0;
+    for (int r = 0; r < m->size; ++r) {
+        m->sdispl[r] = (int)sn;
+        m->rdispl[r] = (int)rn;
+        sn += (size_t)m->scount[r];
+        rn += (size_t)m->rcount[r];
+    }
+    if (sd_grow(&m->rbuf, &m->rbuf_cap, rn) || sd_grow(&m->sbuf, &m->sbuf_cap, sn))
+        return (size_t)-1;
+    MPI_Alltoallv(m->sbuf, m->scount, m->sdispl, MPI_BYTE, m->rbuf, m->rcount, m->rdispl, MPI_BYTE, m->comm);
+    return rn;
+}
+
+/* ---- hooks ------------------------------------------------------------------ */
+
+static int sd_hook_any(void *ctx, int flag)
+{
+    sd_mpi *m = ctx;
+    int in = flag != 0, out = 0;
+    MPI_Allreduce(&in, &out, 1, MPI_INT, MPI_LOR, m->comm);
+    return out;
+}
+
+static double sd_hook_min(void *ctx, double v)
+{
+    sd_mpi *m = ctx;
+    double out = v;
+    MPI_Allreduce(&v, &out, 1, MPI_DOUBLE, MPI_MIN, m->comm);
+    return out;
+}
+
+/* A history entry in transit: a pair's key or a wall pair's, its spring. */
+typedef struct sd_hist_row {
+    sd_pair_key key;
+    sd_wall_pair_key wkey;
+    sd_vec3 ds;
+    int wall; /* 1: a wall pair's entry */
+} sd_hist_row;
+
+/* A departing particle: its id and the rank it goes to. */
+typedef struct sd_leaver {
+    uint64_t id;
+    int dest;
+} sd_leaver;
+
+static int sd_leaver_cmp(const void *a, const void *b)
+{
+    uint64_t p = ((const sd_leaver *)a)->id, q = ((const sd_leaver *)b)->id;
+    return p < q ? -1 : (p > q ? 1 : 0);
+}
+
+/* The rank a departing id goes to, or -1 when the id stays. */
+static int sd_dest_of(const sd_leaver *v, size_t n, uint64_t id)
+{
+    sd_leaver key = {id, -1};
+    const sd_leaver *f = n ? bsearch(&key, v, n, sizeof *v, sd_leaver_cmp) : NULL;
+    return f ? f->dest : -1;
+}
+
+/* Migration (mpi.h): the particles and their history, then the arrays
+ * compacted and the arrivals appended. The entries with a zero spring
+ * carry nothing (the bins keep only non-zero ones: broad/bins.c). */
+static sd_status sd_hook_migrate(void *ctx, sd_world *w, sd_error *err)
+{
+    sd_mpi *m = ctx;
+    sd_particles *p = &w->p;
+    size_t n = p->n, leave = 0, rs = sd_row_size();
+    int *dest = sd_malloc((n ? n : 1) * sizeof *dest);
+    if (!dest)
+        return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "migration: out of memory (%zu particles)", n);
+    for (size_t k = 0; k < n; ++k) {
+        dest[k] = sd_mpi_rank_of(m->cuts, m->size, (double)p->x[k].x, p->id[k]);
+        leave += dest[k] != m->rank;
+    }
+    m->migrated += leave;
+    /* the departing ids, sorted, with their ranks (history lookup) */
+    sd_leaver *ids = sd_malloc((leave ? leave : 1) * sizeof *ids);
+    if (!ids) {
+        sd_free(dest);
+        return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "migration: out of memory (%zu particles)", n);
+    }
+    {
+        size_t t = 0;
+        for (size_t k = 0; k < n; ++k)
+            if (dest[k] != m->rank)
+                ids[t++] = (sd_leaver){p->id[k], dest[k]};
+        qsort(ids, leave, sizeof *ids, sd_leaver_cmp);
+    }
+    /* per rank: rows, then history entries; sizes first */
+    const sd_pair_list *l = &w->pairs;
+    const sd_wall_pair_list *wl = &w->wpairs;
+    size_t *nrow = sd_malloc((size_t)m->size * 2 * sizeof *nrow);
+    sd_status st = SD_OK;
+    if (!nrow)
+        st = SD_ERR_MEMORY;
+    size_t *nhist = nrow ? nrow + m->size : NULL;
+    if (st == SD_OK) {
+        memset(nrow, 0, (size_t)m->size * 2 * sizeof *nrow);
+        for (size_t k = 0; k < n; ++k)
+            if (dest[k] != m->rank)
+                nrow[dest[k]]++;
+        for (size_t e = 0; leave && e < l->n; ++e) {
+            if (l->ds[e].x == 0 && l->ds[e].y == 0 && l->ds[e].z == 0)
+                continue;
+            int a = sd_dest_of(ids, leave, l->key[e].id_lo), b = sd_dest_of(ids, leave, l->key[e].id_hi);
+            if (a >= 0)
+                nhist[a]++;
+            if (b >= 0 && b != a)
+                nhist[b]++;
+        }
+        for (size_t e = 0; leave && e < wl->n; ++e) {
+            if (wl->ds[e].x == 0 && wl->ds[e].y == 0 && wl->ds[e].z == 0)
+                continue;
+            int a = sd_dest_of(ids, leave, wl->key[e].id);
+            if (a >= 0)
+                nhist[a]++;
+        }
+        size_t total = 0;
+        for (int r = 0; r < m->size; ++r) {
+            size_t b = 2 * sizeof(uint64_t) + nrow[r] * rs + nhist[r] * sizeof(sd_hist_row);
+            m->scount[r] = (int)b;
+            total += b;
+        }
+        if (sd_grow(&m->sbuf, &m->sbuf_cap, total))
+            st = SD_ERR_MEMORY;
+    }
+    if (st == SD_OK) {
+        /* each rank's block: two counts, the rows, the entries */
+        unsigned char **cur = sd_malloc((size_t)m->size * sizeof *cur);
+        if (!cur)
+            st = SD_ERR_MEMORY;
+        else {
+            size_t off = 0;
+            for (int r = 0; r < m->size; ++r) {
+                cur[r] = m->sbuf + off;
+                uint64_t c[2] = {nrow[r], nhist[r]};
+                memcpy(cur[r], c, sizeof c);
+                cur[r] += sizeof c;
+                off += (size_t)m->scount[r];
+            }
+            for (size_t k = 0; k < n; ++k)
+                if (dest[k] != m->rank)
+                    cur[dest[k]] = sd_row_pack(p, k, cur[dest[k]]);
+            for (size_t e = 0; leave && e < l->n; ++e) {
+                if (l->ds[e].x == 0 && l->ds[e].y == 0 && l->ds[e].z == 0)
+                    continue;
+                int a = sd_dest_of(ids, leave, l->key[e].id_lo), b = sd_dest_of(ids, leave, l->key[e].id_hi);
+                sd_hist_row h;
+                memset(&h, 0, sizeof h);
+                h.key = l->key[e];
+                h.ds = l->ds[e];
+                for (int t = 0; t < 2; ++t) {
+                    int r = t ? b : a;
+                    if (r < 0 || (t && b == a))
+                        continue;
+                    memcpy(cur[r], &h, sizeof h);
+                    cur[r] += sizeof h;
+                }
+            }
+            for (size_t e = 0; leave && e < wl->n; ++e) {
+                if (wl->ds[e].x == 0 && wl->ds[e].y == 0 && wl->ds[e].z == 0)
+                    continue;
+                int a = sd_dest_of(ids, leave, wl->key[e].id);
+                if (a < 0)
+                    continue;
+                sd_hist_row h;
+                memset(&h, 0, sizeof h);
+                h.wkey = wl->key[e];
+                h.ds = wl->ds[e];
+                h.wall = 1;
+                memcpy(cur[a], &h, sizeof h);
+                cur[a] += sizeof h;
+            }
+            sd_free(cur);
+        }
+    }
+    /* every rank takes part in the exchange, even after a failure here:
+     * a rank that stopped would leave the others waiting */
+    int bad = st != SD_OK, any_bad = 0;
+    MPI_Allreduce(&bad, &any_bad, 1, MPI_INT, MPI_LOR, m->comm);
+    if (any_bad) {
+        sd_free(dest);
+        sd_free(ids);
+        sd_free(nrow);
+        return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "migration: out of memory on %s rank",
+                            bad ? "this" : "another");
+    }
+    size_t rn = sd_alltoall(m);
+    /* compaction of the staying particles, in order */
+    size_t keep = 0;
+    for (size_t k = 0; k < n; ++k) {
+        if (dest[k] != m->rank)
+            continue;
+        if (keep != k) {
+#define SD_X_MOVE(type, name, ...) p->name[keep] = p->name[k];
+            SD_PARTICLE_FIELDS(SD_X_MOVE)
+#undef SD_X_MOVE
+        }
+        ++keep;
+    }
+    p->n = keep;
+    sd_free(dest);
+    sd_free(ids);
+    sd_free(nrow);
+    if (rn == (size_t)-1)
+        return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "migration: out of memory for the received rows");
+    /* the arrivals: rows after the staying particles, entries after the
+     * old lists' (the next build carries them by key) */
+    size_t arrive = 0, hist = 0;
+    for (int r = 0; r < m->size; ++r) {
+        uint64_t c[2];
+        memcpy(c, m->rbuf + m->rdispl[r], sizeof c);
+        arrive += c[0];
+        hist += c[1];
+    }
+    if (arrive == 0 && hist == 0)
+        return SD_OK;
+    if (sd_particles_reserve(p, keep + arrive) != SD_OK || sd_pairs_reserve(&w->pairs, w->pairs.n + hist) != SD_OK ||
+        sd_pairs_reserve_walls(&w->wpairs, w->wpairs.n + hist) != SD_OK)
+        return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "migration: out of memory for %zu arriving particles",
+                            arrive);
+    for (int r = 0; r < m->size; ++r) {
+        const unsigned char *b = m->rbuf + m->rdispl[r];
+        uint64_t c[2];
+        memcpy(c, b, sizeof c);
+        b += sizeof c;
+        for (uint64_t t = 0; t < c[0]; ++t)
+            b = sd_row_unpack(p, p->n++, b);
+        for (uint64_t t = 0; t < c[1]; ++t) {
+            sd_hist_row h;
+            memcpy(&h, b, sizeof h);
+            b += sizeof h;
+            if (h.wall) {
+                size_t e = w->wpairs.n++;
+                w->wpairs.key[e] = h.wkey;
+                w->wpairs.ds[e] = h.ds;
+            } else {
+                size_t e = w->pairs.n++;
+                w->pairs.key[e] = h.key;
+                w->pairs.ds[e] = h.ds;
+                w->pairs.x0_ok[e] = 0;
+                w->pairs.x0[e] = sd_v3_zero();
+            }
+        }
+    }
+    return SD_OK;
+}
+
+/* Packs the ghost rows of the send list, grouped by rank (ghost_count). */
+static void sd_ghost_pack(sd_mpi *m, const sd_particles *p)
+{
+    size_t rs = sd_row_size();
+    unsigned char *b = m->sbuf;
+    for (size_t t = 0; t < m->send_n; ++t)
+        b = sd_row_pack(p, m->send_idx[t], b);
+    for (int r = 0; r < m->size; ++r)
+        m->scount[r] = (int)((size_t)m->ghost_count[r] * rs);
+}
+
+static void sd_ghost_unpack(sd_mpi *m, sd_particles *p)
+{
+    const unsigned char *b = m->rbuf;
+    for (size_t g = 0; g < m->ghost_n; ++g)
+        b = sd_row_unpack(p, m->ghost_base + g, b);
+}
+
+/* Ghosts (mpi.h): the owned particles within reach of each other rank's
+ * slab, sent there; those received appended after this rank's own ghosts. */
+static sd_status sd_hook_ghosts(void *ctx, sd_world *w, sd_error *err)
+{
+    sd_mpi *m = ctx;
+    sd_particles *p = &w->p;
+    size_t n = p->n, rs = sd_row_size();
+    double rmax = 0;
+    for (size_t k = 0; k < n; ++k)
+        rmax = rmax > (double)p->radius[k] ? rmax : (double)p->radius[k];
+    double all = rmax;
+    MPI_Allreduce(&rmax, &all, 1, MPI_DOUBLE, MPI_MAX, m->comm);
+    /* the reach of a pair (world/rebuild.c's band): a particle within it of
+     * a slab may touch, within the skin, one of the slab's particles */
+    double band = 2.0 * all + (double)w->skin;
+    m->send_n = 0;
+    int oom = 0;
+    for (int r = 0; r < m->size; ++r) {
+        m->ghost_count[r] = 0;
+        if (r == m->rank)
+            continue;
+        double lo, hi;
+        sd_mpi_slab(m->cuts, m->size, r, &lo, &hi);
+        for (size_t k = 0; k < n; ++k) {
+            double x = (double)p->x[k].x;
+            if (!(x >= lo - band && x <= hi + band))
+                continue;
+            if (m->send_n == m->send_cap) {
+                size_t c = m->send_cap * 2 + 64;
+                uint32_t *q = sd_realloc(m->send_idx, c * sizeof *q);
+                if (!q) {
+                    oom = 1;
+                    break;
+                }
+                m->send_idx = q;
+                m->send_cap = c;
+            }
+            m->send_idx[m->send_n++] = (uint32_t)k;
+            m->ghost_count[r]++;
+        }
+    }
+    if (!oom && sd_grow(&m->sbuf, &m->sbuf_cap, m->send_n * rs))
+        oom = 1;
+    int any = 0;
+    MPI_Allreduce(&oom, &any, 1, MPI_INT, MPI_LOR, m->comm);
+    if (any) {
+        m->send_n = 0;
+        m->ghost_n = 0;
+        return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "ghosts: out of memory on %s rank", oom ? "this" : "another");
+    }
+    sd_ghost_pack(m, p);
+    size_t rn = sd_alltoall(m);
+    if (rn == (size_t)-1)
+        return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "ghosts: out of memory for the received rows");
+    size_t got = rn / rs;
+    m->ghost_base = n + w->n_ghost;
+    m->ghost_n = got;
+    if (sd_world_ghosts_reserve(w, w->n_ghost + got) != SD_OK)
+        return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "ghosts: out of memory for %zu ghosts", got);
+    sd_ghost_unpack(m, p);
+    for (size_t g = 0; g < got; ++g) {
+        w->ghost_owner[w->n_ghost + g] = SD_GHOST_REMOTE;
+        w->ghost_shift[w->n_ghost + g] = sd_v3_zero();
+    }
+    w->n_ghost += got;
+    return SD_OK;
+}
+
+/* Each step: the same rows again, in the same order (the counts are those
+ * of the rebuild, so the received rows land on the same ghosts). */
+static void sd_hook_exchange(void *ctx, sd_world *w)
+{
+    sd_mpi *m = ctx;
+    size_t rs = sd_row_size();
+    sd_ghost_pack(m, &w->p);
+    size_t rn = sd_alltoall(m);
+    if (rn == (size_t)-1 || rn != m->ghost_n * rs) { /* no memory: the buffers hold the sizes of the rebuild */
+        fprintf(stderr, "shapedem: rank %d: ghost exchange: out of memory or rows lost (%zu bytes for %zu ghosts)\n",
+                m->rank, rn, m->ghost_n);
+        MPI_Abort(m->comm, 1);
+    }
+    sd_ghost_unpack(m, &w->p);
+}
+
+static const sd_world_comm sd_mpi_hooks = {sd_hook_any, sd_hook_min, sd_hook_migrate, sd_hook_ghosts,
+                                           sd_hook_exchange};
+
+/* ---- attach, gather, fail --------------------------------------------------- */
+
+static sd_status sd_mpi_refuse(const sd_world *w, sd_error *err)
+{
+    if (w->solver != &sd_solver_cells)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.solver",
+                            "MPI ranks run the cells solver only (the grid solver is not decomposed yet)");
+    if (w->backend && w->backend != &sd_backend_cpu)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.backend",
+                            "MPI ranks run the CPU backend only in this version");
+    if (w->def.periodic)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.periodic",
+                            "periodic axes across MPI ranks are not supported yet");
+    if (w->has_shapes || w->dim2)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "particles",
+                            "MPI ranks take plain spheres only in this version (shapes, composites and the "
+                            "planar mode are not decomposed yet)");
+    if (w->walls_moving || w->process || w->mesh_count)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "walls",
+                            "MPI ranks take fixed plane and box walls only in this version (no moving or mesh "
+                            "walls, insertions or outlets)");
+    if (w->prepared)
+        return sd_error_set(err, SD_ERR_INTERNAL, "", 0, "", "sd_mpi_attach: the world has already stepped");
+    return SD_OK;
+}
+
+sd_status sd_mpi_attach(sd_world *w, sd_mpi **out, sd_error *err)
+{
+    *out = NULL;
+    sd_status st = sd_mpi_refuse(w, err);
+    sd_mpi *m = sd_calloc(1, sizeof *m);
+    if (st == SD_OK && !m)
+        st = sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory for the decomposition");
+    int size = 1, rank = 0;
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    /* every rank must hold the same particles: their count and id sum agree */
+    const sd_particles *p = &w->p;
+    unsigned long long mine[2] = {p->n, 0}, lo[2], hi[2];
+    for (size_t k = 0; k < p->n; ++k)
+        mine[1] += p->id[k];
+    MPI_Allreduce(mine, lo, 2, MPI_UNSIGNED_LONG_LONG, MPI_MIN, MPI_COMM_WORLD);
+    MPI_Allreduce(mine, hi, 2, MPI_UNSIGNED_LONG_LONG, MPI_MAX, MPI_COMM_WORLD);
+    if (st == SD_OK && (lo[0] != hi[0] || lo[1] != hi[1]))
+        st = sd_error_set(err, SD_ERR_INPUT, "", 0, "particles",
+                          "the ranks built different worlds (%llu to %llu particles): every rank must read the "
+                          "same scene", lo[0], hi[0]);
+    if (m && st == SD_OK) {
+        m->comm = MPI_COMM_WORLD;
+        m->rank = rank;
+        m->size = size;
+        m->cuts = sd_malloc((size_t)(size > 1 ? size - 1 : 1) * sizeof *m->cuts);
+        m->scount = sd_malloc((size_t)size * 6 * sizeof(int));
+        if (!m->cuts || !m->scount)
+            st = sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory for the decomposition");
+    }
+    double *x = NULL;
+    uint8_t *mark = NULL;
+    if (st == SD_OK) {
+        m->sdispl = m->scount + size;
+        m->rcount = m->scount + 2 * size;
+        m->rdispl = m->scount + 3 * size;
+        m->ghost_count = m->scount + 4 * size;
+        m->ghost_recv = m->scount + 5 * size;
+        x = sd_malloc((p->n ? p->n : 1) * sizeof *x);
+        mark = sd_malloc(p->n ? p->n : 1);
+        if (!x || !mark)
+            st = sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory splitting %zu particles", p->n);
+    }
+    if (st == SD_OK) {
+        for (size_t k = 0; k < p->n; ++k)
+            x[k] = (double)p->x[k].x;
+        if (sd_mpi_split(p->n, x, p->id, size, m->cuts) != SD_OK)
+            st = sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory splitting %zu particles", p->n);
+    }
+    if (st == SD_OK) {
+        for (size_t k = 0; k < p->n; ++k)
+            mark[k] = (uint8_t)(sd_mpi_rank_of(m->cuts, size, x[k], p->id[k]) != rank);
+        st = sd_world_remove_particles(w, mark, NULL, err);
+    }
+    sd_free(x);
+    sd_free(mark);
+    if (st != SD_OK) {
+        if (m) {
+            sd_free(m->cuts);
+            sd_free(m->scount);
+            sd_free(m);
+        }
+        return st;
+    }
+    w->comm = &sd_mpi_hooks;
+    w->comm_ctx = m;
+    *out = m;
+    return SD_OK;
+}
+
+void sd_mpi_detach(sd_world *w, sd_mpi *m)
+{
+    if (!m)
+        return;
+    if (w && w->comm_ctx == m) {
+        w->comm = NULL;
+        w->comm_ctx = NULL;
+    }
+    sd_free(m->cuts);
+    sd_free(m->scount);
+    sd_free(m->send_idx);
+    sd_free(m->sbuf);
+    sd_free(m->rbuf);
+    sd_free(m);
+}
+
+int sd_mpi_rank(const sd_mpi *m) { return m->rank; }
+int sd_mpi_size(const sd_mpi *m) { return m->size; }
+size_t sd_mpi_migrated(const sd_mpi *m) { return m->migrated; }
+size_t sd_mpi_ghosts(const sd_mpi *m) { return m->ghost_n; }
+
+static int sd_state_cmp(const void *a, const void *b)
+{
+    const sd_particle_state *p = a, *q = b;
+    return p->id < q->id ? -1 : (p->id > q->id ? 1 : 0);
+}
+
+sd_status sd_mpi_gather(const sd_mpi *m, const sd_world *w, sd_particle_state **out, size_t *n, sd_error *err)
+{
+    *out = NULL;
+    *n = 0;
+    size_t mine = w->p.n;
+    sd_particle_state *s = sd_malloc((mine ? mine : 1) * sizeof *s);
+    int ok = s != NULL, all_ok = 0;
+    for (size_t k = 0; ok && k < mine; ++k)
+        sd_world_get_particle(w, k, &s[k]);
+    MPI_Allreduce(&ok, &all_ok, 1, MPI_INT, MPI_LAND, m->comm);
+    if (!all_ok) {
+        sd_free(s);
+        return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "gather: out of memory on some rank");
+    }
+    int bytes = (int)(mine * sizeof *s);
+    int *cnt = NULL, *displ = NULL;
+    sd_particle_state *all = NULL;
+    size_t total = 0;
+    if (m->rank == 0) {
+        cnt = sd_malloc((size_t)m->size * 2 * sizeof *cnt);
+        if (cnt)
+            displ = cnt + m->size;
+    }
+    MPI_Gather(&bytes, 1, MPI_INT, cnt, 1, MPI_INT, 0, m->comm);
+    if (m->rank == 0) {
+        for (int r = 0; r < m->size; ++r) {
+            displ[r] = (int)total;
+            total += (size_t)cnt[r];
+        }
+        all = sd_malloc(total ? total : 1);
+    }
+    MPI_Gatherv(s, bytes, MPI_BYTE, all, cnt, displ, MPI_BYTE, 0, m->comm);
+    sd_free(s);
+    sd_free(cnt);
+    if (m->rank == 0) {
+        *n = total / sizeof *all;
+        qsort(all, *n, sizeof *all, sd_state_cmp);
+        *out = all;
+    }
+    return SD_OK;
+}
+
+_Noreturn void sd_mpi_fail(const sd_mpi *m, const char *stage, sd_status st, const sd_error *err)
+{
+    int rank = 0;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    char buf[1024] = "";
+    if (err)
+        sd_error_format(err, buf, sizeof buf);
+    fprintf(stderr, "shapedem: rank %d of %d: %s failed (%s): %s\n", rank, m ? m->size : 0, stage,
+            sd_status_name(st), buf);
+    fflush(stderr);
+    MPI_Abort(m ? m->comm : MPI_COMM_WORLD, st == SD_ERR_INPUT ? 2 : 1);
+    abort(); /* MPI_Abort does not return */
+}

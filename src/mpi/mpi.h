@@ -1,0 +1,78 @@
+/* mpi.h — domain decomposition over MPI ranks (built with SHAPEDEM_MPI;
+ * the serial build has none of it). The first slice: plain spheres on the
+ * cells solver and the CPU backend, a static split along x.
+ *
+ * Each rank builds the same world (the same scene: every particle on every
+ * rank), then sd_mpi_attach keeps the particles of its own sub-domain and
+ * hooks the exchanges into the world's rebuild and step (sd_world_comm,
+ * world/world.h):
+ *
+ *   split: the particles sorted by (x, stable id) and cut into runs of
+ *          equal count, one per rank (weighted by particle count); rank r
+ *          owns the particles whose (x, id) lies in [cut_r, cut_r+1)
+ *   migration: at each rebuild (every rank rebuilds when any must), an
+ *          owned particle whose (x, id) left its sub-domain goes to the rank
+ *          that owns it now, with its pair and wall history entries (by
+ *          key: the receiving rank's next list finds them as its own)
+ *   ghosts: at each rebuild every owned particle within the contact reach
+ *          2 r_max + skin of another rank's slab is sent there as a ghost
+ *          (ghost_owner SD_GHOST_REMOTE); each step the same particles'
+ *          rows are sent again, after the drift
+ *   order: the pair lists take the canonical order (sd_pairs_canonical),
+ *          so each particle's force sum, and so the state, has the same
+ *          bits on any rank count
+ *
+ * Errors: a failing MPI call aborts every rank (MPI_ERRORS_ARE_FATAL, the
+ * default); an engine error on one rank is reported by that rank and ends
+ * the job with sd_mpi_fail, never a hang of the others in a collective.
+ */
+#ifndef SD_MPI_MPI_H
+#define SD_MPI_MPI_H
+
+#include <shapedem/shapedem.h>
+
+/* ---- the split (mpi/decomp.c: no MPI in it) --------------------------------- */
+
+/* A cut of the x axis: (x, id) pairs at or above it are on the next rank's
+ * side. */
+typedef struct sd_mpi_cut {
+    double x;
+    uint64_t id;
+} sd_mpi_cut;
+
+/* The ranks-1 cuts that share n particles (positions x, ids id) out in
+ * runs of equal count, sorted by (x, id): rank r gets particles
+ * floor(r n / ranks) .. floor((r + 1) n / ranks) - 1 of that order. cuts
+ * gets ranks - 1 entries. Fails only without memory. */
+sd_status sd_mpi_split(size_t n, const double *x, const uint64_t *id, int ranks, sd_mpi_cut *cuts);
+/* The rank that owns (x, id) under the cuts. */
+int sd_mpi_rank_of(const sd_mpi_cut *cuts, int ranks, double x, uint64_t id);
+/* Rank r's slab [lo, hi] along x (-inf / +inf at the ends). */
+void sd_mpi_slab(const sd_mpi_cut *cuts, int ranks, int r, double *lo, double *hi);
+
+/* ---- the decomposed run (mpi/comm.c) ------------------------------------------ */
+
+typedef struct sd_mpi sd_mpi;
+
+/* Splits world w (every rank's copy holding the same particles, not yet
+ * prepared) over the ranks of MPI_COMM_WORLD: keeps this rank's particles
+ * and installs the hooks. MPI must be initialised. Refuses what the slice
+ * does not cover yet (non-sphere particles, periodic axes, the grid solver,
+ * a device backend, servo walls, insertions) with SD_ERR_INPUT. */
+sd_status sd_mpi_attach(sd_world *w, sd_mpi **out, sd_error *err);
+/* The hooks off and the memory freed (the world stays, holding its own
+ * particles). */
+void sd_mpi_detach(sd_world *w, sd_mpi *m);
+int sd_mpi_rank(const sd_mpi *m);
+int sd_mpi_size(const sd_mpi *m);
+/* Particles this rank has sent to others since attach; ghosts it holds. */
+size_t sd_mpi_migrated(const sd_mpi *m);
+size_t sd_mpi_ghosts(const sd_mpi *m);
+/* The owned particles of every rank, on rank 0, in stable-id order: *out
+ * gets *n states (sd_free them; NULL and 0 on the other ranks). Collective. */
+sd_status sd_mpi_gather(const sd_mpi *m, const sd_world *w, sd_particle_state **out, size_t *n, sd_error *err);
+/* Ends the whole job after an error on this rank: one message on stderr,
+ * naming the rank and the stage, then MPI_Abort with status 2 (input) or 1. */
+_Noreturn void sd_mpi_fail(const sd_mpi *m, const char *stage, sd_status st, const sd_error *err);
+
+#endif
