@@ -36,6 +36,7 @@ struct sd_mpi {
     unsigned char *sbuf, *rbuf;
     size_t sbuf_cap, rbuf_cap;
     size_t migrated;           /* particles this rank sent away, since attach */
+    size_t carried;            /* and their pair and wall springs sent with them */
 };
 
 /* ---- rows ------------------------------------------------------------------ */
@@ -206,6 +207,8 @@ static sd_status sd_hook_migrate(void *ctx, sd_world *w, sd_error *err)
                 nhist[a]++;
         }
         size_t total = 0;
+        for (int r = 0; r < m->size; ++r)
+            m->carried += nhist[r];
         for (int r = 0; r < m->size; ++r) {
             size_t b = 2 * sizeof(uint64_t) + nrow[r] * rs + nhist[r] * sizeof(sd_hist_row);
             m->scount[r] = (int)b;
@@ -556,6 +559,7 @@ void sd_mpi_detach(sd_world *w, sd_mpi *m)
 int sd_mpi_rank(const sd_mpi *m) { return m->rank; }
 int sd_mpi_size(const sd_mpi *m) { return m->size; }
 size_t sd_mpi_migrated(const sd_mpi *m) { return m->migrated; }
+size_t sd_mpi_carried(const sd_mpi *m) { return m->carried; }
 size_t sd_mpi_ghosts(const sd_mpi *m) { return m->ghost_n; }
 
 static int sd_state_cmp(const void *a, const void *b)
@@ -608,12 +612,13 @@ sd_status sd_mpi_gather(const sd_mpi *m, const sd_world *w, sd_particle_state **
 
 _Noreturn void sd_mpi_fail(const sd_mpi *m, const char *stage, sd_status st, const sd_error *err)
 {
-    int rank = 0;
+    int rank = 0, size = 1;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
     char buf[1024] = "";
     if (err)
         sd_error_format(err, buf, sizeof buf);
-    fprintf(stderr, "shapedem: rank %d of %d: %s failed (%s): %s\n", rank, m ? m->size : 0, stage,
+    fprintf(stderr, "shapedem: rank %d of %d: %s failed (%s): %s\n", rank, size, stage,
             sd_status_name(st), buf);
     fflush(stderr);
     MPI_Abort(m ? m->comm : MPI_COMM_WORLD, st == SD_ERR_INPUT ? 2 : 1);

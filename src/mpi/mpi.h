@@ -67,6 +67,8 @@ int sd_mpi_rank(const sd_mpi *m);
 int sd_mpi_size(const sd_mpi *m);
 /* Particles this rank has sent to others since attach; ghosts it holds. */
 size_t sd_mpi_migrated(const sd_mpi *m);
+/* Spring entries (pair and wall history) sent with the migrated particles. */
+size_t sd_mpi_carried(const sd_mpi *m);
 size_t sd_mpi_ghosts(const sd_mpi *m);
 /* The owned particles of every rank, on rank 0, in stable-id order: *out
  * gets *n states (sd_free them; NULL and 0 on the other ranks). Collective. */

@@ -45,4 +45,18 @@ tol = 1e-6
 print(f"serial vs 1 rank: max |dx| = {dx:.3e} m (tolerance {tol:g} m), {same} of {len(a)} states equal to the bit")
 sys.exit(0 if dx <= tol else 1)
 PY
+# a rank that fails alone (a bad material on rank 1 of 3) ends the job:
+# a non-zero status well before the timeout, one message naming the rank
+set +e
+run 3 "$tmp/fail.bin" --fail-rank 1 >"$tmp/fail.out" 2>"$tmp/fail.err"
+rc=$?
+set -e
+msgs=$(grep -c '^shapedem: rank' "$tmp/fail.err" || true)
+if [[ $rc -ne 0 && $rc -ne 124 && $msgs -eq 1 ]] && grep -q '^shapedem: rank 1 of 3: scene failed (bad input)' "$tmp/fail.err"; then
+  echo "ok: a failing rank ends the job (exit $rc): $(grep '^shapedem: rank' "$tmp/fail.err")"
+else
+  echo "FAIL: a failing rank: exit $rc (124: a hang), $msgs messages from shapedem:"
+  cat "$tmp/fail.err"
+  fail=1
+fi
 exit $fail
