@@ -151,9 +151,14 @@ typedef struct sd_run_progress {
     double wall_seconds;          /* of stepping only */
     double particle_steps_per_second;
     int threads;
+    int stopped;                  /* simulation.stop_when was met: steps is where it stopped */
 } sd_run_progress;
 
 void sd_run_get_progress(const sd_run *r, sd_run_progress *out);
+
+/* simulation.stop_when: "met at step N ..." or "not met (...)"; "" when
+ * the scene has none. summary.txt's stop_when line. */
+const char *sd_run_stop_note(const sd_run *r);
 
 /* The directory written to ("" for a run without output). */
 const char *sd_run_directory(const sd_run *r);

@@ -338,6 +338,8 @@ static int sd_cmd_run(const sd_cli *c)
     }
     sd_error cerr;
     memset(&cerr, 0, sizeof cerr);
+    char stop_note[256]; /* the run is freed by sd_run_close */
+    snprintf(stop_note, sizeof stop_note, "%s", sd_run_stop_note(run));
     if (sd_run_close(run, &cerr) != SD_OK && !failed) {
         char buf[1024];
         sd_error_format(&cerr, buf, sizeof buf);
@@ -359,6 +361,8 @@ static int sd_cmd_run(const sd_cli *c)
         printf("          kinetic energy %.6g J, %ld contacts, max overlap %.3g %% of radius; output in %s\n",
                st.kinetic_translational + st.kinetic_rotational, st.contacts, 100 * st.max_overlap_ratio, dir);
         printf("          backend %s (%s)\n", sd_world_backend(w), sd_world_backend_note(w));
+        if (stop_note[0]) /* simulation.stop_when, as summary.txt */
+            printf("          stop_when %s\n", stop_note);
     }
     /* insertions that fell short: one line each (also in summary.txt) */
     for (size_t k = 0; k < sd_world_insertion_count(w); ++k) {

@@ -599,6 +599,8 @@ static void sd_output_summary_text(FILE *fp, const sd_output *o, const sd_world 
             fprintf(fp, "backend: %s (%s)\n", sd_world_backend(w), sd_world_backend_note(w));
         fprintf(fp, "peak_memory_MiB: %.3f\n", (double)sum->peak_memory / mib);
         fprintf(fp, "peak_rss_MiB: %.3f\n", (double)sum->peak_rss / mib);
+        if (sum->stop && sum->stop[0])
+            fprintf(fp, "stop_when: %s\n", sum->stop);
     }
     fprintf(fp, "frames: %ld\n", o->frames);
     fprintf(fp, "stats_rows: %ld\n", o->stats_rows);

@@ -9,6 +9,11 @@
  * every multiple of every and at the last step. Chunking does not change
  * the state: sd_world_step(w, a) then (w, b) gives the bits of (w, a + b).
  *
+ * simulation.stop_when ends the run at the first stats row (at or after
+ * its `after`, every insertion done) whose kinetic energy is below the
+ * threshold: steps becomes done there, so that row is the last, with the
+ * closing frame and analysis rows the end of a run gets.
+ *
  * Invariant: done counts the steps the world has taken under this run,
  * never more than steps; after an error (failed) the run takes no further
  * step and writes nothing but the summary.
@@ -44,7 +49,39 @@ struct sd_run {
     FILE *outlet;                /* outlet.csv (cells outlets; io/scene_process.c), NULL when none */
     double outlet_t, outlet_m;   /* s, kg: time and mass removed at its last row */
     sd_analysis_run *an;         /* the scene's analysis: CSV series (io/scene_analysis.c), NULL when none */
+    long asked_steps;            /* steps before a stop_when cut them */
+    char stop[256];              /* simulation.stop_when: "" when not given, else what happened */
+    int stopped;                 /* it was met: steps == done */
 };
+
+/* simulation.stop_when at a stats row: met once its time has come, every
+ * insertion has run out (a bed still being filled is not at rest) and the
+ * kinetic energy (translational and rotational, sd_world_stats) is below
+ * the threshold. Then the run ends here and r->stop says so. */
+static void sd_run_check_stop(sd_run *r)
+{
+    const sd_scene *s = r->s;
+    if (!s->stop_given || r->stopped || r->done % r->stats_every != 0 || sd_world_time(r->w) < s->stop_after)
+        return;
+    for (size_t k = 0; k < sd_world_insertion_count(r->w); ++k) {
+        sd_insert_info ii;
+        if (sd_world_get_insertion(r->w, k, &ii) == SD_OK && !ii.done)
+            return;
+    }
+    sd_stats st;
+    sd_world_stats(r->w, &st);
+    double ke = st.kinetic_translational + st.kinetic_rotational;
+    if (!(ke < s->stop_ke_below)) {
+        snprintf(r->stop, sizeof r->stop, "not met (kinetic energy %.4g J at step %ld, t = %.6g s; below %.4g J "
+                 "after %.6g s asked)", ke, r->done, sd_world_time(r->w), s->stop_ke_below, s->stop_after);
+        return;
+    }
+    r->stopped = 1;
+    r->steps = r->done;
+    snprintf(r->stop, sizeof r->stop, "met at step %ld of %ld, t = %.6g s: kinetic energy %.4g J below %.4g J "
+             "(checked from %.6g s on, at each stats row)", r->done, r->asked_steps, sd_world_time(r->w), ke,
+             s->stop_ke_below, s->stop_after);
+}
 
 /* outlet.csv: a row with each stats row, when the world has outlets. */
 static void sd_run_outlet_row(sd_run *r)
@@ -83,6 +120,9 @@ sd_status sd_run_open(const sd_scene *s, sd_world *w, const char *dir, sd_run **
     r->steps = info.steps;
     r->every = info.frame_every;
     r->stats_every = info.stats_every;
+    r->asked_steps = r->steps;
+    if (s->stop_given)
+        snprintf(r->stop, sizeof r->stop, "not met (not checked yet: after %.6g s)", s->stop_after);
     /* a restarted world (sd_checkpoint_restore) continues the schedule */
     r->done = sd_world_step_count(w) < r->steps ? sd_world_step_count(w) : r->steps;
     r->ckpt_every = s->output.checkpoint_every;
@@ -228,6 +268,8 @@ sd_status sd_run_advance(sd_run *r, long steps, sd_error *err)
             r->failed = 1;
         if (r->done % r->stats_every == 0)
             sd_run_outlet_row(r);
+        if (!r->failed)
+            sd_run_check_stop(r); /* before the frame: a run that stops here closes with one */
         if (r->out && !r->failed && (r->done % r->every == 0 || r->done == r->steps) &&
             (st = sd_output_frame(r->out, r->w, err)) != SD_OK)
             r->failed = 1;
@@ -252,7 +294,10 @@ void sd_run_get_progress(const sd_run *r, sd_run_progress *out)
     out->wall_seconds = r->stepping;
     out->particle_steps_per_second = r->stepping > 0 ? r->psteps / r->stepping : 0;
     out->threads = sd_world_threads(r->w);
+    out->stopped = r->stopped;
 }
+
+const char *sd_run_stop_note(const sd_run *r) { return r->stop; }
 
 const char *sd_run_directory(const sd_run *r) { return r->out ? r->dir : ""; }
 
@@ -273,6 +318,7 @@ sd_status sd_run_close(sd_run *r, sd_error *err)
         sum.threads = sd_world_threads(r->w);
         sum.peak_memory = sd_memory_peak();
         sum.peak_rss = sd_run_peak_rss();
+        sum.stop = r->stop;
         sd_error local;
         memset(&local, 0, sizeof local);
         st = sd_output_close(r->out, r->w, &sum, err ? err : &local);

@@ -177,6 +177,10 @@ struct sd_scene {
     int simulation_line;          /* line of the simulation: key, for errors */
     long steps;                   /* >= 0; from steps or duration/dt */
     int dt_line;                  /* line of simulation.dt, for errors */
+    /* simulation.stop_when (io/run.c): the run ends at the first stats row
+     * at or after stop_after s whose kinetic energy is below stop_ke_below J */
+    int stop_given, stop_line;
+    double stop_ke_below, stop_after; /* J, s */
     size_t material_count, interaction_count, generator_count, wall_count, shape_count;
     sd_scene_material *materials;
     sd_scene_shape *shapes;

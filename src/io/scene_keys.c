@@ -160,6 +160,9 @@ const sd_scene_key sd_scene_keys[] = {
     {SD_SEC_SIMULATION, "domain", SD_KT_BOX, SD_KR_ANY, NULL, ALL, 0, "m", "-",
      "the periodic box {min: [x, y, z], max: [x, y, z]}; read on the periodic axes, where every "
      "particle must start inside [min, max); frames show positions wrapped into it"},
+    {SD_SEC_SIMULATION, "stop_when", SD_KT_MAP, SD_KR_ANY, NULL, ALL, 0, "", "-",
+     "end the run before its steps when the particles have come to rest (the keys of "
+     "simulation.stop_when); summary.txt says when and why"},
 
     {SD_SEC_MATERIAL, "name", SD_KT_STRING, SD_KR_NONEMPTY, NULL, ALL, ALL, "", "required",
      "unique name, used by particles, walls and interactions"},
@@ -671,6 +674,14 @@ const sd_scene_key sd_scene_keys[] = {
      "[0.2, 0.8]",
      "the columns fitted: fractions of the drum's diameter (surface_angle) or of the heap's radius "
      "(repose_angle)"},
+
+    {SD_SEC_STOP, "kinetic_energy_below", SD_KT_NUMBER, SD_KR_POS, NULL, ALL, ALL, "J", "required",
+     "the run stops at the first stats row (every output.stats_every steps) whose kinetic energy, "
+     "translational and rotational of all particles, is below this, once after has passed and every "
+     "insertion is done; that row, a frame and the analyses' rows are written, and summary.txt says so"},
+    {SD_SEC_STOP, "after", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "s", "0",
+     "simulated time before which the condition is not checked (the particles are still falling); "
+     "must be before the run's end"},
 };
 
 const size_t sd_scene_key_count = sizeof sd_scene_keys / sizeof sd_scene_keys[0];
@@ -724,6 +735,7 @@ static const char *const sd_section_names[SD_SEC_COUNT] = {
     "(top level)", "simulation", "materials[]", "interactions[]", "shapes[]", "particles[]",
     "particles[].spheres[]", "walls[]", "output", "pour", "outlet", "shapes[].elements[]",
     "insert[]", "insert[].mix[]", "outlets[]", "walls[].motion", "analysis[]",
+    "simulation.stop_when",
 };
 
 const char *sd_scene_section_name(sd_scene_section sec)

@@ -29,6 +29,7 @@ typedef enum sd_scene_section {
     SD_SEC_OUTLETS,     /* outlets: - ... (cells solver) */
     SD_SEC_MESH_MOTION, /* walls: - type: mesh, motion: */
     SD_SEC_ANALYSIS,    /* analysis: - ... (io/scene_analysis.c) */
+    SD_SEC_STOP,        /* simulation: stop_when: (io/run.c) */
     SD_SEC_COUNT
 } sd_scene_section;
 

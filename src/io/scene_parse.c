@@ -81,6 +81,35 @@ sd_status sd_material_ref(sd_parse *p, const char *name, int line, const char *k
 
 /* ---- sections ----------------------------------------------------------- */
 
+/* simulation.stop_when: a condition io/run.c checks at each stats row.
+ * An `after` at or past the run's end could never be checked: refused
+ * rather than silently running the whole length. */
+static sd_status sd_parse_stop(sd_parse *p, yaml_node_t *sim)
+{
+    sd_scene *s = p->s;
+    yaml_node_t *m = sd_yaml_map_get(&p->y, sim, "stop_when");
+    if (!m)
+        return SD_OK;
+    const char *path = "simulation.stop_when";
+    sd_yaml_value v;
+    sd_status st;
+    s->stop_line = sd_yaml_line(m);
+    if ((st = sd_yaml_check_map(&p->y, m, SD_SEC_STOP, SD_KIND_ALL, "", path, s->stop_line)))
+        return st;
+    s->stop_given = 1;
+    sd_yaml_get(&p->y, m, SD_SEC_STOP, "kinetic_energy_below", path, &v);
+    s->stop_ke_below = v.num;
+    int has_after = sd_yaml_get(&p->y, m, SD_SEC_STOP, "after", path, &v);
+    s->stop_after = v.num;
+    double end = (double)s->steps * s->world.dt;
+    if (s->stop_after >= end)
+        return sd_fail(p, has_after ? v.line : s->stop_line, "simulation.stop_when.after",
+                       "expected a time before the run's end (%g s = %ld steps x dt), got %g s: the condition would "
+                       "never be checked",
+                       end, s->steps, s->stop_after);
+    return SD_OK;
+}
+
 static sd_status sd_parse_simulation(sd_parse *p, yaml_node_t *root)
 {
     sd_scene *s = p->s;
@@ -177,7 +206,7 @@ static sd_status sd_parse_simulation(sd_parse *p, yaml_node_t *root)
         s->world.domain_lo = v.box_lo;
         s->world.domain_hi = v.box_hi;
     }
-    return SD_OK;
+    return sd_parse_stop(p, sim);
 }
 
 /* No wall may lie across a periodic axis: a plane whose normal has a

@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# stop_when.sh — simulation.stop_when ends a run when the particles are at
+# rest (io/run.c):
+#  - stop_scenes/settle.yaml (27 spheres settling, 1 s asked, stop below
+#    1e-6 J after 0.05 s): the run exits 0 before its end; its last
+#    stats.csv row is the first row at or after 0.05 s with kinetic energy
+#    (translational + rotational) below 1e-6 J, every earlier row from
+#    0.05 s on is at or above it; summary.txt's steps_run and stop_when line
+#    name that step; a closing frame and the coordination row of that step
+#    are written; stdout says so;
+#  - stop_scenes/never.yaml (a threshold of 1e-30 J): the run goes to its
+#    end and summary.txt says the condition was not met.
+# (Bad values of stop_when are scenes of tests/cli/bad/, stop-*.yaml.)
+set -u
+bin="$1"
+root="$2"
+pass=0
+fail=0
+check() {
+    if [[ "$2" == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi
+}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+scenes=$root/tests/cli/stop_scenes
+
+"$bin" run "$scenes/settle.yaml" --threads 2 -o "$tmp/s" >"$tmp/s.out" 2>"$tmp/s.err"
+rc=$?
+check "settle: exit 0 (got $rc)" "$((rc == 0))"
+# the rows: step, time, kinetic energy; the first row from 0.05 s below 1e-6 J
+read -r first last_step last_ke rows_above < <(awk -F, 'NR > 1 {
+        ke = $3 + $4
+        if ($2 >= 0.05 && ke < 1e-6 && first == "") first = $1
+        if ($2 >= 0.05 && ke >= 1e-6) above++
+        step = $1; last = ke
+    } END { print (first == "" ? -1 : first), step, last, above + 0 }' "$tmp/s/stats.csv")
+echo "     first row meeting it: step $first; last row: step $last_step, kinetic energy $last_ke J; rows from 0.05 s above: $rows_above"
+check "settle: the run stopped at the first stats row meeting the condition (step $first, before 50000)" \
+    "$([[ $first -gt 0 && $first -lt 50000 && $last_step == "$first" ]] && echo 1 || echo 0)"
+check "settle: the rows before it from 0.05 s on were above the threshold ($rows_above of them)" \
+    "$([[ $rows_above -ge 1 ]] && echo 1 || echo 0)"
+grep "^stop_when: " "$tmp/s/summary.txt"
+grep -q "^stop_when: met at step $first of 50000, t = " "$tmp/s/summary.txt"
+check "settle: summary.txt's stop_when line says where it stopped" "$((! $?))"
+grep -q "^steps_run: $first$" "$tmp/s/summary.txt"
+check "settle: summary.txt's steps_run is $first" "$((! $?))"
+t_stop=$(sed -n 's/^simulated_time_s: //p' "$tmp/s/summary.txt")
+t_frame=$(grep -o 'timestep="[^"]*" group="" part="0"' "$tmp/s/frames.pvd" | tail -1 | cut -d'"' -f2)
+echo "     stopped at t = $t_stop s; last frame at t = $t_frame s"
+check "settle: the run closes with a frame where it stopped" \
+    "$(awk -v a="$t_stop" -v b="$t_frame" 'BEGIN { d = a - b; print (a > 0 && d < 1e-12 && d > -1e-12) }')"
+crow=$(awk -F, -v s="$first" 'NR > 1 && $2 == s { n++ } END { print n + 0 }' "$tmp/s/coordination.csv")
+check "settle: coordination.csv has the row of step $first" "$((crow == 1))"
+grep -q "stop_when met at step $first" "$tmp/s.out"
+check "settle: stdout says the run stopped" "$((! $?))"
+
+"$bin" run "$scenes/never.yaml" --quiet -o "$tmp/n" >"$tmp/n.out" 2>"$tmp/n.err"
+rc=$?
+check "never: exit 0 (got $rc)" "$((rc == 0))"
+grep "^stop_when: " "$tmp/n/summary.txt"
+grep -q "^stop_when: not met (kinetic energy .* at step 5000, " "$tmp/n/summary.txt" &&
+    grep -q "^steps_run: 5000$" "$tmp/n/summary.txt"
+check "never: ran its 5000 steps, summary.txt says the condition was not met" "$((! $?))"
+
+echo "$pass passed, $fail failed"
+((fail == 0))
