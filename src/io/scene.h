@@ -89,8 +89,18 @@ typedef struct sd_scene_shape {
     sd_composite_element *elements;
     int lattice;                  /* points per direction, 0 = the default */
     int preset;                   /* composite preset (shape/complib.h), or -1 */
-    int hidden;                   /* 1: made here for a composite's inline or preset element */
-    size_t entry;                 /* index of its entry in the file's shapes: list (messages) */
+    int hidden;                   /* 1: made here for a composite's inline or preset element,
+                                     or for a checkpoint's scaled copy (below) */
+    /* a scaled copy that a checkpoint's particles are of (io/scene_from.c:
+     * an insertion's size classes, world/scaled.c), appended hidden after
+     * the scene's own shapes: 1 + the scene index of the template it
+     * copies, 0 for none, -1 for an element copy that the composite copy
+     * after it makes; by its factor, as the run gave it. Its scalar fields
+     * are the copied template's (kind, rounding), its pointers NULL. */
+    int scaled_of;
+    double scaled_by;
+    size_t entry;                 /* index of its entry in the file's shapes: list (messages);
+                                     a scaled copy's: of the generator that reads it */
 } sd_scene_shape;
 
 typedef struct sd_scene_material {

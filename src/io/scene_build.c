@@ -29,6 +29,8 @@
 #include "shape/shape2d.h"
 #include "world/start_overlap.h"
 
+#include <shapedem/process.h>
+
 /* Scene type names in sd_shape_kind order: what sd_shape_desc.kind takes. */
 static const char *const sd_shape_type_names[] = {
 #define SD_X_NAME(e, name, doc) name,
@@ -434,6 +436,29 @@ static sd_status sd_build_shapes(const sd_scene *s, sd_world *w, double *bound, 
     char key[160];
     for (size_t i = 0; i < s->shape_count; ++i) {
         const sd_scene_shape *sh = &s->shapes[i];
+        if (sh->scaled_of < 0)
+            continue; /* an element copy: the composite copy after it makes it */
+        if (sh->scaled_of > 0) {
+            /* a checkpoint's scaled copy (io/scene_from.c): made as the run's
+             * insertion made it, the same factor on the same template, so
+             * its geometry, mass and inertia are the same bits */
+            sd_error_clear(err);
+            int idx = sd_world_add_scaled_shape(w, sh->scaled_of - 1, sh->scaled_by, sh->name, err);
+            snprintf(key, sizeof key, "particles[%zu].file", sh->entry);
+            if (idx < 0) {
+                err->key[0] = '\0';
+                return sd_where(err, err->code != SD_OK ? err->code : SD_ERR_INPUT, s, sh->line, key);
+            }
+            sd_shape_info info;
+            for (size_t j = i; j + 1 > 0 && (j == i || s->shapes[j].scaled_of < 0); --j) {
+                if (idx != (int)i || sd_world_get_shape(w, j, &info) != SD_OK)
+                    return sd_error_set(err, SD_ERR_INTERNAL, s->path, sh->line, key,
+                                        "the world gave the scaled copy '%s' index %d, expected %zu", sh->name,
+                                        idx, i);
+                bound[j] = info.bounding_radius;
+            }
+            continue;
+        }
         if (sh->kind2d >= 0) {
             sd_error_clear(err);
             int idx = sd_build_shape2d(sh, w, err);

@@ -12,8 +12,13 @@
  * the saved template of each is found in the new scene by name
  * (scene/shape_names; world/snapshot.c) and must be of the same kind
  * (scene/shape_kinds), its material by name too (scene/material_names),
- * else the generator's material. Contact history, forces and walls stay
- * behind: the new scene brings its own walls.
+ * else the generator's material. A template that is a scaled copy an
+ * insertion made (TEMPLATE_iIeEsK, world/scaled.c; scene/shape_bases and
+ * scene/shape_scales say of which template and by what factor) is made
+ * again: the same factor on the scene's template of that name (same
+ * kind), appended hidden to the scene's shapes, so the bodies keep the
+ * bits of their geometry, mass and inertia. Contact history, forces and
+ * walls stay behind: the new scene brings its own walls.
  *
  * Invariant (that of csv.c): on SD_OK, one entry per saved particle was
  * appended to the generator's entry arrays; on error the arrays hold
@@ -31,6 +36,7 @@
 #include "core/error.h"
 #include "io/checkpoint.h"
 #include "shape/shape2d.h"
+#include "shape/composite.h"
 #include "shape/shape_make.h"
 
 int sd_from_is_checkpoint(const char *path)
@@ -114,7 +120,140 @@ static void sd_from_name(const sd_snap_item *it, size_t k, char *out)
     out[SD_SNAP_NAME - 1] = '\0';
 }
 
-sd_status sd_from_checkpoint_read(const sd_scene *s, sd_scene_generator *g, const char *key, int file_line,
+/* The recipe of saved template k when it is a scaled copy (scene/
+ * shape_bases, scene/shape_scales: world/scaled.c): 1 with *base and
+ * *scale, 0 when it is none or the checkpoint predates the recipes, -1
+ * when the recipe cannot be (a damaged file: a base out of range, itself
+ * a copy, a factor not > 0). */
+static int sd_from_recipe(const sd_snap_item *bases, const sd_snap_item *scales, size_t ns, size_t k, int *base,
+                          double *scale)
+{
+    if (!bases || !scales || bases->type != SD_ST_I32 || bases->comps != 1 || bases->count != ns ||
+        scales->type != SD_ST_F64 || scales->comps != 1 || scales->count != ns)
+        return 0;
+    int32_t b;
+    memcpy(&b, (const int32_t *)bases->data + k, sizeof b);
+    memcpy(scale, (const double *)scales->data + k, sizeof *scale);
+    if (b == -1)
+        return 0;
+    int32_t bb = -2;
+    if (b >= 0 && (size_t)b < ns)
+        memcpy(&bb, (const int32_t *)bases->data + b, sizeof bb);
+    *base = b;
+    return (size_t)b != k && bb == -1 && *scale > 0 && isfinite(*scale) ? 1 : -1;
+}
+
+/* Appends to s's shapes (hidden, after its own) the scaled copy named
+ * name of s's template b by scale, as sd_world_add_scaled_shape will make
+ * it at build (io/scene_build.c), so that scene and world indices stay
+ * one: a composite's copy after one copy of each distinct element
+ * template, NAME.eJ in the order of first use. Its index, or -1 (memory,
+ * or a name too long for an element copy). */
+static int sd_from_add_copy(sd_scene *s, size_t b, double scale, const char *name, int line, size_t gen)
+{
+    const sd_scene_shape *src = &s->shapes[b];
+    int from[SD_COMPOSITE_MAX_ELEMENTS];
+    size_t distinct = 0;
+    if (src->kind2d < 0 && src->kind == SD_SHAPE_COMPOSITE)
+        for (size_t e = 0; e < src->element_count; ++e) {
+            size_t j = 0;
+            while (j < distinct && from[j] != src->elements[e].shape)
+                ++j;
+            if (j == distinct)
+                from[distinct++] = src->elements[e].shape;
+        }
+    sd_scene_shape *grown = sd_realloc(s->shapes, (s->shape_count + distinct + 1) * sizeof *grown);
+    if (!grown)
+        return -1;
+    s->shapes = grown;
+    for (size_t j = 0; j <= distinct; ++j) {
+        /* the copied template's scalar fields, none of its arrays (the
+         * world copies its own) */
+        sd_scene_shape *c = &grown[s->shape_count + j];
+        *c = grown[j < distinct ? (size_t)from[j] : b];
+        c->vertices = NULL;
+        c->vertex_count = 0;
+        c->points = NULL;
+        c->point_count = 0;
+        c->fourier_a = c->fourier_b = NULL;
+        c->fourier_count = 0;
+        c->elements = NULL;
+        c->element_count = 0;
+        c->file[0] = c->warning[0] = '\0';
+        c->hidden = 1;
+        c->line = line;
+        c->scaled_of = j < distinct ? -1 : (int)b + 1;
+        c->scaled_by = scale;
+        c->entry = gen; /* a copy's messages name the generator */
+        int w = j < distinct ? snprintf(c->name, sizeof c->name, "%s.e%zu", name, j)
+                             : snprintf(c->name, sizeof c->name, "%s", name);
+        if (w < 0 || (size_t)w >= sizeof c->name)
+            return -1;
+    }
+    s->shape_count += distinct + 1;
+    return (int)(s->shape_count - 1);
+}
+
+/* Saved template si, named in names and kinds, is a copy of saved
+ * template b by sc (recipe 1; -1: a recipe that cannot be): *shape, the
+ * scene's template of that name found already (-1: none), becomes the
+ * copy made anew (sd_from_add_copy) from the scene's template of b's
+ * name, which must be of b's kind; one found already must be the same
+ * copy (a scene that reads two checkpoints), same template, same factor
+ * bits. Else an error that names the file, file_line and key. */
+static sd_status sd_from_scaled(sd_scene *s, const sd_scene_generator *g, const sd_snap_item *names,
+                                const sd_snap_item *kinds, size_t si, int b, double sc, int recipe,
+                                unsigned long long pid, int *shape, const char *key, int file_line, sd_error *err)
+{
+    char name[SD_SNAP_NAME], base[SD_SNAP_NAME], kind[SD_SNAP_NAME], esc[80], eb[80], known[512];
+    sd_from_name(names, si, name);
+    sd_escape(esc, sizeof esc, name, 40);
+    if (recipe < 0)
+        return sd_error_set(err, SD_ERR_INPUT, s->path, file_line, key,
+                            "the checkpoint '%s': template '%s' is a scaled copy whose recipe is damaged "
+                            "(scene/shape_bases %d of %zu templates, scene/shape_scales %g)",
+                            g->file, esc, b, names->count, sc);
+    sd_from_name(names, (size_t)b, base);
+    sd_from_name(kinds, (size_t)b, kind);
+    sd_escape(eb, sizeof eb, base, 40);
+    int here = -1;
+    for (size_t i = 0; i < s->shape_count && here < 0; ++i)
+        if (!s->shapes[i].scaled_of && !strcmp(s->shapes[i].name, base))
+            here = (int)i;
+    if (*shape >= 0) {
+        const sd_scene_shape *f = &s->shapes[*shape];
+        if (f->scaled_of > 0 && (f->scaled_of - 1 != here || memcmp(&f->scaled_by, &sc, sizeof sc) != 0))
+            return sd_error_set(err, SD_ERR_INPUT, s->path, file_line, key,
+                                "the checkpoint '%s': template '%s' is a copy of '%s' scaled by %.17g, but "
+                                "this scene has a copy of that name already (from another checkpoint, line "
+                                "%d) of '%s' scaled by %.17g; give the runs' insertions other names",
+                                g->file, esc, eb, sc, f->line, s->shapes[f->scaled_of - 1].name, f->scaled_by);
+        return SD_OK; /* a template of the scene's own, or the same copy again */
+    }
+    if (here < 0)
+        return sd_error_set(err, SD_ERR_INPUT, s->path, file_line, key,
+                            "the checkpoint '%s': particle id %llu is of template '%s', a copy of '%s' scaled "
+                            "by %.17g that an insertion made; this scene's shapes: does not define '%s' "
+                            "(shapes: %s), from which the copy is made again", g->file, pid, esc, eb, sc, eb,
+                            sd_from_known(s, 0, known, sizeof known));
+    const char *hk = sd_from_scene_kind(s, (size_t)here);
+    if (!hk || strcmp(hk, kind) != 0) {
+        char ek[80];
+        sd_escape(ek, sizeof ek, kind, 40);
+        return sd_error_set(err, SD_ERR_INPUT, s->path, file_line, key,
+                            "the checkpoint '%s': template '%s' is a copy of '%s' scaled by %.17g, and '%s' "
+                            "is a %s there, a %s in this scene (line %d); a template must keep its kind",
+                            g->file, esc, eb, sc, eb, ek, hk ? hk : "?", s->shapes[here].line);
+    }
+    *shape = sd_from_add_copy(s, (size_t)here, sc, name, file_line, (size_t)(g - s->generators));
+    if (*shape < 0)
+        return sd_error_set(err, SD_ERR_MEMORY, s->path, file_line, key,
+                            "out of memory (or no room for its elements' names) making the copy '%s' of '%s'",
+                            esc, eb);
+    return SD_OK;
+}
+
+sd_status sd_from_checkpoint_read(sd_scene *s, sd_scene_generator *g, const char *key, int file_line,
                                   sd_error *err)
 {
     sd_snapshot snap;
@@ -132,6 +271,8 @@ sd_status sd_from_checkpoint_read(const sd_scene *s, sd_scene_generator *g, cons
     const sd_snap_item *names = sd_snapshot_find(&snap, "scene/shape_names");
     const sd_snap_item *kinds = sd_snapshot_find(&snap, "scene/shape_kinds");
     const sd_snap_item *mats = sd_snapshot_find(&snap, "scene/material_names");
+    const sd_snap_item *bases = sd_snapshot_find(&snap, "scene/shape_bases");
+    const sd_snap_item *scales = sd_snapshot_find(&snap, "scene/shape_scales");
     if (snap.dimension != dim)
         st = sd_error_set(err, SD_ERR_INPUT, s->path, file_line, key,
                           "the checkpoint '%s' is of a %dD run, this scene is %dD", g->file, snap.dimension, dim);
@@ -224,6 +365,12 @@ sd_status sd_from_checkpoint_read(const sd_scene *s, sd_scene_generator *g, cons
                 for (size_t i = 0; i < s->shape_count && shape_map[si] < 0; ++i)
                     if (!strcmp(s->shapes[i].name, name))
                         shape_map[si] = (int)i;
+                int b = -1;
+                double sc = 1.0;
+                int recipe = sd_from_recipe(bases, scales, ns, (size_t)si, &b, &sc);
+                if (recipe != 0 && (st = sd_from_scaled(s, g, names, kinds, (size_t)si, b, sc, recipe, pid,
+                                                        &shape_map[si], key, file_line, err)) != SD_OK)
+                    goto done;
                 if (shape_map[si] < 0) {
                     sd_escape(esc, sizeof esc, name, 40);
                     st = sd_error_set(err, SD_ERR_INPUT, s->path, file_line, key,

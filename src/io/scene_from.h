@@ -15,10 +15,13 @@ int sd_from_is_checkpoint(const char *path);
 /* Appends the checkpoint g->file's owned particles, in stable-id order, to
  * g's entries: position, velocity, spin and (shapes) orientation as saved,
  * the template found by name among s's shapes (same kind, else refused),
- * the material by name (else g->material). Errors (SD_ERR_INPUT; a file
+ * the material by name (else g->material). A template that is a scaled
+ * copy an insertion made (world/scaled.c) is made again from the scene's
+ * template of its base's name (same kind), appended to s's shapes hidden.
+ * Errors (SD_ERR_INPUT; a file
  * that cannot be read, is damaged, of the other dimension or the grid
  * solver, a template this scene lacks) name s's file, file_line and key. */
-sd_status sd_from_checkpoint_read(const sd_scene *s, sd_scene_generator *g, const char *key, int file_line,
+sd_status sd_from_checkpoint_read(sd_scene *s, sd_scene_generator *g, const char *key, int file_line,
                                   sd_error *err);
 
 #endif

@@ -361,8 +361,9 @@ const sd_scene_key sd_scene_keys[] = {
      "generator's value; scripts/frame_to_csv.py writes one from a frame (docs/output.md). Or "
      "a checkpoint of another run (a name ending in .h5, cells solver, same dimension): its "
      "particles of every kind as they were (positions, orientations, velocities, spins), each "
-     "template found in shapes by name and of the same kind, each material by name (else the "
-     "generator's); docs/checkpoints.md"},
+     "template found in shapes by name and of the same kind (a scaled copy an insertion made, "
+     "TEMPLATE_iIeEsK, is made again with the same factor from the template of its base's "
+     "name), each material by name (else the generator's); docs/checkpoints.md"},
     {SD_SEC_PARTICLES, "shift", SD_KT_VEC3, SD_KR_ANY, NULL, CSV, 0, "m", "[0, 0, 0]",
      "added to every position the file gives (a settled bed moved into new equipment)"},
     {SD_SEC_PARTICLES, "velocity", SD_KT_VEC3, SD_KR_ANY, NULL, ALL, 0, "m/s", "[0, 0, 0]",

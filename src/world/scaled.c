@@ -230,10 +230,28 @@ int sd_world_add_scaled_shape(sd_world *w, int shape, double scale, const char *
     }
     if (sd_world_check_shape_name(w, name, err) != SD_OK)
         return -1;
+    struct sd_scaled_copy *rec = sd_realloc(w->scaled, (w->scaled_count + 1) * sizeof *rec);
+    if (!rec) {
+        sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory adding the scaled shape '%s'", name);
+        return -1;
+    }
+    w->scaled = rec;
     sd_real s = (sd_real)scale;
-    if (w->dim2)
-        return sd_scaled_2d(w, shape, s, name, err);
-    if (w->shapes[shape].kind == SD_SHAPE_COMPOSITE)
-        return sd_scaled_composite(w, shape, s, name, err);
-    return sd_scaled_convex(w, shape, s, name, err);
+    int idx = w->dim2                                      ? sd_scaled_2d(w, shape, s, name, err)
+              : w->shapes[shape].kind == SD_SHAPE_COMPOSITE ? sd_scaled_composite(w, shape, s, name, err)
+                                                            : sd_scaled_convex(w, shape, s, name, err);
+    if (idx >= 0) /* the copy's recipe, for a checkpoint's readers (sd_world_scaled_of) */
+        w->scaled[w->scaled_count++] = (struct sd_scaled_copy){idx, shape, scale};
+    return idx;
+}
+
+int sd_world_scaled_of(const sd_world *w, size_t shape, int *base, double *scale)
+{
+    for (size_t k = 0; k < w->scaled_count; ++k)
+        if (w->scaled[k].index == (int)shape) {
+            *base = w->scaled[k].base;
+            *scale = w->scaled[k].scale;
+            return 1;
+        }
+    return 0;
 }

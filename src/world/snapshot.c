@@ -510,7 +510,8 @@ static void sd_scatter_rows(const sd_state_ref *r, const void *src)
 /* What the scene named, for readers of the checkpoint other than a
  * restart (a new scene that starts from its particles, io/scene_from.c;
  * h5py): per template its name, kind, volume (2D: area) and bounding
- * radius, per material its name; the particles' shape and material
+ * radius, and for a scaled copy the template it copies and the factor
+ * (else -1 and 1), per material its name; the particles' shape and material
  * columns index them. Fixed-width rows padded with zeros, so the bytes
  * depend on the names only. A restart skips them (the scene's hash covers
  * what they say). */
@@ -521,14 +522,29 @@ static sd_status sd_snapshot_scene_items(const sd_world *w, sd_snapshot *s)
     sd_snap_item *kinds = sd_snapshot_add(s, "scene/shape_kinds", SD_ST_BYTES, SD_SNAP_NAME, ns, NULL);
     sd_snap_item *sizes = sd_snapshot_add(s, "scene/shape_sizes", SD_ST_F64, 2, ns, NULL);
     sd_snap_item *mats = sd_snapshot_add(s, "scene/material_names", SD_ST_BYTES, SD_SNAP_NAME, nm, NULL);
-    if (!names || !kinds || !sizes || !mats)
+    sd_snap_item *bases = sd_snapshot_add(s, "scene/shape_bases", SD_ST_I32, 1, ns, NULL);
+    sd_snap_item *scales = sd_snapshot_add(s, "scene/shape_scales", SD_ST_F64, 1, ns, NULL);
+    if (!names || !kinds || !sizes || !mats || !bases || !scales)
         return SD_ERR_MEMORY;
     /* the items may have moved as the list grew: look them up again */
-    names = &s->items[s->n - 4];
-    kinds = &s->items[s->n - 3];
-    sizes = &s->items[s->n - 2];
-    mats = &s->items[s->n - 1];
+    names = &s->items[s->n - 6];
+    kinds = &s->items[s->n - 5];
+    sizes = &s->items[s->n - 4];
+    mats = &s->items[s->n - 3];
+    bases = &s->items[s->n - 2];
+    scales = &s->items[s->n - 1];
     for (size_t k = 0; k < ns; ++k) {
+        /* a scaled copy of an insertion (world/scaled.c): its template and
+         * factor, so that a new scene makes the same copy; else -1 and 1 */
+        int b = -1;
+        double sc = 1.0;
+        if (!sd_world_scaled_of(w, k, &b, &sc)) {
+            b = -1;
+            sc = 1.0;
+        }
+        int32_t b32 = b;
+        memcpy((int32_t *)bases->data + k, &b32, sizeof b32);
+        memcpy((double *)scales->data + k, &sc, sizeof sc);
         sd_shape_info si;
         if (sd_world_get_shape(w, k, &si) != SD_OK)
             continue;

@@ -245,6 +245,7 @@ void sd_world_destroy(sd_world *w)
     sd_free(w->planes);
     sd_free(w->dtris);
     sd_free(w->elements);
+    sd_free(w->scaled);
     sd_free(w->shapes2d);
     sd_free(w->shape2d_names);
     sd_free(w->pool2d);

@@ -146,6 +146,15 @@ struct sd_world {
     sd_dtri *dtris;
     size_t element_count;     /* composite elements (sd_shape estart/ecount, seed 004) */
     sd_element *elements;
+    /* the copies sd_world_add_scaled_shape made (world/scaled.c), in the
+     * order made: which template each copies and by what factor, so that a
+     * checkpoint's reader can make the same copy again (io/scene_from.c);
+     * index and base are 2D template indices in planar mode */
+    size_t scaled_count;
+    struct sd_scaled_copy {
+        int index, base;
+        double scale;
+    } *scaled;
     int has_shapes;           /* some particle is not a plain sphere */
     /* narrow-phase totals per pair of shape kinds (sorted), since creation */
     long long narrow[SD_SHAPE_KIND_COUNT][SD_SHAPE_KIND_COUNT][3];
@@ -252,6 +261,11 @@ sd_status sd_world_choose_backend(sd_world *w, sd_error *err);
 
 /* A new shape's name is valid and free (bodies.c). */
 sd_status sd_world_check_shape_name(const sd_world *w, const char *name, sd_error *err);
+/* 1 when template shape is a copy sd_world_add_scaled_shape made (world/
+ * scaled.c): *base the template it copies, *scale the factor as given;
+ * 0 for any other template (a composite copy's element copies too: they
+ * are made again with the composite's). */
+int sd_world_scaled_of(const sd_world *w, size_t shape, int *base, double *scale);
 
 /* bodies2d.c: the planar mode's halves of the shape and body functions of
  * bodies.c (which call them when w->dim2). */

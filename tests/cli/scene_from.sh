@@ -7,7 +7,9 @@
 # scene file, the line of file: and the key particles[0].file, and no
 # output directory: a missing file, a template this scene lacks, a
 # template of another kind, a damaged checkpoint (one byte flipped, cut
-# short), a checkpoint of the other dimension.
+# short), a checkpoint of the other dimension. A bed poured by an insertion
+# with a size law (scaled copies of its brick) starts a new scene too, and
+# is refused where the new scene lacks the brick or has it of another kind.
 set -u
 exe=${1:?usage: scene_from.sh SHAPEDEM REPO}
 [[ $exe == */* ]] && exe=$(cd "$(dirname "$exe")" && pwd)/$(basename "$exe")
@@ -107,6 +109,36 @@ from_yaml "type: box, size: [0.002, 0.003, 0.004]" bed/checkpoint-003000.h5 | se
 bad "a template this scene lacks" "template 'brick', which this scene's shapes: does not define \(shapes: block\)"
 from_yaml "type: box, size: [0.002, 0.003, 0.004]" flat/checkpoint-000010.h5 >"$tmp/bad.yaml"
 bad "a planar checkpoint in a 3D scene" "is of a 2D run, this scene is 3D"
+
+# a bed poured by an insertion with a size law: its bricks are scaled copies
+# (brick_i0e0sK, world/scaled.c), made again from the new scene's brick
+{
+    head_yaml "type: box, size: [0.002, 0.003, 0.004]"
+    cat <<EOF
+insert:
+  - {name: fill, region: box, min: [0, 0, 0.001], max: [0.02, 0.02, 0.02], count: 20, attempts: 500,
+     velocity: [0, 0, -0.5],
+     mix: [{material: glass, shape: brick, distribution: uniform, radius: {min: 0.0012, max: 0.0016}, size_classes: 3}]}
+walls:
+  - {name: cup, type: box, min: [0, 0, 0], max: [0.02, 0.02, 0.08], open: [zmax], material: glass}
+output: {every: 200, checkpoint_every: 200}
+EOF
+} >"$tmp/poured.yaml"
+(cd "$tmp" && "$exe" run poured.yaml -o poured --steps 200 --threads 1 >/dev/null 2>"$tmp/poured.err")
+check "the poured bed writes poured/checkpoint-000200.h5 ($(cat "$tmp/poured.err"))" \
+    "$([[ -s $tmp/poured/checkpoint-000200.h5 ]] && echo 1 || echo 0)"
+from_yaml "type: box, size: [0.002, 0.003, 0.004]" poured/checkpoint-000200.h5 >"$tmp/copies.yaml"
+(cd "$tmp" && "$exe" run copies.yaml -o copies --steps 100 --threads 1 >"$tmp/copies.out" 2>"$tmp/copies.err")
+rc=$?
+check "a new scene runs from the scaled copies (exit $rc: $(cat "$tmp/copies.err"))" \
+    "$([[ $rc == 0 ]] && grep -q '^shapedem: 20 particles, 100 steps' "$tmp/copies.out" && echo 1 || echo 0)"
+from_yaml "type: box, size: [0.002, 0.003, 0.004]" poured/checkpoint-000200.h5 |
+    sed 's/name: brick/name: block/' >"$tmp/bad.yaml"
+bad "a scaled copy whose template this scene lacks" \
+    "template 'brick_i0e0s[0-9]', a copy of 'brick' scaled by [0-9.e-]+ that an insertion made; this scene's shapes: does not define 'brick' \(shapes: block\)"
+from_yaml "type: cylinder, diameter: 0.002, length: 0.004" poured/checkpoint-000200.h5 >"$tmp/bad.yaml"
+bad "a scaled copy whose template is of another kind" \
+    "template 'brick_i0e0s[0-9]' is a copy of 'brick' scaled by [0-9.e-]+, and 'brick' is a box there, a cylinder in this scene"
 
 echo "$pass passed, $fail failed"
 [[ $fail == 0 ]]
