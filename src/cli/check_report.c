@@ -22,7 +22,9 @@
 #include "grid/grid.h"
 #include "io/output.h"
 #include "io/scene.h"
+#include "io/scene_process.h"
 #include "world/dt_report.h"
+#include "world/process.h" /* sd_size_moment */
 
 static double sd_check_now(void)
 {
@@ -74,6 +76,179 @@ void sd_check_count(const sd_scene *s, const sd_world *w, sd_check_counts *c)
     }
     if (!isfinite(c->rmin))
         c->rmin = 0.0;
+}
+
+/* The smallest and largest radius a sphere size law draws: its bounds,
+ * or its truncation, else the 0.1 % tails (3.09 standard deviations). */
+static void sd_check_law_range(const sd_size_def *s, double *lo, double *hi)
+{
+    *lo = *hi = s->a;
+    if (s->kind == SD_SIZE_UNIFORM) {
+        *hi = s->b;
+    } else if (s->kind == SD_SIZE_TABLE) {
+        *lo = HUGE_VAL;
+        *hi = 0;
+        for (int c = 0; c < s->classes; ++c) {
+            *lo = fmin(*lo, s->lo[c]);
+            *hi = fmax(*hi, s->hi[c]);
+        }
+    } else if (s->kind == SD_SIZE_NORMAL || s->kind == SD_SIZE_LOGNORMAL) {
+        int ln = s->kind == SD_SIZE_LOGNORMAL;
+        double l = ln ? s->a * exp(-3.09 * s->b) : s->a - 3.09 * s->b;
+        double h = ln ? s->a * exp(3.09 * s->b) : s->a + 3.09 * s->b;
+        *lo = fmax(l, s->min);
+        if (!(*lo > 0)) /* a normal law reaching 0 untruncated: a tenth of its mean */
+            *lo = 0.1 * s->a;
+        *hi = s->max > 0 ? fmin(h, s->max) : h;
+    }
+}
+
+/* One probe particle of an insertion entry, twice: at the region's bottom
+ * and top along gravity (the fall the time step's impact speed takes). */
+typedef struct sd_check_probe_at {
+    sd_v3d low, high, velocity;
+    int material;
+} sd_check_probe_at;
+
+static void sd_check_probe_body(sd_body_def *b, size_t *nb, const sd_check_probe_at *at, int shape)
+{
+    for (int k = 0; k < 2; ++k) {
+        memset(&b[*nb], 0, sizeof b[*nb]);
+        b[*nb].position = k ? at->high : at->low;
+        b[*nb].velocity = at->velocity;
+        b[*nb].shape = shape;
+        b[*nb].material = at->material;
+        ++*nb;
+    }
+}
+
+static void sd_check_probe_sphere(sd_sphere_def *d, size_t *nd, const sd_check_probe_at *at, double r)
+{
+    for (int k = 0; k < 2; ++k) {
+        memset(&d[*nd], 0, sizeof d[*nd]);
+        d[*nd].position = k ? at->high : at->low;
+        d[*nd].velocity = at->velocity;
+        d[*nd].radius = r;
+        d[*nd].material = at->material;
+        ++*nd;
+    }
+}
+
+/* The probe bodies of a template entry: its scaled copies (named
+ * BASE_iIeEsK by sd_world_add_insertion, world/process.c), else the
+ * template as it is. Returns their mean mass (kg; the classes of a law
+ * are equally likely, each copy at the class's mean volume). */
+static double sd_check_probe_template(const sd_world *w, const sd_scene *s, size_t i, int e,
+                                      const sd_insert_entry *en, const sd_check_probe_at *at, sd_body_def *b,
+                                      size_t *nb, sd_check_insert *ci)
+{
+    sd_shape_info si;
+    if (sd_world_get_shape(w, (size_t)en->shape, &si) != SD_OK)
+        return 0;
+    char prefix[96];
+    int len = snprintf(prefix, sizeof prefix, "%.40s_i%zue%ds", si.name ? si.name : "shape", i, e);
+    double rho = s->materials[en->material].def.density, sum = 0;
+    int found = 0;
+    for (size_t k = 0; k < sd_world_shape_count(w); ++k) {
+        sd_shape_info sk;
+        if (sd_world_get_shape(w, k, &sk) != SD_OK || !sk.name || strncmp(sk.name, prefix, (size_t)len) != 0 ||
+            sk.name[len] < '0' || sk.name[len] > '9')
+            continue;
+        sd_check_probe_body(b, nb, at, (int)k);
+        sum += rho * sk.volume;
+        ci->rmin = fmin(ci->rmin, sk.bounding_radius);
+        ci->rmax = fmax(ci->rmax, sk.bounding_radius);
+        found++;
+    }
+    if (!found) {
+        sd_check_probe_body(b, nb, at, en->shape);
+        sum = rho * si.volume;
+        ci->rmin = fmin(ci->rmin, si.bounding_radius);
+        ci->rmax = fmax(ci->rmax, si.bounding_radius);
+        found = 1;
+    }
+    return sum / found;
+}
+
+void sd_check_insertions(const sd_scene *s, sd_check_insert *ci)
+{
+    memset(ci, 0, sizeof *ci);
+    ci->rmin = HUGE_VAL;
+    const sd_scene_process *sp = s->process;
+    if (!sp || sp->insert_count == 0)
+        return;
+    sd_error err;
+    memset(&err, 0, sizeof err);
+    sd_world *w = NULL;
+    if (sd_scene_build(s, &w, &err) != SD_OK) {
+        sd_error_format(&err, ci->why, sizeof ci->why);
+        return;
+    }
+    int dim2 = s->world.dimension == 2;
+    sd_v3d g = s->world.gravity;
+    double gn = sqrt(g.x * g.x + g.y * g.y + g.z * g.z);
+    const double down[3] = {gn > 0 ? g.x / gn : 0, gn > 0 ? g.y / gn : 0, gn > 0 ? g.z / gn : 0};
+    /* at most 2 bodies per class, SD_SIZE_SCALES_MAX classes per entry, or 4 spheres */
+    size_t cap = sp->insert_count * SD_INSERT_MIX_MAX * 2 * SD_SIZE_SCALES_MAX, nb = 0, nd = 0;
+    sd_body_def *b = malloc(cap * sizeof *b);
+    sd_sphere_def *d = malloc(cap * sizeof *d);
+    for (size_t i = 0; b && d && i < sp->insert_count; ++i) {
+        const sd_insert_def *in = &sp->inserts[i];
+        double lo[3], hi[3], c[3], ext = 0;
+        sd_region_box(&in->region, lo, hi);
+        for (int k = 0; k < 3; ++k) {
+            c[k] = 0.5 * (lo[k] + hi[k]);
+            ext += 0.5 * fabs(down[k]) * (hi[k] - lo[k]);
+        }
+        sd_check_probe_at at;
+        at.low = (sd_v3d){c[0] + ext * down[0], c[1] + ext * down[1], c[2] + ext * down[2]};
+        at.high = (sd_v3d){c[0] - ext * down[0], c[1] - ext * down[1], c[2] - ext * down[2]};
+        /* the fastest the jitter makes it: each component's jitter along its sign */
+        double j = in->velocity_jitter;
+        at.velocity = (sd_v3d){in->velocity.x + (in->velocity.x < 0 ? -j : j),
+                               in->velocity.y + (in->velocity.y < 0 ? -j : j),
+                               dim2 ? 0.0 : in->velocity.z + (in->velocity.z < 0 ? -j : j)};
+        double by_number = 0, by_mass = 0;
+        for (int e = 0; e < in->entry_count; ++e) {
+            const sd_insert_entry *en = &in->entries[e];
+            at.material = en->material;
+            double m;
+            if (en->shape >= 0) {
+                m = sd_check_probe_template(w, s, i, e, en, &at, b, &nb, ci);
+            } else {
+                double rlo, rhi, rho = s->materials[en->material].def.density;
+                sd_check_law_range(&en->size, &rlo, &rhi);
+                sd_check_probe_sphere(d, &nd, &at, rlo);
+                if (rhi > rlo)
+                    sd_check_probe_sphere(d, &nd, &at, rhi);
+                ci->rmin = fmin(ci->rmin, rlo);
+                ci->rmax = fmax(ci->rmax, rhi);
+                m = dim2 ? rho * SD_PI_D * sd_size_moment(&en->size, 2)
+                         : rho * 4.0 / 3.0 * SD_PI_D * sd_size_moment(&en->size, 3);
+            }
+            by_number += en->fraction * m;
+            by_mass += m > 0 ? en->fraction / m : 0;
+        }
+        /* the mean particle's mass: a mix by mass has number shares f_e / m_e */
+        double mean = in->mix_by_mass ? (by_mass > 0 ? 1.0 / by_mass : 0) : by_number;
+        size_t n = in->count > 0 ? in->count : mean > 0 ? (size_t)ceil(in->mass / mean) : 0;
+        ci->count += n;
+        ci->mass += in->count > 0 ? (double)n * mean : in->mass;
+    }
+    int ok = b && d && (nb == 0 || sd_world_add_bodies(w, nb, b, &err) == SD_OK) &&
+             (nd == 0 || sd_world_add_spheres(w, nd, d, &err) == SD_OK);
+    if (!ok) {
+        if (b && d)
+            sd_error_format(&err, ci->why, sizeof ci->why);
+        else
+            snprintf(ci->why, sizeof ci->why, "out of memory for the insertions' probe");
+        sd_world_destroy(w);
+        w = NULL;
+    }
+    free(b);
+    free(d);
+    ci->probes = nb + nd;
+    ci->probe = w;
 }
 
 double sd_check_pour_bytes(size_t poured)
@@ -195,6 +370,8 @@ void sd_check_time(const sd_scene *s, sd_world *w, size_t total, long steps, sd_
         t->steps++;
     }
     t->seconds = sd_check_now() - t0;
+    if (!t->bed && sd_world_particle_count(tw) > t->particles) /* an insertion's first particles went in */
+        t->particles = sd_world_particle_count(tw);
     if (t->steps > 0 && psteps > 0)
         t->estimate = t->seconds / psteps * (double)total * (double)steps;
     else if (t->steps > 0)

@@ -25,6 +25,26 @@ typedef struct sd_check_counts {
 
 void sd_check_count(const sd_scene *s, const sd_world *w, sd_check_counts *c);
 
+/* The insertions of a cells scene (insert:), which an empty world at the
+ * start cannot show: how many particles they ask for, their mass and
+ * radii, and a probe world for the estimates that read particles (time
+ * step, contact duration, output size): the scene's world built again
+ * with, for each insertion entry, bodies of each of its size classes
+ * (the scaled template copies sd_world_add_insertion made) or spheres of
+ * its law's smallest and largest radius, at the bottom and the top of
+ * the region along gravity, moving at the insertion's velocity with its
+ * jitter. Never stepped. */
+typedef struct sd_check_insert {
+    size_t count;          /* particles the insertions ask for (a mass target: mass / mean mass) */
+    double mass;           /* kg, all they insert */
+    double rmin, rmax;     /* m, bounding radii (rmin HUGE_VAL when none) */
+    size_t probes;         /* bodies added to the probe */
+    sd_world *probe;       /* NULL: no insertion, or the probe could not be built (why) */
+    char why[300];
+} sd_check_insert;
+
+void sd_check_insertions(const sd_scene *s, sd_check_insert *ci);
+
 /* Bytes the grid solver holds per poured sphere, head room included. */
 double sd_check_pour_bytes(size_t poured);
 

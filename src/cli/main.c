@@ -8,6 +8,7 @@
 #define _POSIX_C_SOURCE 200809L
 
 #include <errno.h>
+#include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -398,19 +399,36 @@ static int sd_cmd_check(const sd_cli *c)
     sd_scene_info info;
     sd_scene_get_info(scene, &info);
     size_t n = sd_world_particle_count(w);
-    double tc = 0, rec = sd_world_recommended_dt(w, &tc);
+    /* the insertions' particles, absent at the start: the estimates that
+     * read particles read a probe of them (cli/check_report.c) */
+    sd_check_insert ins;
+    sd_check_insertions(scene, &ins);
+    const sd_world *est = ins.probe ? ins.probe : w;
+    double tc = 0, rec = sd_world_recommended_dt(est, &tc);
     double dt = sd_world_dt(w);
     printf("scene        %s\n", c->scene);
     sd_check_counts cnt; /* the pour's spheres too (cli/check_report.c) */
     sd_check_count(scene, w, &cnt);
-    size_t total = n + cnt.poured;
+    size_t total = n + cnt.poured + ins.count;
     size_t nshape = cnt.bodies;
+    if (ins.count) {
+        cnt.rmin = n ? fmin(cnt.rmin, ins.rmin) : ins.rmin;
+        cnt.rmax = fmax(cnt.rmax, ins.rmax);
+    }
     printf("particles    %zu: %zu spheres, %zu bodies of %zu shapes", n, n - nshape, nshape,
            sd_world_shape_count(w));
     if (cnt.poured)
         printf(", and %zu spheres the pour inserts: %zu in all", cnt.poured, total);
+    if (ins.count)
+        printf(", and %zu particles the insertions add: %zu in all", ins.count, total);
     if (total)
         printf("; radius (bounding radius for shapes) %.4g .. %.4g m", cnt.rmin, cnt.rmax);
+    if (ins.count && ins.probe)
+        printf("\ninsertions   the time step, contact and output estimates include them: a probe of %zu particles "
+               "(each size class of each entry at the bottom and top of its region, at its velocity)",
+               ins.probes);
+    else if (ins.why[0])
+        printf("\ninsertions   not in the estimates (the probe failed: %s)", ins.why);
     printf("\nsolver       %s", info.solver == SD_SOLVER_GRID ? "grid (dense grid stencil, [Naderi 2024])"
                                                               : "cells (cell binning + pair lists)");
     printf("\nmaterials    %zu:", info.material_count);
@@ -425,26 +443,29 @@ static int sd_cmd_check(const sd_cli *c)
     printf("threads      %d\n", sd_world_threads(w));
     printf("backend      %s (%s)\n", sd_world_backend(w), sd_world_backend_note(w));
     const char *unit2d = info.dimension == 2 ? " per 1 m of thickness" : "";
-    printf("mass         %.6g kg%s", cnt.mass_now + cnt.mass_poured, unit2d);
+    printf("mass         %.6g kg%s", cnt.mass_now + cnt.mass_poured + ins.mass, unit2d);
     if (cnt.poured)
         printf(": %.6g kg at the start and %.6g kg poured", cnt.mass_now, cnt.mass_poured);
+    if (ins.count)
+        printf(": %.6g kg at the start and about %.6g kg inserted", cnt.mass_now, ins.mass);
     printf("\n");
     double memory = (double)mem + (cnt.poured ? sd_check_pour_bytes(cnt.poured) : 0.0);
-    printf("memory       about %.1f MiB (%.0f bytes per particle) once the pair lists are built%s\n",
-           memory / 1048576.0, total ? memory / (double)total : 0.0,
-           cnt.poured ? ", all poured spheres in" : "");
+    if (!ins.count) /* with insertions: after the trial, which inserts (below) */
+        printf("memory       about %.1f MiB (%.0f bytes per particle) once the pair lists are built%s\n",
+               memory / 1048576.0, total ? memory / (double)total : 0.0,
+               cnt.poured ? ", all poured spheres in" : "");
     /* output: frames at step 0, every `every` steps and at the end; stats
      * rows at step 0 and every stats_every steps (io/run.c) */
     long steps = info.steps, every = info.frame_every, stats_every = info.stats_every;
     long frames = 1 + steps / every + (steps % every != 0), rows = 1 + steps / stats_every;
-    sd_check_print_output(stdout, scene, w, total, frames, rows, (double)steps * dt, cnt.poured);
+    sd_check_print_output(stdout, scene, est, total, frames, rows, (double)steps * dt, cnt.poured);
     int warnings = 0;
     if (dt > rec) {
         printf("warning      dt = %.4g s is above the recommended %.4g s: contacts are resolved in %.1f steps\n", dt,
                rec, tc / dt);
         warnings++;
     }
-    warnings += sd_check_print_dt(stdout, w); /* what set the step; the volume law's face contacts */
+    warnings += sd_check_print_dt(stdout, est); /* what set the step; the volume law's face contacts */
     warnings += sd_check_units(stdout, scene, &cnt, tc, dt);
     for (size_t k = 0; k < info.shape_count; ++k)
         if (sd_scene_shape_warning(scene, k)[0]) { /* a mesh taken as its hull (nonconvex: hull) */
@@ -462,8 +483,22 @@ static int sd_cmd_check(const sd_cli *c)
             warnings++;
         }
     /* last: the trial steps the world */
+    sd_world_destroy(ins.probe);
+    size_t mem_trial = sd_memory_in_use();
     sd_check_trial tr;
     sd_check_time(scene, w, total, steps, &tr);
+    if (ins.count) {
+        /* the trial's first steps insert (all at once, or the first of a
+         * rate): the memory they added, per particle present, scaled to all */
+        size_t now = sd_world_particle_count(w), used = sd_memory_in_use();
+        double grown = used > mem_trial ? (double)(used - mem_trial) : 0.0;
+        if (now > n)
+            memory += grown / (double)(now - n) * (double)ins.count;
+        printf("memory       about %.1f MiB (%.0f bytes per particle) once the pair lists are built, every inserted "
+               "particle in (%s)\n",
+               memory / 1048576.0, total ? memory / (double)total : 0.0,
+               now > n ? "scaled from the trial's" : "the trial inserted none: the start's only");
+    }
     if (tr.ok && tr.steps > 0) {
         char left[32];
         sd_format_duration(tr.estimate, left, sizeof left);

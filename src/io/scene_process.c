@@ -115,8 +115,9 @@ static sd_status sd_parse_region(sd_parse *p, yaml_node_t *m, sd_scene_section s
     return SD_OK;
 }
 
-/* The region's box, for the domain and reach checks. */
-static void sd_region_box(const sd_region_def *r, double lo[3], double hi[3])
+/* The region's box, for the domain and reach checks (and shapedem check's
+ * probe of the insertions, cli/check_report.c). */
+void sd_region_box(const sd_region_def *r, double lo[3], double hi[3])
 {
     if (r->kind == SD_REGION_BOX || r->kind == SD_REGION_MESH) { /* a mesh keeps its box in lo, hi */
         lo[0] = r->lo.x, lo[1] = r->lo.y, lo[2] = r->lo.z;

@@ -29,6 +29,9 @@ typedef struct sd_scene_process {
     uint32_t (*mesh_triangles[SD_SCENE_PROCESS_MAX])[3];
 } sd_scene_process;
 
+/* The axis-aligned box around a region (a mesh region: its lo, hi). */
+void sd_region_box(const sd_region_def *r, double lo[3], double hi[3]);
+
 /* Reads insert: and outlets: (absent: s->process stays NULL). */
 sd_status sd_parse_process(sd_parse *p, yaml_node_t *root);
 void sd_scene_process_free(sd_scene *s);

@@ -503,7 +503,7 @@ static sd_status sd_size_check(const sd_size_def *s, const char *key, sd_error *
 
 /* E[r^d] of the distribution (d = 3: volume; 2 in the planar mode), by
  * midpoint quadrature of the density for the normal laws. */
-static double sd_size_moment(const sd_size_def *s, int d)
+double sd_size_moment(const sd_size_def *s, int d)
 {
     switch (s->kind) {
     case SD_SIZE_FIXED: return pow(s->a, d);

@@ -68,6 +68,10 @@ typedef struct sd_region_meshes {
     sd_region_mesh slot[SD_INSERTIONS_MAX];
 } sd_region_meshes;
 
+/* E[r^d] of a size law (its truncation and a table's classes included;
+ * by number). */
+double sd_size_moment(const sd_size_def *s, int d);
+
 /* The cells solver's step with the process events between steps (the
  * solver table's step entry, world.c). */
 sd_status sd_cells_process_step(sd_world *w, long nsteps, sd_error *err);
