@@ -42,22 +42,21 @@ enum {
 static const char *const sd_csv_names[SD_CSV_NCOL] = {
     "x", "y", "z", "radius", "vx", "vy", "vz", "shape", "qw", "qx", "qy", "qz", "wx", "wy", "wz", "material"};
 
-/* "a, b, c": the names of the scene's shapes (materials: 1) for messages. */
-static const char *sd_csv_known(const sd_scene *s, int materials, char *buf, size_t size)
+const char *sd_csv_known(const sd_scene *s, int materials, char *buf, size_t size)
 {
     size_t used = 0, n = materials ? s->material_count : s->shape_count;
     buf[0] = '\0';
     for (size_t i = 0; i < n && used + 1 < size; ++i) {
-        int w = snprintf(buf + used, size - used, "%s%s", i ? ", " : "",
+        if (!materials && s->shapes[i].hidden)
+            continue;
+        int w = snprintf(buf + used, size - used, "%s%s", used ? ", " : "",
                          materials ? s->materials[i].name : s->shapes[i].name);
         used += w > 0 ? (size_t)w : 0;
     }
-    return n ? buf : "none";
+    return used ? buf : "none";
 }
 
-/* Grows the generator's entry arrays to cap entries (all or none grow, so a
- * failure leaves the list consistent). */
-static int sd_csv_grow(sd_scene_generator *g, size_t cap)
+int sd_csv_grow(sd_scene_generator *g, size_t cap)
 {
     void *q;
     if (!(q = sd_realloc(g->list, cap * sizeof *g->list)))

@@ -14,4 +14,14 @@
 
 sd_status sd_csv_read(const sd_scene *s, sd_scene_generator *g, const char *key, int file_line, sd_error *err);
 
+/* What the two readers of a csv generator's file share (this one and the
+ * checkpoint's, io/scene_from.c). */
+/* "a, b, c": the names of the scene's shapes (not the hidden ones made for
+ * a composite's elements or a checkpoint's scaled copies), or with
+ * materials = 1 of its materials, for messages; "none" for none. */
+const char *sd_csv_known(const sd_scene *s, int materials, char *buf, size_t size);
+/* Grows g's entry arrays to cap entries: all or none grow, so that a
+ * failure (0) leaves the list consistent; 1 when grown. */
+int sd_csv_grow(sd_scene_generator *g, size_t cap);
+
 #endif

@@ -35,8 +35,9 @@
 #include "core/alloc.h"
 #include "core/error.h"
 #include "io/checkpoint.h"
-#include "shape/shape2d.h"
+#include "io/csv.h"
 #include "shape/composite.h"
+#include "shape/shape2d.h"
 #include "shape/shape_make.h"
 
 int sd_from_is_checkpoint(const char *path)
@@ -63,42 +64,6 @@ static const char *sd_from_scene_kind(const sd_scene *s, size_t i)
 {
     const sd_scene_shape *sh = &s->shapes[i];
     return sh->kind2d >= 0 ? sd_shape2d_kind_name(sh->kind2d) : sd_shape_kind_name(sh->kind);
-}
-
-/* "a, b, c": the names of the scene's shapes or materials, for messages. */
-static const char *sd_from_known(const sd_scene *s, int materials, char *buf, size_t size)
-{
-    size_t used = 0, n = materials ? s->material_count : s->shape_count;
-    buf[0] = '\0';
-    for (size_t i = 0; i < n && used + 1 < size; ++i) {
-        if (!materials && s->shapes[i].hidden)
-            continue;
-        int w = snprintf(buf + used, size - used, "%s%s", used ? ", " : "",
-                         materials ? s->materials[i].name : s->shapes[i].name);
-        used += w > 0 ? (size_t)w : 0;
-    }
-    return used ? buf : "none";
-}
-
-static int sd_from_grow(sd_scene_generator *g, size_t cap)
-{
-    void *q;
-    if (!(q = sd_realloc(g->list, cap * sizeof *g->list)))
-        return 0;
-    g->list = q;
-    if (!(q = sd_realloc(g->list_lines, cap * sizeof *g->list_lines)))
-        return 0;
-    g->list_lines = q;
-    if (!(q = sd_realloc(g->list_shape, cap * sizeof *g->list_shape)))
-        return 0;
-    g->list_shape = q;
-    if (!(q = sd_realloc(g->list_orient, cap * sizeof *g->list_orient)))
-        return 0;
-    g->list_orient = q;
-    if (!(q = sd_realloc(g->list_quat, cap * sizeof *g->list_quat)))
-        return 0;
-    g->list_quat = q;
-    return 1;
 }
 
 typedef struct sd_from_order {
@@ -235,7 +200,7 @@ static sd_status sd_from_scaled(sd_scene *s, const sd_scene_generator *g, const 
                             "the checkpoint '%s': particle id %llu is of template '%s', a copy of '%s' scaled "
                             "by %.17g that an insertion made; this scene's shapes: does not define '%s' "
                             "(shapes: %s), from which the copy is made again", g->file, pid, esc, eb, sc, eb,
-                            sd_from_known(s, 0, known, sizeof known));
+                            sd_csv_known(s, 0, known, sizeof known));
     const char *hk = sd_from_scene_kind(s, (size_t)here);
     if (!hk || strcmp(hk, kind) != 0) {
         char ek[80];
@@ -319,7 +284,7 @@ sd_status sd_from_checkpoint_read(sd_scene *s, sd_scene_generator *g, const char
     int *mat_map = sd_malloc((nm ? nm : 1) * sizeof *mat_map);
     sd_from_order *order = sd_malloc(n * sizeof *order);
     size_t base = g->list_count;
-    if (!shape_map || !mat_map || !order || !sd_from_grow(g, base + n)) {
+    if (!shape_map || !mat_map || !order || !sd_csv_grow(g, base + n)) {
         st = sd_error_set(err, SD_ERR_MEMORY, s->path, file_line, key, "out of memory for %zu particles", n);
         goto done;
     }
@@ -376,7 +341,7 @@ sd_status sd_from_checkpoint_read(sd_scene *s, sd_scene_generator *g, const char
                     st = sd_error_set(err, SD_ERR_INPUT, s->path, file_line, key,
                                       "the checkpoint '%s': particle id %llu is of template '%s', which this "
                                       "scene's shapes: does not define (shapes: %s); templates are matched by name",
-                                      g->file, pid, esc, sd_from_known(s, 0, known, sizeof known));
+                                      g->file, pid, esc, sd_csv_known(s, 0, known, sizeof known));
                     goto done;
                 }
                 const char *here = sd_from_scene_kind(s, (size_t)shape_map[si]);
