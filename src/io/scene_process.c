@@ -409,6 +409,15 @@ static sd_status sd_parse_outlets(sd_parse *p, yaml_node_t *list)
     return SD_OK;
 }
 
+/* Outlet k's warning, at its place in the scene file as errors are
+ * (file:line: key: what), so the user finds the entry it is about. */
+static void sd_outlet_warn(sd_scene *s, size_t k, const char *what)
+{
+    sd_scene_process *sp = s->process;
+    snprintf(sp->outlet_warning[k], sizeof sp->outlet_warning[k], "%s:%d: outlets[%zu]: %s", s->path,
+             sp->outlet_lines[k], k, what);
+}
+
 /* A warning when no particle can reach outlet k: gravity pulls every
  * particle away from it (all of them, and every insertion region, lie
  * below it along the gravity vector, none moving up), or it lies outside
@@ -452,7 +461,7 @@ static void sd_outlet_reach(sd_scene *s, const sd_scene_spheres *sp_all, size_t 
             snprintf(out, 256, "outlet '%s' lies above every particle and insertion region (by %g m against "
                                "gravity) and nothing moves up: no particle can reach it",
                      sp->outlet_names[k], low_outlet - top);
-            memcpy(sp->outlet_warning[k], out, sizeof out);
+            sd_outlet_warn(s, k, out);
             return;
         }
     }
@@ -468,7 +477,7 @@ static void sd_outlet_reach(sd_scene *s, const sd_scene_spheres *sp_all, size_t 
         if (apart) {
             snprintf(out, 256, "outlet '%s' lies outside the closed box wall '%s': no particle can reach it",
                      sp->outlet_names[k], wl->name);
-            memcpy(sp->outlet_warning[k], out, sizeof out);
+            sd_outlet_warn(s, k, out);
             return;
         }
     }

@@ -22,7 +22,8 @@ typedef struct sd_scene_process {
     sd_region_outlet_def outlets[SD_SCENE_PROCESS_MAX];
     char outlet_names[SD_SCENE_PROCESS_MAX][SD_SCENE_NAME_MAX];
     int outlet_lines[SD_SCENE_PROCESS_MAX];
-    char outlet_warning[SD_SCENE_PROCESS_MAX][256];     /* "" or why no particle may reach it */
+    char outlet_warning[SD_SCENE_PROCESS_MAX][1320];    /* "" or FILE:LINE: outlets[K]: why no particle
+                                                           may reach it (a path of SD_SCENE_PATH_MAX fits) */
     /* mesh regions (region: mesh): the file's vertices, scaled and placed,
      * and its triangles (sd_malloc'd; inserts[k].region points at them) */
     sd_v3d *mesh_vertices[SD_SCENE_PROCESS_MAX];

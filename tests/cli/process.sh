@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # process.sh — insertion and outlets through the CLI (issue 16):
 #  - feed-drain.yaml: the run exits 0, warns on stderr about the outlet no
-#    particle can reach, writes outlet.csv whose every row keeps
+#    particle can reach (file:line: outlets[1]: ..., and so does check),
+#    writes outlet.csv whose every row keeps
 #    particles + removed = initial + inserted, and summary.txt says how many
 #    were asked for and inserted (all 300);
 #  - full-box.yaml: fewer fit than asked: summary.txt and one stderr line
@@ -24,8 +25,13 @@ scenes=$root/tests/cli/process_scenes
 "$bin" run "$scenes/feed-drain.yaml" --threads 2 --quiet -o "$tmp/feed" >"$tmp/feed.out" 2>"$tmp/feed.err"
 rc=$?
 check "feed-drain: exit 0 (got $rc)" "$((rc == 0))"
-grep -q "warning: outlet 'lost' lies above every particle" "$tmp/feed.err"
-check "feed-drain: stderr warns about the outlet no particle can reach" "$((! $?))"
+cat "$tmp/feed.err"
+grep -q "warning: .*feed-drain.yaml:38: outlets\[1\]: outlet 'lost' lies above every particle" "$tmp/feed.err"
+check "feed-drain: stderr warns about the outlet no particle can reach, at its file, line and key" "$((! $?))"
+"$bin" check "$scenes/feed-drain.yaml" --threads 1 >"$tmp/feed-check.out" 2>&1
+rc=$?
+grep -q "^warning .*feed-drain.yaml:38: outlets\[1\]: outlet 'lost' lies above every particle" "$tmp/feed-check.out"
+check "feed-drain: check exits 0 (got $rc) and warns about that outlet at its file, line and key" "$((! $? && rc == 0))"
 rows=$(awk -F, 'NR > 1 { n++; if ($3 + $6 != $4 + $5) bad++ } END { print n + 0, bad + 0 }' "$tmp/feed/outlet.csv")
 echo "     outlet.csv rows, rows off the accounting: $rows"
 check "feed-drain: outlet.csv keeps particles + removed = initial + inserted in every row" \
