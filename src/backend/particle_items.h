@@ -114,8 +114,8 @@ SD_HD static SD_INLINE int sd_item_nonfinite(const sd_step_view *v, size_t k)
 SD_HD static SD_INLINE void sd_item_ghost(const sd_step_view *v, size_t k)
 {
     uint32_t o = v->ghost_owner[k - v->n_owned];
-    if (o == UINT32_MAX)
-        return; /* another rank's particle (SD_GHOST_REMOTE): the decomposition's exchange fills it */
+    if (o >= UINT32_MAX - 1)
+        return; /* another rank's particle or image (SD_GHOST_REMOTE*): the decomposition's exchange fills it */
     v->x[k] = sd_v3_add(v->x[o], v->ghost_shift[k - v->n_owned]);
     v->v[k] = v->v[o];
     v->w[k] = v->w[o];

@@ -490,16 +490,27 @@ static uint32_t sd_bins_candidates(const sd_bins *b, const sd_bins_input *in, si
                         /* bins.h: no ghost pairs, no pair with one's own
                          * image, and a contact through an image only from
                          * the side with the lower stable id */
-                        if (ghost_a && bb >= no)
-                            continue;
                         size_t own_b = sd_bins_owner(in, bb);
-                        if (own_a == own_b)
-                            continue;
-                        size_t o = ghost_a ? bb : a, g = ghost_a ? own_a : own_b;
-                        /* a ghost of another rank: the pair is evaluated on
-                         * both ranks, each gathering its own side */
-                        if (g != SD_GHOST_REMOTE && !(in->id[o] < in->id[g]))
-                            continue;
+                        if (ghost_a && bb >= no) {
+                            /* the one pair of two ghosts: another rank's
+                             * particle as it is and a local image, the
+                             * former with the lower id (that rank evaluates
+                             * the same pair through the image it was sent) */
+                            int keep = (own_a < no && own_b == SD_GHOST_REMOTE && in->id[bb] < in->id[a]) ||
+                                       (own_b < no && own_a == SD_GHOST_REMOTE && in->id[a] < in->id[bb]);
+                            if (!keep)
+                                continue;
+                        } else {
+                            if (own_a == own_b)
+                                continue;
+                            size_t o = ghost_a ? bb : a, g = ghost_a ? a : bb;
+                            /* another rank's particle as it is: the pair is
+                             * evaluated on both ranks, each gathering its
+                             * own side; an image (local or another rank's)
+                             * only from the lower id */
+                            if (sd_bins_owner(in, g) != SD_GHOST_REMOTE && !(in->id[o] < in->id[g]))
+                                continue;
+                        }
                     }
                     int kind = sd_bins_pair_kind(ca, sd_bins_class(in, bb), sd_bins_volume(in, ma, in->material[bb]));
                     uint32_t np = 1;
@@ -753,21 +764,21 @@ static sd_status sd_bins_pairs(sd_bins *b, const sd_bins_input *in, sd_pair_list
         l->gstart_cap = no + 1;
     }
     memset(l->gstart, 0, (no + 1) * sizeof *l->gstart);
-    for (size_t e = 0; e < total; ++e) {
-        l->gstart[l->i[e] + 1]++;
-        size_t o = sd_bins_owner(in, l->j[e]);
-        if (o != SD_GHOST_REMOTE)
-            l->gstart[o + 1]++;
-    }
+    for (size_t e = 0; e < total; ++e)
+        for (int side = 0; side < 2; ++side) {
+            size_t o = sd_bins_owner(in, side ? l->j[e] : l->i[e]);
+            if (o < no) /* another rank's particle: gathered there */
+                l->gstart[o + 1]++;
+        }
     for (size_t i = 0; i < no; ++i)
         l->gstart[i + 1] += l->gstart[i];
     memcpy(cnt, l->gstart, no * sizeof *cnt);
-    for (size_t e = 0; e < total; ++e) {
-        l->gidx[cnt[l->i[e]]++] = (uint32_t)(2 * e);
-        size_t o = sd_bins_owner(in, l->j[e]);
-        if (o != SD_GHOST_REMOTE)
-            l->gidx[cnt[o]++] = (uint32_t)(2 * e + 1);
-    }
+    for (size_t e = 0; e < total; ++e)
+        for (int side = 0; side < 2; ++side) {
+            size_t o = sd_bins_owner(in, side ? l->j[e] : l->i[e]);
+            if (o < no)
+                l->gidx[cnt[o]++] = (uint32_t)(2 * e + (size_t)side);
+        }
     return SD_OK;
 }
 

@@ -10,7 +10,9 @@
  * neighbours later); ghost_owner[g - n_owned] is the storage index of the
  * owned original.
  *
- * Invariants: pairs of two ghosts are never made; a pair of an owned
+ * Invariants: pairs of two ghosts are never made (but one, in a decomposed
+ * run: another rank's particle as it is, with the lower id, and a local
+ * image; see SD_GHOST_REMOTE); a pair of an owned
  * particle i and a ghost of owned k is kept only when the stable id of i is
  * below that of k (the same contact seen from k, through the image of i, is
  * dropped), so each contact is evaluated once; ghosts get no wall pairs;
@@ -104,6 +106,10 @@ typedef struct sd_bins {
  * same pair for its own side, none is dropped by the id rule) and its side
  * of a pair is gathered by no one here. */
 #define SD_GHOST_REMOTE UINT32_MAX
+/* The ghost_owner of another rank's periodic image (its position shifted
+ * by a period): like a local image, its pair with an owned particle is kept
+ * only from the side with the lower stable id, and gathered by no one here. */
+#define SD_GHOST_REMOTE_IMAGE (UINT32_MAX - 1)
 
 /* Bytes of scratch per particle sd_bins_sort lends for the permutation. */
 #define SD_BINS_PERMUTE_SCRATCH 32

@@ -17,7 +17,8 @@
 #include "broad/bins.h"
 #include "core/alloc.h"
 
-/* The owned particle that gathers particle k's side, or SD_GHOST_REMOTE. */
+/* The owned particle that gathers particle k's side, or n_owned or more
+ * (SD_GHOST_REMOTE, SD_GHOST_REMOTE_IMAGE) for another rank's. */
 static size_t sd_canon_owner(const sd_bins_input *in, size_t k)
 {
     return k < in->n_owned ? k : in->ghost_owner[k - in->n_owned];
@@ -57,7 +58,7 @@ sd_status sd_pairs_canonical(const sd_bins_input *in, sd_pair_list *l)
     for (size_t e = 0; e < total; ++e)
         for (int side = 0; side < 2; ++side) {
             size_t o = sd_canon_owner(in, side ? l->j[e] : l->i[e]);
-            if (o != SD_GHOST_REMOTE)
+            if (o < no)
                 l->gstart[o + 1]++;
         }
     for (size_t k = 0; k < no; ++k)
@@ -66,7 +67,7 @@ sd_status sd_pairs_canonical(const sd_bins_input *in, sd_pair_list *l)
     for (size_t e = 0; e < total; ++e)
         for (int side = 0; side < 2; ++side) {
             size_t o = sd_canon_owner(in, side ? l->j[e] : l->i[e]);
-            if (o != SD_GHOST_REMOTE)
+            if (o < no)
                 l->gidx[cur[o]++] = (uint32_t)(2 * e + (size_t)side);
         }
     sd_free(cur);

@@ -29,6 +29,7 @@ struct sd_mpi {
     /* the ghost rows this rank sends each step: owned storage indices,
      * grouped by destination rank; and where the received ones sit */
     uint32_t *send_idx;
+    sd_vec3 *send_shift;       /* m, the periodic shift of each sent row (zero: the particle as it is) */
     size_t send_n, send_cap;
     int *ghost_count;          /* per rank, rows sent (then received) */
     int *ghost_recv;           /* per rank, rows received */
@@ -50,14 +51,26 @@ static size_t sd_row_size(void)
     return s;
 }
 
-static unsigned char *sd_row_pack(const sd_particles *p, size_t k, unsigned char *b)
+/* Row of particle k; x_at, when not NULL, stands for its position (a
+ * periodic image's). */
+static unsigned char *sd_row_pack_at(const sd_particles *p, size_t k, const sd_vec3 *x_at, unsigned char *b)
 {
-#define SD_X_PACK(type, name, ...)            \
-    memcpy(b, &p->name[k], sizeof(type)); \
-    b += sizeof(type);
+#define SD_X_PACK(type, name, ...)                                                               \
+    {                                                                                            \
+        const void *src = &p->name[k];                                                           \
+        if (x_at && (const void *)&p->name == (const void *)&p->x)                               \
+            src = x_at;                                                                          \
+        memcpy(b, src, sizeof(type));                                                            \
+        b += sizeof(type);                                                                       \
+    }
     SD_PARTICLE_FIELDS(SD_X_PACK)
 #undef SD_X_PACK
     return b;
+}
+
+static unsigned char *sd_row_pack(const sd_particles *p, size_t k, unsigned char *b)
+{
+    return sd_row_pack_at(p, k, NULL, b);
 }
 
 static const unsigned char *sd_row_unpack(sd_particles *p, size_t k, const unsigned char *b)
@@ -344,8 +357,17 @@ static void sd_ghost_pack(sd_mpi *m, const sd_particles *p)
 {
     size_t rs = sd_row_size();
     unsigned char *b = m->sbuf;
-    for (size_t t = 0; t < m->send_n; ++t)
-        b = sd_row_pack(p, m->send_idx[t], b);
+    for (size_t t = 0; t < m->send_n; ++t) {
+        sd_vec3 sh = m->send_shift[t];
+        if (sh.x == 0 && sh.y == 0 && sh.z == 0) {
+            b = sd_row_pack(p, m->send_idx[t], b);
+        } else {
+            /* an image: the arithmetic of the local images
+             * (sd_item_ghost), so both ranks see the same bits */
+            sd_vec3 y = sd_v3_add(p->x[m->send_idx[t]], sh);
+            b = sd_row_pack_at(p, m->send_idx[t], &y, b);
+        }
+    }
     for (int r = 0; r < m->size; ++r)
         m->scount[r] = (int)((size_t)m->ghost_count[r] * rs);
 }
@@ -357,8 +379,32 @@ static void sd_ghost_unpack(sd_mpi *m, sd_particles *p)
         b = sd_row_unpack(p, m->ghost_base + g, b);
 }
 
-/* Ghosts (mpi.h): the owned particles within reach of each other rank's
- * slab, sent there; those received appended after this rank's own ghosts. */
+/* Adds send entry (k, shift) for rank r. */
+static int sd_send_add(sd_mpi *m, size_t k, sd_vec3 sh)
+{
+    if (m->send_n == m->send_cap) {
+        size_t c = m->send_cap * 2 + 64;
+        uint32_t *q = sd_realloc(m->send_idx, c * sizeof *q);
+        if (!q)
+            return -1;
+        m->send_idx = q;
+        sd_vec3 *v = sd_realloc(m->send_shift, c * sizeof *v);
+        if (!v)
+            return -1;
+        m->send_shift = v;
+        m->send_cap = c;
+    }
+    m->send_idx[m->send_n] = (uint32_t)k;
+    m->send_shift[m->send_n] = sh;
+    m->send_n++;
+    return 0;
+}
+
+/* Ghosts (mpi.h): each owned particle, as it is and as each of its
+ * periodic images (world/rebuild.c's rule and arithmetic), goes to every
+ * rank whose slab it is within reach of: to this rank's own ghosts as a
+ * local image (ghost_owner k), to another rank as a row; those received are
+ * appended after the local images. */
 static sd_status sd_hook_ghosts(void *ctx, sd_world *w, sd_error *err)
 {
     sd_mpi *m = ctx;
@@ -369,36 +415,52 @@ static sd_status sd_hook_ghosts(void *ctx, sd_world *w, sd_error *err)
         rmax = rmax > (double)p->radius[k] ? rmax : (double)p->radius[k];
     double all = rmax;
     MPI_Allreduce(&rmax, &all, 1, MPI_DOUBLE, MPI_MAX, m->comm);
-    /* the reach of a pair (world/rebuild.c's band): a particle within it of
-     * a slab may touch, within the skin, one of the slab's particles */
-    double band = 2.0 * all + (double)w->skin;
+    /* the reach of a pair (world/rebuild.c's band, from the largest radius
+     * of all ranks): a particle within it of a slab may touch, within the
+     * skin, one of the slab's particles */
+    sd_real band = SD_R(2.0) * (sd_real)all + w->skin;
+    double lo[64], hi[64];
+    int oom = m->size > 64;
+    for (int r = 0; !oom && r < m->size; ++r)
+        sd_mpi_slab(m->cuts, m->size, r, &lo[r], &hi[r]);
+    double period_x = (w->def.periodic & SD_PERIODIC_X) ? w->def.domain_hi.x - w->def.domain_lo.x : 0.0;
+    /* per rank in turn, so the rows come out grouped by destination */
     m->send_n = 0;
-    int oom = 0;
-    for (int r = 0; r < m->size; ++r) {
+    size_t n_local = 0;
+    for (int r = 0; !oom && r < m->size; ++r) {
         m->ghost_count[r] = 0;
-        if (r == m->rank)
-            continue;
-        double lo, hi;
-        sd_mpi_slab(m->cuts, m->size, r, &lo, &hi);
-        for (size_t k = 0; k < n; ++k) {
-            double x = (double)p->x[k].x;
-            if (!(x >= lo - band && x <= hi + band))
-                continue;
-            if (m->send_n == m->send_cap) {
-                size_t c = m->send_cap * 2 + 64;
-                uint32_t *q = sd_realloc(m->send_idx, c * sizeof *q);
-                if (!q) {
+        double l0 = lo[r] - (double)band, l1 = hi[r] + (double)band;
+        for (size_t k = 0; !oom && k < n; ++k) {
+            sd_vec3 sh[8];
+            sh[0] = sd_v3_zero();
+            int c = 1 + (w->def.periodic ? sd_world_periodic_images(w, k, band, sh + 1) : 0);
+            for (int t = 0; t < c; ++t) {
+                if (r == m->rank) {
+                    /* every image of an owned particle is a local ghost,
+                     * as in the serial run (made below) */
+                    n_local += t > 0;
+                    continue;
+                }
+                double x = (double)(t ? sd_v3_add(p->x[k], sh[t]).x : p->x[k].x);
+                /* the particle as it is also goes where an image of one of
+                 * rank r's particles (one period away in x) may touch it:
+                 * a contact through an image is evaluated at the lower id's
+                 * true position (broad/bins.h), on both ranks */
+                int near = x >= l0 && x <= l1;
+                if (!near && t == 0 && period_x > 0)
+                    near = (x - period_x >= l0 && x - period_x <= l1) || (x + period_x >= l0 && x + period_x <= l1);
+                if (!near)
+                    continue;
+                if (sd_send_add(m, k, sh[t])) {
                     oom = 1;
                     break;
                 }
-                m->send_idx = q;
-                m->send_cap = c;
+                m->ghost_count[r]++;
             }
-            m->send_idx[m->send_n++] = (uint32_t)k;
-            m->ghost_count[r]++;
         }
     }
-    if (!oom && sd_grow(&m->sbuf, &m->sbuf_cap, m->send_n * rs))
+    if (!oom && (sd_grow(&m->sbuf, &m->sbuf_cap, m->send_n * rs) ||
+                 sd_world_ghosts_reserve(w, w->n_ghost + n_local) != SD_OK))
         oom = 1;
     int any = 0;
     MPI_Allreduce(&oom, &any, 1, MPI_INT, MPI_LOR, m->comm);
@@ -406,6 +468,26 @@ static sd_status sd_hook_ghosts(void *ctx, sd_world *w, sd_error *err)
         m->send_n = 0;
         m->ghost_n = 0;
         return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "ghosts: out of memory on %s rank", oom ? "this" : "another");
+    }
+    /* the local images, as sd_periodic_ghosts makes them */
+    {
+        size_t g = w->n_ghost;
+        for (size_t k = 0; k < n; ++k) {
+            sd_vec3 sh[7];
+            int c = w->def.periodic ? sd_world_periodic_images(w, k, band, sh) : 0;
+            for (int t = 0; t < c; ++t) {
+                sd_vec3 y = sd_v3_add(p->x[k], sh[t]);
+                size_t d = n + g;
+#define SD_X_COPY(type, name, ...) p->name[d] = p->name[k];
+                SD_PARTICLE_FIELDS(SD_X_COPY)
+#undef SD_X_COPY
+                p->x[d] = y;
+                w->ghost_owner[g] = (uint32_t)k;
+                w->ghost_shift[g] = sh[t];
+                ++g;
+            }
+        }
+        w->n_ghost = g;
     }
     sd_ghost_pack(m, p);
     size_t rn = sd_alltoall(m);
@@ -417,8 +499,18 @@ static sd_status sd_hook_ghosts(void *ctx, sd_world *w, sd_error *err)
     if (sd_world_ghosts_reserve(w, w->n_ghost + got) != SD_OK)
         return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "ghosts: out of memory for %zu ghosts", got);
     sd_ghost_unpack(m, p);
+    /* which of the received rows are images: one byte per row, the same
+     * grouping (the pair rules of broad/bins.h tell them apart) */
+    for (size_t t = 0; t < m->send_n; ++t) {
+        sd_vec3 sh = m->send_shift[t];
+        m->sbuf[t] = (unsigned char)!(sh.x == 0 && sh.y == 0 && sh.z == 0);
+    }
+    for (int r = 0; r < m->size; ++r)
+        m->scount[r] = m->ghost_count[r];
+    if (sd_alltoall(m) != got)
+        return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "ghosts: out of memory for the image marks");
     for (size_t g = 0; g < got; ++g) {
-        w->ghost_owner[w->n_ghost + g] = SD_GHOST_REMOTE;
+        w->ghost_owner[w->n_ghost + g] = m->rbuf[g] ? SD_GHOST_REMOTE_IMAGE : SD_GHOST_REMOTE;
         w->ghost_shift[w->n_ghost + g] = sd_v3_zero();
     }
     w->n_ghost += got;
@@ -454,9 +546,10 @@ static sd_status sd_mpi_refuse(const sd_world *w, sd_error *err)
     if (w->backend && w->backend != &sd_backend_cpu)
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.backend",
                             "MPI ranks run the CPU backend only in this version");
-    if (w->def.periodic)
-        return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.periodic",
-                            "periodic axes across MPI ranks are not supported yet");
+    int size = 1;
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    if (size > 64)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "", "at most 64 MPI ranks in this version, got %d", size);
     if (w->has_shapes || w->dim2)
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "particles",
                             "MPI ranks take plain spheres only in this version (shapes, composites and the "
@@ -551,6 +644,7 @@ void sd_mpi_detach(sd_world *w, sd_mpi *m)
     sd_free(m->cuts);
     sd_free(m->scount);
     sd_free(m->send_idx);
+    sd_free(m->send_shift);
     sd_free(m->sbuf);
     sd_free(m->rbuf);
     sd_free(m);

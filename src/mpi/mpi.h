@@ -18,6 +18,14 @@
  *          2 r_max + skin of another rank's slab is sent there as a ghost
  *          (ghost_owner SD_GHOST_REMOTE); each step the same particles'
  *          rows are sent again, after the drift
+ *   periodic axes: every owned particle's images (world/rebuild.c's rule
+ *          and its arithmetic, x + shift) are local ghosts, as in the
+ *          serial run; an image within reach of another rank's slab goes
+ *          there (SD_GHOST_REMOTE_IMAGE), and so does the particle as it is
+ *          when it is within reach of that slab one period away in x: a
+ *          contact through an image is evaluated at the true position of
+ *          the lower id on both ranks (broad/bins.h, the one ghost-ghost
+ *          pair kept)
  *   order: the pair lists take the canonical order (sd_pairs_canonical),
  *          so each particle's force sum, and so the state, has the same
  *          bits on any rank count
@@ -57,7 +65,7 @@ typedef struct sd_mpi sd_mpi;
 /* Splits world w (every rank's copy holding the same particles, not yet
  * prepared) over the ranks of MPI_COMM_WORLD: keeps this rank's particles
  * and installs the hooks. MPI must be initialised. Refuses what the slice
- * does not cover yet (non-sphere particles, periodic axes, the grid solver,
+ * does not cover yet (non-sphere particles, the grid solver,
  * a device backend, servo walls, insertions) with SD_ERR_INPUT. */
 sd_status sd_mpi_attach(sd_world *w, sd_mpi **out, sd_error *err);
 /* The hooks off and the memory freed (the world stays, holding its own

@@ -181,7 +181,7 @@ static void sd_periodic_wrap(sd_world *w)
 /* The images of owned particle k: the shifts (in periods) on each periodic
  * axis it may take, -1, 0 or +1, and their count less the particle itself.
  * out gets up to 7 shifts. */
-static int sd_periodic_images(const sd_world *w, size_t k, sd_real band, sd_vec3 *out)
+int sd_world_periodic_images(const sd_world *w, size_t k, sd_real band, sd_vec3 *out)
 {
     unsigned m = w->def.periodic;
     sd_vec3 lo = sd_domain_lo(w), hi = sd_domain_hi(w), x = w->p.x[k];
@@ -245,13 +245,13 @@ static sd_status sd_periodic_ghosts(sd_world *w)
     sd_real band = SD_R(2.0) * rmax + w->skin;
     size_t ng = 0;
     for (size_t k = 0; k < n; ++k)
-        ng += (size_t)sd_periodic_images(w, k, band, NULL);
+        ng += (size_t)sd_world_periodic_images(w, k, band, NULL);
     if (sd_world_ghosts_reserve(w, ng) != SD_OK)
         return SD_ERR_MEMORY;
     size_t g = 0;
     for (size_t k = 0; k < n; ++k) {
         sd_vec3 sh[7];
-        int c = sd_periodic_images(w, k, band, sh);
+        int c = sd_world_periodic_images(w, k, band, sh);
         for (int t = 0; t < c; ++t, ++g) {
             size_t d = n + g;
 #define SD_X_COPY(type, name, ...) p->name[d] = p->name[k];
@@ -345,7 +345,14 @@ sd_status sd_world_rebuild(sd_world *w, sd_error *err)
     if (w->comm) {
         /* a decomposed run: the particles that left this rank's sub-domain
          * go to their new owners first (collective: every rank, even one
-         * holding nothing) */
+         * holding nothing), by their wrapped positions; the decomposition
+         * makes the periodic images too, its own and the other ranks' */
+        if (w->def.periodic) {
+            sd_status pst = w->dirty ? sd_periodic_check(w, err) : SD_OK;
+            if (pst != SD_OK)
+                return pst;
+            sd_periodic_wrap(w);
+        }
         sd_status mst = w->comm->migrate(w->comm_ctx, w, err);
         if (mst != SD_OK)
             return mst;
@@ -364,7 +371,7 @@ sd_status sd_world_rebuild(sd_world *w, sd_error *err)
         w->rebuilds++;
         return SD_OK;
     }
-    if (w->def.periodic) {
+    if (w->def.periodic && !w->comm) {
         sd_status pst = w->dirty ? sd_periodic_check(w, err) : SD_OK;
         if (pst != SD_OK)
             return pst;
@@ -392,7 +399,7 @@ sd_status sd_world_rebuild(sd_world *w, sd_error *err)
             /* the pair lists hold their history under stable keys, so the
              * storage order may change under them */
             sd_particles_permute(p, perm, scratch, w->threads, w->parallel);
-            if (w->def.periodic)
+            if (w->def.periodic && !w->comm)
                 st = sd_periodic_ghosts(w);
             if (st == SD_OK && w->comm)
                 st = w->comm->ghosts(w->comm_ctx, w, err);

@@ -6,6 +6,8 @@
 
 #include <shapedem/shapedem.h>
 
+#include "core/vec.h"
+
 /* Fills the broad phase's input (broad/bins.h), applies its particle
  * order, makes the ghosts and has the pair lists rebuilt with their
  * history carried by key; x_ref, q_ref and the wall marks follow. */
@@ -22,6 +24,10 @@ void sd_world_wrap_periodic(const sd_world *w, sd_v3d *x);
  * particle arrays (periodic images here, other ranks' particles in
  * src/mpi/). */
 sd_status sd_world_ghosts_reserve(sd_world *w, size_t ng);
+/* The periodic images owned particle k takes at a rebuild, for the reach
+ * band: their shifts (up to 7) in out (when not NULL), their count
+ * returned (0 off the faces). */
+int sd_world_periodic_images(const sd_world *w, size_t k, sd_real band, sd_vec3 *out);
 /* The memory of the pair lists, bins and ghosts. */
 void sd_world_broad_free(sd_world *w);
 

@@ -18,20 +18,23 @@ run() { # ranks out [args]
   timeout 300 "$mpiexec" --oversubscribe --allow-run-as-root -np "$np" "$bin" "$@"
 }
 fail=0
-for np in 1 2 3 4; do
-  run "$np" "$tmp/np$np.bin" || { echo "FAIL: $np ranks: the run failed"; fail=1; continue; }
-done
-run 1 "$tmp/serial.bin" --serial || { echo "FAIL: the serial run failed"; fail=1; }
-for np in 2 3 4; do
-  if [[ -f $tmp/np$np.bin ]] && cmp -s "$tmp/np1.bin" "$tmp/np$np.bin"; then
-    echo "ok: $np ranks: the same $(stat -c %s "$tmp/np$np.bin") bytes of state as 1 rank"
-  else
-    echo "FAIL: $np ranks: state differs from 1 rank's"
-    fail=1
-  fi
-done
-# the serial world against 1 rank: a sanity check of the physics
-/usr/bin/python3 - "$tmp/serial.bin" "$tmp/np1.bin" <<'PY' || fail=1
+for mode in box periodic; do
+  args=()
+  [[ $mode == periodic ]] && args=(--periodic)
+  for np in 1 2 3 4; do
+    run "$np" "$tmp/$mode$np.bin" "${args[@]}" || { echo "FAIL: $mode, $np ranks: the run failed"; fail=1; continue; }
+  done
+  run 1 "$tmp/${mode}serial.bin" --serial "${args[@]}" || { echo "FAIL: $mode: the serial run failed"; fail=1; }
+  for np in 2 3 4; do
+    if [[ -f $tmp/$mode$np.bin ]] && cmp -s "$tmp/${mode}1.bin" "$tmp/$mode$np.bin"; then
+      echo "ok: $mode, $np ranks: the same $(stat -c %s "$tmp/$mode$np.bin") bytes of state as 1 rank"
+    else
+      echo "FAIL: $mode, $np ranks: state differs from 1 rank's"
+      fail=1
+    fi
+  done
+  # the serial world against 1 rank: a sanity check of the physics
+  /usr/bin/python3 - "$tmp/${mode}serial.bin" "$tmp/${mode}1.bin" "$mode" <<'PY' || fail=1
 import struct, sys
 def load(p):
     b = open(p, 'rb').read()
@@ -42,9 +45,11 @@ assert len(a) == len(b) == 600, (len(a), len(b))
 dx = max(abs(p[1 + c] - q[1 + c]) for p, q in zip(a, b) for c in range(3))
 same = sum(p == q for p, q in zip(a, b))
 tol = 1e-6
-print(f"serial vs 1 rank: max |dx| = {dx:.3e} m (tolerance {tol:g} m), {same} of {len(a)} states equal to the bit")
+print(f"{sys.argv[3]}: serial vs 1 rank: max |dx| = {dx:.3e} m (tolerance {tol:g} m), "
+      f"{same} of {len(a)} states equal to the bit")
 sys.exit(0 if dx <= tol else 1)
 PY
+done
 # a rank that fails alone (a bad material on rank 1 of 3) ends the job:
 # a non-zero status well before the timeout, one message naming the rank
 set +e

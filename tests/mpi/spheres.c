@@ -6,7 +6,10 @@
  * end rank 0 writes the gathered states, in stable-id order, to the file
  * given, which ranks.sh compares byte for byte across rank counts.
  *
- *   mpi_spheres OUT [--serial]   (--serial: the plain world, no attach)
+ *   mpi_spheres OUT [--serial] [--periodic] [--fail-rank R]
+ *     --serial: the plain world, no attach
+ *     --periodic: periodic along x and y (a floor plane, no box): particles
+ *                 cross the periodic faces and, as images, the rank cuts
  */
 #include <mpi.h>
 #include <stdio.h>
@@ -19,13 +22,18 @@
 
 enum { N = 600, STEPS = 500 };
 
-static sd_world *make_world(void)
+static sd_world *make_world(int periodic)
 {
     sd_error err;
     sd_world *w;
     sd_world_def d = sd_world_def_default();
     d.threads = 1;
     d.dt = 1e-5;
+    if (periodic) {
+        d.periodic = SD_PERIODIC_X | SD_PERIODIC_Y;
+        d.domain_lo = (sd_v3d){0, 0, 0};
+        d.domain_hi = (sd_v3d){0.1, 0.0135, 0.2};
+    }
     if (sd_world_create(&d, &w, &err) != SD_OK) {
         fprintf(stderr, "world: %s\n", err.msg);
         exit(1);
@@ -35,7 +43,10 @@ static sd_world *make_world(void)
     m.restitution = 0.5;
     m.friction = 0.5;
     int mat = sd_world_add_material(w, &m, &err);
-    sd_world_add_box(w, "box", (sd_v3d){0, 0, 0}, (sd_v3d){0.1, 0.0135, 0.2}, SD_BOX_ZMAX, mat, &err);
+    if (periodic)
+        sd_world_add_plane(w, "floor", (sd_v3d){0, 0, 0}, (sd_v3d){0, 0, 1}, mat, &err);
+    else
+        sd_world_add_box(w, "box", (sd_v3d){0, 0, 0}, (sd_v3d){0.1, 0.0135, 0.2}, SD_BOX_ZMAX, mat, &err);
     sd_rng r = sd_rng_seed(5);
     static sd_sphere_def s[N];
     for (int k = 0; k < N; ++k) {
@@ -62,14 +73,21 @@ int main(int argc, char **argv)
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     MPI_Comm_size(MPI_COMM_WORLD, &size);
     if (argc < 2) {
-        fprintf(stderr, "usage: mpi_spheres OUT [--serial]\n");
+        fprintf(stderr, "usage: mpi_spheres OUT [--serial] [--periodic] [--fail-rank R]\n");
         MPI_Abort(MPI_COMM_WORLD, 2);
     }
-    int serial = argc > 2 && strcmp(argv[2], "--serial") == 0;
+    int serial = 0, periodic = 0, fail_rank = -1;
+    for (int a = 2; a < argc; ++a) {
+        if (strcmp(argv[a], "--serial") == 0)
+            serial = 1;
+        else if (strcmp(argv[a], "--periodic") == 0)
+            periodic = 1;
+        else if (strcmp(argv[a], "--fail-rank") == 0 && a + 1 < argc)
+            fail_rank = atoi(argv[++a]);
+    }
     /* --fail-rank R: rank R alone reads a bad material (as a scene read on
      * one rank only would be): the job must end with one message, the
      * other ranks waiting in the split are not left hanging */
-    int fail_rank = argc > 3 && strcmp(argv[2], "--fail-rank") == 0 ? atoi(argv[3]) : -1;
     sd_error err;
     if (rank == fail_rank) {
         sd_material_def bad = sd_material_def_default();
@@ -81,7 +99,7 @@ int main(int argc, char **argv)
             sb = err.code;
         sd_mpi_fail(NULL, "scene", sb == SD_OK ? SD_ERR_INTERNAL : sb, &err);
     }
-    sd_world *w = make_world();
+    sd_world *w = make_world(periodic);
     sd_mpi *m = NULL;
     sd_status st;
     if (!serial && (st = sd_mpi_attach(w, &m, &err)) != SD_OK)
@@ -147,9 +165,9 @@ int main(int argc, char **argv)
             fwrite(v, sizeof v, 1, f);
         }
         fclose(f);
-        printf("%d rank%s%s: %zu particles gathered (ids 0..%d in order: %s), %llu migrations carrying %llu "
+        printf("%d rank%s%s%s: %zu particles gathered (ids 0..%d in order: %s), %llu migrations carrying %llu "
                "springs, rank 0: %ld rebuilds, %ld contacts; steps with a wrong count or id set: %ld\n",
-               size, size > 1 ? "s" : "", serial ? " (serial world)" : "", n, N - 1, ids_in_order ? "yes" : "no",
+               size, size > 1 ? "s" : "", serial ? " (serial world)" : "", periodic ? " periodic x, y" : "", n, N - 1, ids_in_order ? "yes" : "no",
                moved_all[0], moved_all[1], stats.rebuilds, stats.contacts, bad_steps);
         /* on more than one rank, particles must cross, some in contact */
         fail = n != N || !ids_in_order || bad_steps != 0 || (size > 1 && (moved_all[0] == 0 || moved_all[1] == 0));
