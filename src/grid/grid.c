@@ -26,6 +26,7 @@
 #include <string.h>
 
 #include "backend/cpu/parallel.h"
+#include "backend/cuda/cuda.h"
 #include "core/alloc.h"
 #include "core/error.h"
 #include "world/world.h"
@@ -55,6 +56,7 @@ void sd_grid_state_free(sd_grid_state *g)
     sd_free(g->rowocc);
     sd_free(g->occ);
     sd_free(g->slab_wall);
+    sd_cuda_grid_free(g);
     sd_free(g);
 }
 
@@ -502,15 +504,7 @@ sd_status sd_grid_setup(sd_world *w, sd_error *err)
 
 uint32_t sd_grid_cell_of(const sd_grid_state *g, sd_vec3 x)
 {
-    double fx = (double)((x.x - g->lo.x) / g->h), fy = (double)((x.y - g->lo.y) / g->h),
-           fz = (double)((x.z - g->lo.z) / g->h);
-    double r = (double)g->reach;
-    /* written so that NaN fails too */
-    if (!(fx >= r && fx < (double)g->nx - r && fy >= r && fy < (double)g->ny - r && fz >= r &&
-          fz < (double)g->nz - r))
-        return SD_GRID_OUTSIDE;
-    long ix = (long)fx, iy = (long)fy, iz = (long)fz;
-    return (uint32_t)((iz * g->ny + iy) * g->nx + ix);
+    return sd_grid_cell_index(g->lo, g->h, g->reach, g->nx, g->ny, g->nz, x);
 }
 
 /* Takes cell where[k] for k, or puts k in the overflow list (a conflict). */

@@ -39,6 +39,7 @@
 #include <shapedem/shapedem.h>
 
 #include "core/rng.h"
+#include "grid/blocks.h"
 #include "grid/stencil.h"
 
 #define SD_GRID_OVER 0xffffffffu    /* home[k]: in the overflow list */
@@ -140,6 +141,10 @@ struct sd_grid_state {
     sd_grid_pour pour;
     sd_grid_info info;
     size_t par_min;           /* fewest particles for threaded loops (0: SD_GRID_PARALLEL_MIN) */
+    /* backend cuda: the device copy of this state (backend/cuda/grid.cu),
+     * NULL on the CPU; between calls of sd_grid_step the host arrays above
+     * are the state, the device's a copy made at the call's start */
+    void *device;
 };
 
 typedef struct sd_grid_state sd_grid_state;
@@ -198,6 +203,8 @@ sd_status sd_grid_reserve(sd_grid_state *g, size_t n);
 sd_status sd_grid_place_all(sd_world *w, sd_error *err);
 /* Moves particles to their new cells after a drift; removes those that left. */
 sd_status sd_grid_rebin(sd_world *w, sd_error *err);
+/* The block layout of the force pass (blocks.h). */
+sd_grid_blocks sd_grid_blocks_of(const sd_grid_state *g);
 /* Cell index of x, or SD_GRID_OUTSIDE. */
 uint32_t sd_grid_cell_of(const sd_grid_state *g, sd_vec3 x);
 /* Removes the particles flagged where[k] == SD_GRID_OUTSIDE, keeping order. */
@@ -227,10 +234,13 @@ struct sd_state_table;
 sd_status sd_grid_state_list(sd_world *w, struct sd_state_table *t, sd_error *err);
 sd_status sd_grid_state_resumed(sd_world *w, sd_error *err);
 
-/* outlet.c: opens a scheduled outlet when its time has come (each step). */
+/* outlet.c: opens a scheduled outlet when its time has come (each step);
+ * sd_grid_outlet_due: 1 when this step opens it. */
 void sd_grid_outlet_step(sd_world *w);
+int sd_grid_outlet_due(const sd_world *w);
 
-/* pour.c */
+/* pour.c: 1 when this step pours a sheet (sd_grid_pour_step does then) */
+int sd_grid_pour_due(const sd_world *w);
 sd_status sd_grid_pour_step(sd_world *w, sd_error *err);
 
 /* grid_step.c: contact statistics for sd_world_stats (read-only pass). */

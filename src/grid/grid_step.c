@@ -16,8 +16,10 @@
 #include <string.h>
 
 #include "backend/cpu/parallel.h"
+#include "backend/cuda/cuda.h"
 #include "core/error.h"
 #include "dynamics/integrate.h"
+#include "grid/blocks.h"
 #include "grid/grid.h"
 #include "world/world.h"
 
@@ -63,60 +65,25 @@ static void sd_grid_kick(sd_world *w, int kicks, int drift)
     const sd_grid_kind *kinds = g->kinds;
     const sd_vec3 *ft = g->ft;
     size_t n = g->n;
-    sd_real h = SD_R(0.5) * w->dt, dt = w->dt;
+    sd_real dt = w->dt;
     sd_vec3 grav = w->gravity;
-    sd_quat q = sd_quat_identity(); /* spheres: isotropic inertia, the frame does not matter */
 SD_PARALLEL_FOR
-    for (size_t k = 0; k < n; ++k) {
-        const sd_grid_kind *kd = &kinds[part[k].kind];
-        for (int e = 0; e < kicks; ++e)
-            sd_integrate_kick(&part[k].v, &part[k].w, q, ft[2 * k], ft[2 * k + 1], kd->inv_mass, kd->inv_inertia,
-                              grav, h);
-        if (drift && kd->inv_mass > 0)
-            part[k].x = sd_v3_madd(part[k].x, dt, part[k].v); /* sd_integrate_drift's position update */
-    }
+    for (size_t k = 0; k < n; ++k)
+        sd_grid_kick_item(part, kinds, ft, k, kicks, drift, grav, dt);
 }
 
-/* The owners of one block of cells (z slab s, y band t), in cell order. */
-static long sd_grid_block(const sd_grid_state *g, const sd_grid_view *v, sd_grid_acc *a, long s, long t)
+sd_grid_blocks sd_grid_blocks_of(const sd_grid_state *g)
 {
-    long z0 = g->reach + s * g->slab, z1 = z0 + g->slab;
-    long y0 = g->reach + t * g->slab, y1 = y0 + g->slab;
-    if (z1 > g->nz - g->reach)
-        z1 = g->nz - g->reach;
-    if (y1 > g->ny - g->reach)
-        y1 = g->ny - g->reach;
-    const uint8_t *rowocc = g->rowocc;
-    for (long iz = z0; iz < z1; ++iz)
-        for (long iy = y0; iy < y1; ++iy) {
-            long r = iz * g->ny + iy;
-            if (!rowocc[r])
-                continue; /* an empty row of cells: nothing to read */
-            const int32_t *row = g->cell + r * g->nx;
-            long xa = g->reach, xb = g->nx - g->reach;
-            if (v->occ) {
-                /* the occupied cells of the row from its occupancy bits, a
-                 * word at a time (no branch per cell) */
-                long b0 = r * g->nx + xa, b1 = r * g->nx + xb;
-                for (long wb = b0 & ~63L; wb < b1; wb += 64) {
-                    uint64_t m = v->occ[wb >> 6];
-                    if (wb < b0)
-                        m &= ~(uint64_t)0 << (b0 - wb);
-                    if (b1 - wb < 64)
-                        m &= ((uint64_t)1 << (b1 - wb)) - 1u;
-                    while (m) {
-                        long ix = wb + sd_grid_ctz64(m) - r * g->nx;
-                        m &= m - 1u;
-                        sd_grid_owner_forces(v, a, (size_t)row[ix], ix, iy, iz);
-                    }
-                }
-                continue;
-            }
-            for (long ix = xa; ix < xb; ++ix)
-                if (row[ix] >= 0)
-                    sd_grid_owner_forces(v, a, (size_t)row[ix], ix, iy, iz);
-        }
-    return a->overflows;
+    sd_grid_blocks b;
+    b.nx = g->nx;
+    b.ny = g->ny;
+    b.nz = g->nz;
+    b.reach = g->reach;
+    b.slab = g->slab;
+    b.nslab = g->nslab;
+    b.nband = g->nband;
+    b.rowocc = g->rowocc;
+    return b;
 }
 
 /* Contact forces of every particle. Each touching pair is evaluated once, by
@@ -152,44 +119,24 @@ SD_PARALLEL_FOR
             if (home[k] != SD_GRID_OVER)
                 occ[home[k] >> 6] |= (uint64_t)1 << (home[k] & 63u);
     }
-    long nslab = g->nslab, nband = g->nband, nblock = nslab * nband, overflows = 0;
+    sd_grid_blocks b = sd_grid_blocks_of(g);
+    long nblock = b.nslab * b.nband, overflows = 0;
     for (size_t e = 0; e < (size_t)(nblock + 1) * (size_t)nw * 2; ++e)
         g->slab_wall[e] = sd_v3_zero();
-    for (long colour = 0; colour < 6; ++colour) {
-        long s0 = colour / 3, t0 = colour % 3;
-        long ns = (nslab - s0 + 1) / 2, nt = (nband - t0 + 2) / 3;
-        if (ns <= 0 || nt <= 0)
-            continue;
+    for (int colour = 0; colour < 6; ++colour) {
+        long nb = sd_grid_colour_count(&b, colour);
 SD_PRAGMA(omp parallel for schedule(dynamic, 1) num_threads(w->threads) if (w->parallel) reduction(+ : overflows))
-        for (long e = 0; e < ns * nt; ++e) {
-            long s = s0 + 2 * (e / nt), t = t0 + 3 * (e % nt);
-            sd_grid_acc a;
-            a.ft = ft;
-            a.tag = g->tag;
-            a.ds = g->ds;
-            a.wall_f = g->slab_wall + (size_t)(s * nband + t) * (size_t)nw * 2;
-            a.wall_t = a.wall_f + nw;
-            a.epoch = epoch;
-            a.overflows = 0;
-            overflows += sd_grid_block(g, &v, &a, s, t);
+        for (long e = 0; e < nb; ++e) {
+            long s, t;
+            sd_grid_colour_block(&b, colour, e, &s, &t);
+            sd_grid_acc a = sd_grid_block_acc(ft, g->tag, g->ds, g->slab_wall, (size_t)(s * b.nband + t), nw, epoch);
+            overflows += sd_grid_block_forces(&b, &v, &a, s, t);
         }
     }
     if (g->nover) {
         /* particles that lost a cell conflict: serially, in storage order */
-        sd_grid_acc a;
-        a.ft = ft;
-        a.tag = g->tag;
-        a.ds = g->ds;
-        a.wall_f = g->slab_wall + (size_t)nblock * (size_t)nw * 2;
-        a.wall_t = a.wall_f + nw;
-        a.epoch = epoch;
-        a.overflows = 0;
-        for (size_t e = 0; e < g->nover; ++e) {
-            sd_grid_homeless_forces(&v, &a, g->over[e]);
-            for (size_t e2 = e + 1; e2 < g->nover; ++e2)
-                sd_grid_add_pair(&v, &a, g->over[e], g->over[e2]);
-        }
-        overflows += a.overflows;
+        sd_grid_acc a = sd_grid_block_acc(ft, g->tag, g->ds, g->slab_wall, (size_t)nblock, nw, epoch);
+        overflows += sd_grid_homeless_all(&v, &a, g->over, g->nover);
     }
     g->info.slot_overflows += overflows;
     /* springs of contacts that ended (not stamped this step) are forgotten,
@@ -198,28 +145,15 @@ SD_PRAGMA(omp parallel for schedule(dynamic, 1) num_threads(w->threads) if (w->p
     int used_max = g->info.slots_used_max;
 SD_PRAGMA(omp parallel for schedule(static) num_threads(w->threads) if (w->parallel) reduction(max : used_max))
     for (size_t k = 0; k < n; ++k) {
-        int used = 0;
-        for (int s = 0; s < SD_GRID_SLOTS; ++s) { /* branch-free */
-            uint32_t tg = tag[k * SD_GRID_SLOTS + (size_t)s];
-            uint32_t keep = (tg & SD_GRID_TAG_EPOCH) == epoch;
-            tag[k * SD_GRID_SLOTS + (size_t)s] = keep ? tg : 0u;
-            used += (int)(keep & (tg != 0u));
-        }
+        int used = sd_grid_sweep_item(tag, k, epoch);
         if (used > used_max)
             used_max = used;
     }
     g->info.slots_used_max = used_max;
     /* wall totals (the world's wall info, stats.csv, summary.txt): only the
      * grid's own copies of the world's walls, in world order */
-    for (int k = 0; k < nw; ++k) {
-        sd_vec3 fs = sd_v3_zero(), ts = sd_v3_zero();
-        for (long s = 0; s <= nblock; ++s) {
-            fs = sd_v3_add(fs, g->slab_wall[((size_t)s * (size_t)nw * 2) + (size_t)k]);
-            ts = sd_v3_add(ts, g->slab_wall[((size_t)s * (size_t)nw * 2) + (size_t)nw + (size_t)k]);
-        }
-        w->walls[k].force = fs;
-        w->walls[k].torque = ts;
-    }
+    for (int k = 0; k < nw; ++k)
+        sd_grid_wall_total(g->slab_wall, nblock, nw, k, &w->walls[k].force, &w->walls[k].torque);
 }
 
 /* Seed 001 eq. 11, first term: dt <= pi/5 sqrt(m/k) for the lightest
@@ -303,6 +237,95 @@ sd_status sd_grid_prepare(sd_world *w, sd_error *err)
     return SD_OK;
 }
 
+/* ---- the step on the device (backend cuda) ------------------------------------------ */
+
+/* The device's copy of the state, from the host arrays / back to them. */
+static sd_status sd_grid_dev_put(sd_world *w, sd_error *err)
+{
+    return sd_cuda_grid_upload(w->grid_state, w->mix, (int)w->material_count, err);
+}
+
+static sd_status sd_grid_dev_get(sd_world *w, sd_error *err) { return sd_cuda_grid_read_back(w->grid_state, err); }
+
+/* The force pass on the device (sd_grid_forces' stages), the wall totals
+ * into the world's walls. */
+static sd_status sd_grid_dev_forces(sd_world *w, sd_error *err)
+{
+    sd_grid_state *g = w->grid_state;
+    sd_grid_view v = sd_grid_view_of(w);
+    g->epoch ^= SD_GRID_TAG_EPOCH;
+    int nw = g->nwalls;
+    sd_vec3 *wf = g->slab_wall, *wt = g->slab_wall + nw; /* host scratch: the host pass is not run */
+    sd_status st = sd_cuda_grid_forces(g, &v, wf, wt, err);
+    if (st != SD_OK)
+        return st;
+    for (int k = 0; k < nw; ++k) {
+        w->walls[k].force = wf[k];
+        w->walls[k].torque = wt[k];
+    }
+    return SD_OK;
+}
+
+/* The rebinning on the device; what it leaves to the host (removals, a
+ * NaN, eq. 11) the host's sd_grid_rebin does on the state read back. */
+static sd_status sd_grid_dev_rebin(sd_world *w, sd_error *err)
+{
+    int host = 0;
+    sd_status st = sd_cuda_grid_rebin(w->grid_state, w->dt, &host, err);
+    if (st != SD_OK || !host)
+        return st;
+    if ((st = sd_grid_dev_get(w, err)) != SD_OK)
+        return st;
+    if ((st = sd_grid_rebin(w, err)) != SD_OK) {
+        sd_grid_fail(w, w->step + 1);
+        return st;
+    }
+    return sd_grid_dev_put(w, err);
+}
+
+/* sd_grid_step's loop with the state on the device for the whole call
+ * (uploaded at its start, read back at its end, and around the host's
+ * stages: an outlet that opens, a sheet poured). The same stages in the
+ * same order as the host loop below, through the same items (blocks.h):
+ * the same bits. */
+static sd_status sd_grid_step_device(sd_world *w, long nsteps, sd_error *err)
+{
+    sd_grid_state *g = w->grid_state;
+    sd_status st = sd_grid_dev_put(w, err);
+    for (long s = 0; s < nsteps && st == SD_OK; ++s) {
+        int fused = !g->pour.active;
+        /* the host's stages change the host arrays: the device's state
+         * comes back first, and goes up again after */
+        int opens = sd_grid_outlet_due(w), pours = g->pour.active && sd_grid_pour_due(w);
+        if ((opens || pours) && (st = sd_grid_dev_get(w, err)) != SD_OK)
+            break;
+        if (opens)
+            sd_grid_outlet_step(w); /* the holed walls */
+        if (pours && (st = sd_grid_pour_step(w, err)) != SD_OK) {
+            sd_grid_fail(w, w->step + 1);
+            return st;
+        }
+        if ((opens || pours) && (st = sd_grid_dev_put(w, err)) != SD_OK)
+            break;
+        if (!fused || s == 0)
+            st = sd_cuda_grid_kick(g, 1, 1, w->gravity, w->dt, err);
+        if (st == SD_OK && (st = sd_grid_dev_rebin(w, err)) != SD_OK)
+            return st; /* the host's rebin failed (sd_grid_fail done), or the device did */
+        if (st == SD_OK)
+            st = sd_grid_dev_forces(w, err);
+        if (st == SD_OK)
+            st = fused && s + 1 < nsteps ? sd_cuda_grid_kick(g, 2, 1, w->gravity, w->dt, err)
+                                         : sd_cuda_grid_kick(g, 1, 0, w->gravity, w->dt, err);
+        if (st != SD_OK)
+            break;
+        w->step++;
+        w->time = (double)w->step * (double)w->dt;
+    }
+    if (st != SD_OK)
+        return st;
+    return sd_grid_dev_get(w, err);
+}
+
 sd_status sd_grid_step(sd_world *w, long nsteps, sd_error *err)
 {
     sd_status st;
@@ -310,6 +333,8 @@ sd_status sd_grid_step(sd_world *w, long nsteps, sd_error *err)
         return st;
     if (!w->prepared && (st = sd_grid_prepare(w, err)) != SD_OK)
         return st;
+    if (w->backend != &sd_backend_cpu)
+        return sd_grid_step_device(w, nsteps, err);
     sd_grid_state *g = w->grid_state;
     for (long s = 0; s < nsteps; ++s) {
         /* without pouring, this step's last kick and the next step's kick

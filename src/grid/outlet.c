@@ -58,10 +58,16 @@ sd_status sd_grid_set_outlet(sd_world *w, double x0, double x1, double y0, doubl
     return sd_grid_set_outlet_at(w, x0, x1, y0, y1, w->time, err);
 }
 
+int sd_grid_outlet_due(const sd_world *w)
+{
+    const sd_grid_state *g = w->grid_state;
+    return g && g->outlet_pending && !(w->time + 0.5 * (double)w->dt < g->outlet_time);
+}
+
 void sd_grid_outlet_step(sd_world *w)
 {
     sd_grid_state *g = w->grid_state;
-    if (!g || !g->outlet_pending || w->time + 0.5 * (double)w->dt < g->outlet_time)
+    if (!sd_grid_outlet_due(w))
         return;
     /* before set-up the walls are not copied yet: sd_grid_setup holes them */
     g->outlet = 1;

@@ -42,11 +42,17 @@ static int sd_pour_free(const sd_grid_state *g, sd_vec3 x, sd_real r)
     return 1;
 }
 
+int sd_grid_pour_due(const sd_world *w)
+{
+    const sd_grid_pour *pr = &w->grid_state->pour;
+    return pr->active && pr->poured < pr->def.count && !(w->time + 0.5 * (double)w->dt < pr->next_time);
+}
+
 sd_status sd_grid_pour_step(sd_world *w, sd_error *err)
 {
     sd_grid_state *g = w->grid_state;
     sd_grid_pour *pr = &g->pour;
-    if (!pr->active || pr->poured >= pr->def.count || w->time + 0.5 * (double)w->dt < pr->next_time)
+    if (!sd_grid_pour_due(w))
         return SD_OK;
     pr->next_time += 1.0 / pr->def.layers_per_second;
     const sd_grid_pour_def *d = &pr->def;

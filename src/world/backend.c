@@ -8,7 +8,9 @@
  * particle is added or any file written, with the reason: the backend not
  * compiled in, no device, a driver too old. (Out of device memory shows
  * later, at the first upload in sd_world_prepare, with the bytes needed.)
- * The grid solver has its own pipeline, on the CPU.
+ * The grid solver takes the same choice: on cuda its step runs on the
+ * device (grid/grid_step.c, backend/cuda/grid.cu), its own state there
+ * rather than the stage table's views.
  */
 #include <stdio.h>
 #include <string.h>
@@ -58,14 +60,6 @@ sd_status sd_world_choose_backend(sd_world *w, sd_error *err)
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.backend", "expected auto, cpu or cuda, got %d",
                             (int)want);
     w->backend = &sd_backend_cpu;
-    if (w->def.solver == SD_SOLVER_GRID) {
-        if (want == SD_BACKEND_CUDA)
-            return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.backend",
-                                "backend cuda runs the cells solver only (the grid solver has no CUDA backend "
-                                "yet); use backend auto or cpu");
-        snprintf(w->backend_note, sizeof w->backend_note, "the grid solver runs on the CPU");
-        return SD_OK;
-    }
     if (want == SD_BACKEND_CPU) {
         snprintf(w->backend_note, sizeof w->backend_note, "asked for");
         return SD_OK;

@@ -14,7 +14,8 @@
  * under the linear law, box and plane walls, moving and servo walls (2D
  * biaxial), periodic boundaries, convex shapes (GJK/EPA), sharp polyhedra
  * under the volume law, the planar mode, mesh walls (fixed and rotating),
- * composites, and insertion with outlets.
+ * composites, insertion with outlets, and the grid solver (solver: grid,
+ * with its pour and its outlet).
  *
  * Then the refusals of the device probe and of the upload: no device, a
  * driver too old, too little device memory (the message names the MiB it
@@ -31,6 +32,7 @@
 #include <shapedem/scene.h>
 
 #include "broad/pairs.h"
+#include "grid/grid.h"
 #include "world/snapshot.h"
 
 typedef struct emu_case {
@@ -49,6 +51,12 @@ static const emu_case cases[] = {
     {"tests/unit/scenes/restart-mesh-drum.yaml", 6000, 240, "rotating mesh wall"},
     {"tests/unit/scenes/restart-composites.yaml", 6000, 240, "composites"},
     {"tests/unit/scenes/restart-feed-drain.yaml", 3000, 240, "insertion and outlets"},
+    /* the grid solver (its own state on the device, grid.cu): the stencil's
+     * six colours, the slots, the box as mirror particles, a sheet poured
+     * at steps 2500, 3750, ... (on the host between a read back and an
+     * upload), the outlet opening at step 3500 inside a call, and the
+     * removals through it (the host's rebin) */
+    {"tests/unit/scenes/restart-grid.yaml", 2500, 7500, "solver grid: stencil, pour, outlet, removals"},
 };
 
 static int same_bits(const void *a, const void *b, size_t n) { return memcmp(a, b, n) == 0; }
@@ -190,6 +198,13 @@ static void run_case(const char *src, const emu_case *c)
            "%ld particles or walls differ (max |dx| %.3g m), %zu of %zu state arrays differ [%s]\n",
            bad == 0 && differ == 0 ? "ok" : "FAIL", c->scene, sd_world_particle_count(a),
            st.contacts + st.wall_contacts, st.wall_contacts, c->warm, c->run, bad, max_dx, differ, xa.n, c->covers);
+    sd_grid_info gi;
+    sd_grid_get_info(b, &gi);
+    if (gi.active) /* which of the grid's paths the device run took */
+        printf("     grid on the device: %zu poured, outlet %s, %zu removed, %ld cell conflicts (at most %zu without "
+               "a cell), %ld slot overflows\n",
+               gi.poured, gi.outlet_open ? "open" : "closed", gi.removed, gi.conflicts, gi.max_overflow,
+               gi.slot_overflows);
     CHECK(bad == 0);
     CHECK(differ == 0);
     CHECK(sd_world_step_count(a) == sd_world_step_count(b) && sd_world_time(a) == sd_world_time(b));

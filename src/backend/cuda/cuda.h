@@ -37,6 +37,31 @@ sd_cuda_probe_result sd_cuda_probe(char *note, size_t size);
 /* The stage table, or NULL without the backend. */
 const sd_backend *sd_cuda_backend(void);
 
+/* The grid solver's step on the device (grid.cu; grid/grid_step.c calls
+ * them when the world's backend is cuda). The device holds a copy of the
+ * solver's state (grid/grid.h) in g->device: upload copies all of it
+ * there (the call's start, and after any host change: a poured sheet, an
+ * opened outlet, removals), read_back all of it to the host arrays. Each
+ * returns SD_OK or the first device failure, naming the stage. */
+struct sd_grid_state;
+struct sd_grid_view;
+sd_status sd_cuda_grid_upload(struct sd_grid_state *g, const sd_pair_params *mix, int nm, sd_error *err);
+sd_status sd_cuda_grid_read_back(struct sd_grid_state *g, sd_error *err);
+/* sd_grid_kick_item on every particle */
+sd_status sd_cuda_grid_kick(struct sd_grid_state *g, int kicks, int drift, sd_vec3 grav, sd_real dt,
+                            sd_error *err);
+/* the rebinning of grid.c's sd_grid_rebin; *host = 1 (device cells not
+ * touched) when the host must do it: a particle left the inner grid (its
+ * removal renumbers the storage), a NaN, or eq. 11 of [Naderi 2024]
+ * violated (the host's rebin reports it) */
+sd_status sd_cuda_grid_rebin(struct sd_grid_state *g, sd_real dt, int *host, sd_error *err);
+/* the force pass of grid_step.c (v: the host's view, its arrays replaced
+ * by the device's); the wall totals into wall_f, wall_t (nwalls each) */
+sd_status sd_cuda_grid_forces(struct sd_grid_state *g, const struct sd_grid_view *v, sd_vec3 *wall_f,
+                              sd_vec3 *wall_t, sd_error *err);
+/* frees g->device (no-op without it) */
+void sd_cuda_grid_free(struct sd_grid_state *g);
+
 #ifdef __cplusplus
 }
 #endif

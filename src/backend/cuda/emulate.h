@@ -1,6 +1,6 @@
 /* emulate.h — the CUDA runtime calls and the kernel launch of the CUDA
  * backend, mapped to host code, so that the backend's own sources
- * (device.cu, particles.cu, pairs.cu, walls.cu) compiled as C++ by the host
+ * (device.cu, particles.cu, pairs.cu, walls.cu, grid.cu) compiled as C++ by the host
  * compiler with SHAPEDEM_CUDA_EMULATE run on a machine without a GPU
  * (CI has none): the test-only library shapedem_cuda_emulated and
  * unit.cuda_emulated, which compares its states with the CPU backend's bit
@@ -241,6 +241,27 @@ static inline unsigned long long atomicAdd(unsigned long long *a, unsigned long 
 static inline unsigned long long atomicMin(unsigned long long *a, unsigned long long v)
 {
     unsigned long long old = *a;
+    *a = v < old ? v : old;
+    return old;
+}
+
+static inline unsigned long long atomicOr(unsigned long long *a, unsigned long long v)
+{
+    unsigned long long old = *a;
+    *a = old | v;
+    return old;
+}
+
+static inline unsigned long long atomicMax(unsigned long long *a, unsigned long long v)
+{
+    unsigned long long old = *a;
+    *a = v > old ? v : old;
+    return old;
+}
+
+static inline unsigned int atomicMin(unsigned int *a, unsigned int v)
+{
+    unsigned int old = *a;
     *a = v < old ? v : old;
     return old;
 }
