@@ -125,8 +125,8 @@ sd_size_def sd_size_def_fixed(double radius);
  * filled: a region that is empty or not inside the periodic box, a mix
  * whose fractions do not sum to 1, a negative or empty size range, an
  * unknown template or material. A template entry with a size law adds
- * its scaled copies now (named TEMPLATE_iIeEsK: insertion I, entry E,
- * class K), so add such an insertion before the first step (between
+ * its scaled copies now (named TEMPLATE_iIeEsK: insertion I, or the next
+ * number whose names are free, entry E, class K), so add such an insertion before the first step (between
  * steps the new templates make the world prepare again). */
 int sd_world_add_insertion(sd_world *w, const sd_insert_def *def, sd_error *err);
 

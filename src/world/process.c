@@ -814,11 +814,23 @@ int sd_world_add_insertion(sd_world *w, const sd_insert_def *d, sd_error *err)
                  * added copy may move: keep the base name */
                 char base[48];
                 snprintf(base, sizeof base, "%.40s", si.name ? si.name : "shape");
+                /* the copies are BASE_iIeEsK with I the insertion's number, or
+                 * the next number whose names are all free: a scene that starts
+                 * from a checkpoint of another run has that run's copies
+                 * already (io/scene_from.c) */
+                size_t tag = w->process ? w->process->insertion_count : (size_t)0;
+                char name[96]; /* room for the widest counters (gcc's -Wformat-truncation) */
+                for (int c = 0, tries = 0; c < n && tries < 1000; ++c) {
+                    snprintf(name, sizeof name, "%s_i%zue%ds%d", base, tag, e, c);
+                    if (sd_world_find_shape(w, name) >= 0) {
+                        ++tag;
+                        ++tries;
+                        c = -1; /* again from the first class */
+                    }
+                }
                 for (int c = 0; c < n; ++c) {
-                    char name[96]; /* room for the widest counters (gcc's -Wformat-truncation) */
                     double sc = rep[c] / si.equivalent_radius;
-                    snprintf(name, sizeof name, "%s_i%zue%ds%d", base,
-                             w->process ? w->process->insertion_count : (size_t)0, e, c);
+                    snprintf(name, sizeof name, "%s_i%zue%ds%d", base, tag, e, c);
                     int idx = sd_world_add_scaled_shape(w, en->shape, sc, name, err);
                     if (idx < 0) {
                         snprintf(err->key, sizeof err->key, "insert.mix.shape");

@@ -8,8 +8,9 @@
 # output directory: a missing file, a template this scene lacks, a
 # template of another kind, a damaged checkpoint (one byte flipped, cut
 # short), a checkpoint of the other dimension. A bed poured by an insertion
-# with a size law (scaled copies of its brick) starts a new scene too, and
-# is refused where the new scene lacks the brick or has it of another kind.
+# with a size law (scaled copies of its brick) starts a new scene too (also
+# one with an insertion of bricks of its own), and is refused where the new
+# scene lacks the brick or has it of another kind.
 set -u
 exe=${1:?usage: scene_from.sh SHAPEDEM REPO}
 [[ $exe == */* ]] && exe=$(cd "$(dirname "$exe")" && pwd)/$(basename "$exe")
@@ -132,6 +133,18 @@ from_yaml "type: box, size: [0.002, 0.003, 0.004]" poured/checkpoint-000200.h5 >
 rc=$?
 check "a new scene runs from the scaled copies (exit $rc: $(cat "$tmp/copies.err"))" \
     "$([[ $rc == 0 ]] && grep -q '^shapedem: 20 particles, 100 steps' "$tmp/copies.out" && echo 1 || echo 0)"
+{
+    from_yaml "type: box, size: [0.002, 0.003, 0.004]" poured/checkpoint-000200.h5
+    cat <<EOF
+insert:
+  - {name: more, region: box, min: [0.1, 0, 0.03], max: [0.12, 0.02, 0.05], count: 10, attempts: 500,
+     mix: [{material: glass, shape: brick, distribution: uniform, radius: {min: 0.0012, max: 0.0016}, size_classes: 3}]}
+EOF
+} >"$tmp/more.yaml"
+(cd "$tmp" && "$exe" run more.yaml -o more --steps 100 --threads 1 >"$tmp/more.out" 2>"$tmp/more.err")
+rc=$?
+check "with an insertion of its own, whose copies take the next free names (exit $rc: $(cat "$tmp/more.err"))" \
+    "$([[ $rc == 0 ]] && grep -q '^shapedem: 30 particles, 100 steps' "$tmp/more.out" && echo 1 || echo 0)"
 from_yaml "type: box, size: [0.002, 0.003, 0.004]" poured/checkpoint-000200.h5 |
     sed 's/name: brick/name: block/' >"$tmp/bad.yaml"
 bad "a scaled copy whose template this scene lacks" \
