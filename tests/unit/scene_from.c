@@ -4,7 +4,8 @@
  * For each particle kind (spheres; convex boxes, cylinders, ellipsoids,
  * cones and an icosahedron; composites; the planar circles, ellipses,
  * polygons, polybeziers and Fourier outlines; the scaled copies of a box
- * and a composite that an insertion with size laws makes) a small bed is
+ * and a composite, and of an ellipse and a polygon, that an insertion with
+ * size laws makes) a small bed is
  * thrown onto the floor, steps a while and is checkpointed; a new scene
  * with the same templates and materials but other walls (a plane where
  * there was a box) and a shift takes its particles from the checkpoint.
@@ -104,6 +105,9 @@ static const from_case cases[] = {
      "glass",
      "walls:\n  - {name: floor, type: plane, point: [0, 0, 0], normal: [0, 0, 1], material: glass}\n",
      {0.003, 0.001, 0.0001}, 1},
+    {"tests/unit/scenes/from-scaled-2d.yaml", NULL, /* an insertion's scaled ellipses and hexagons */
+     "grain", "walls:\n  - {name: floor, type: plane, point: [0, 0, 0], normal: [0, 1, 0], material: grain}\n",
+     {0.001, 0.0001, 0.0}, 1},
 };
 
 typedef struct saved_particle {
