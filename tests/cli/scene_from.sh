@@ -9,8 +9,9 @@
 # template of another kind, a damaged checkpoint (one byte flipped, cut
 # short), a checkpoint of the other dimension. A bed poured by an insertion
 # with a size law (scaled copies of its brick) starts a new scene too (also
-# one with an insertion of bricks of its own), and is refused where the new
-# scene lacks the brick or has it of another kind.
+# one with an insertion of bricks of its own, which restarts bit for bit),
+# and is refused where the new scene lacks the brick or has it of another
+# kind.
 set -u
 exe=${1:?usage: scene_from.sh SHAPEDEM REPO}
 [[ $exe == */* ]] && exe=$(cd "$(dirname "$exe")" && pwd)/$(basename "$exe")
@@ -145,6 +146,17 @@ EOF
 rc=$?
 check "with an insertion of its own, whose copies take the next free names (exit $rc: $(cat "$tmp/more.err"))" \
     "$([[ $rc == 0 ]] && grep -q '^shapedem: 30 particles, 100 steps' "$tmp/more.out" && echo 1 || echo 0)"
+# that scene restarts bit for bit (its copies made again from the same file)
+{
+    cat "$tmp/more.yaml"
+    echo "output: {every: 100, checkpoint_every: 50}"
+} >"$tmp/again.yaml"
+(cd "$tmp" && "$exe" run again.yaml -o again1 --steps 100 --threads 1 >/dev/null 2>&1 &&
+    "$exe" run again.yaml -o again2 --steps 100 --threads 2 --restart again1/checkpoint-000050.h5 >/dev/null 2>&1)
+sum1=$(cd "$tmp" && "$exe" info again1/checkpoint-000100.h5 2>&1 | grep '^checksum')
+sum2=$(cd "$tmp" && "$exe" info again2/checkpoint-000100.h5 2>&1 | grep '^checksum')
+check "restarted at step 50 on 2 threads, its step-100 checkpoint is the straight run's ($sum1 / $sum2)" \
+    "$([[ -n $sum1 && $sum1 == "$sum2" ]] && echo 1 || echo 0)"
 from_yaml "type: box, size: [0.002, 0.003, 0.004]" poured/checkpoint-000200.h5 |
     sed 's/name: brick/name: block/' >"$tmp/bad.yaml"
 bad "a scaled copy whose template this scene lacks" \
