@@ -280,8 +280,8 @@ SD_HD static SD_INLINE void sd_item_convex2d(const sd_step_view *v, sd_pair_out 
  * any other particle is its own element 0 (a plain sphere a point core
  * written into *tmp). *req: the element's radius of equal volume, m (the
  * R* of Hertz and the E/R of the volume laws). */
-SD_HD static SD_INLINE sd_convex sd_item_element_of(const sd_step_view *v, size_t k, uint32_t sub, sd_shape *tmp,
-                                                    sd_real *req)
+SD_HD static SD_HOT sd_convex sd_item_element_of(const sd_step_view *v, size_t k, uint32_t sub, sd_shape *tmp,
+                                                 sd_real *req)
 {
     int s = v->shape[k];
     if (s >= 0 && v->shapes[s].kind == SD_SHAPE_COMPOSITE) {
@@ -298,6 +298,60 @@ SD_HD static SD_INLINE sd_convex sd_item_element_of(const sd_step_view *v, size_
     }
     *req = sd_item_equivalent_radius(v, k);
     return sd_item_convex_of(v, k, tmp);
+}
+
+/* The posed elements of one side of a run (one composite pair): each
+ * element derived once by sd_item_element_of and, when GJK asks, its
+ * rotation matrix built once (sd_gjk_body_of), then reused by every
+ * element pair of the run that names it. Two crosses of 7 cubes have up to
+ * 49 element pairs but 14 elements; the same arithmetic on the same
+ * inputs, so the same bits as posing each pair's elements anew. Elements
+ * past SD_ITEM_POSE_CAP are posed again for each pair (in the spill slot). */
+#define SD_ITEM_POSE_CAP 8
+
+typedef struct sd_item_pose {
+    sd_convex c;   /* the posed element */
+    sd_gjk_body g; /* c with its rotation matrix, valid when has_m */
+    sd_real req;   /* m, the element's radius of equal volume */
+    int has_m;
+} sd_item_pose;
+
+typedef struct sd_item_poses {
+    size_t k;      /* the particle */
+    uint32_t have; /* bit s: slot s is posed */
+    sd_shape tmp;  /* a plain sphere's point core (its element 0) */
+    sd_item_pose p[SD_ITEM_POSE_CAP];
+    sd_item_pose spill;
+} sd_item_poses;
+
+SD_HD static SD_INLINE void sd_item_poses_init(sd_item_poses *P, size_t k)
+{
+    P->k = k;
+    P->have = 0;
+}
+
+/* Element sub of P's particle, posed (sd_item_element_of). */
+SD_HD static SD_INLINE sd_item_pose *sd_item_pose_of(const sd_step_view *v, sd_item_poses *P, uint32_t sub)
+{
+    int cached = sub < SD_ITEM_POSE_CAP;
+    sd_item_pose *p = cached ? &P->p[sub] : &P->spill;
+    uint32_t bit = cached ? 1u << sub : 0u;
+    if (P->have & bit)
+        return p;
+    p->c = sd_item_element_of(v, P->k, sub, &P->tmp, &p->req);
+    p->has_m = 0;
+    P->have |= bit;
+    return p;
+}
+
+/* The GJK body of pose p: its rotation matrix built on the first call. */
+SD_HD static SD_INLINE const sd_gjk_body *sd_item_pose_body(sd_item_pose *p)
+{
+    if (!p->has_m) {
+        p->g = sd_gjk_body_of(&p->c);
+        p->has_m = 1;
+    }
+    return &p->g;
 }
 
 /* The element sub-indices of pair e on i and on j (the key holds them in
@@ -349,27 +403,28 @@ SD_HD static SD_INLINE sd_pair_result sd_item_apply_at(const sd_pair_params *prm
  * shortcut, so a clump is as cheap as its spheres). Any other pair is the
  * convex narrow phase on the posed elements (shrink / GJK / swell, EPA
  * when the cores overlap; seed 004 §2.5), after their bounding spheres. */
-SD_HD static SD_INLINE int sd_item_element_geom(const sd_step_view *v, sd_pair_out *o, size_t e, sd_contact_geom *g,
-                                                sd_real *r_star, sd_narrow_count *ns)
+SD_HD static SD_INLINE int sd_item_element_geom(const sd_step_view *v, sd_pair_out *o, size_t e, sd_item_poses *Pi,
+                                                sd_item_poses *Pj, sd_contact_geom *g, sd_real *r_star,
+                                                sd_narrow_count *ns)
 {
     uint32_t si, sj;
     sd_item_element_subs(o, e, &si, &sj);
-    sd_shape ti, tj;
-    sd_real ri, rj;
-    sd_convex ci = sd_item_element_of(v, o->i[e], si, &ti, &ri), cj = sd_item_element_of(v, o->j[e], sj, &tj, &rj);
+    sd_item_pose *pi = sd_item_pose_of(v, Pi, si), *pj = sd_item_pose_of(v, Pj, sj);
+    const sd_convex *ci = &pi->c, *cj = &pj->c;
     ns->iterations = 0;
     ns->supports = 0;
-    if (sd_item_is_sphere(&ci) && sd_item_is_sphere(&cj)) {
-        sd_real ra = ci.shape->radius, rb = cj.shape->radius, rs = ra + rb;
-        if (o->delta[e] <= 0 && sd_v3_norm2(sd_v3_sub(ci.x, cj.x)) >= rs * rs)
+    if (sd_item_is_sphere(ci) && sd_item_is_sphere(cj)) {
+        sd_real ra = ci->shape->radius, rb = cj->shape->radius, rs = ra + rb;
+        if (o->delta[e] <= 0 && sd_v3_norm2(sd_v3_sub(ci->x, cj->x)) >= rs * rs)
             return -1;
         *r_star = ra * rb / (ra + rb);
-        return sd_sphere_sphere(ci.x, ra, cj.x, rb, g);
+        return sd_sphere_sphere(ci->x, ra, cj->x, rb, g);
     }
-    sd_real reach = ci.shape->bound + cj.shape->bound;
-    if (sd_v3_norm2(sd_v3_sub(ci.x, cj.x)) >= reach * reach)
+    sd_real reach = ci->shape->bound + cj->shape->bound;
+    if (sd_v3_norm2(sd_v3_sub(ci->x, cj->x)) >= reach * reach)
         return 0;
-    sd_convex_contact c = sd_convex_collide(&ci, &cj, &o->warm[e]);
+    sd_real ri = pi->req, rj = pj->req;
+    sd_convex_contact c = sd_convex_collide_bodies(sd_item_pose_body(pi), sd_item_pose_body(pj), &o->warm[e], 0);
     ns->iterations = c.iterations;
     ns->supports = c.support_calls;
     if (!c.touching)
@@ -533,11 +588,14 @@ SD_HD static SD_INLINE int sd_item_elements(const sd_step_view *v, sd_pair_out *
     sd_contact_geom keep[SD_ITEM_RUN_CAP];
     sd_real keep_r[SD_ITEM_RUN_CAP];
     sd_vec3 cm = sd_v3_zero();
+    sd_item_poses Pi, Pj; /* the elements of i and of j, each posed once for the run */
+    sd_item_poses_init(&Pi, i);
+    sd_item_poses_init(&Pj, j);
     for (size_t e = e0; e < e1; ++e) {
         sd_contact_geom g;
         sd_real rs = SD_R(0.0);
         sd_narrow_count ns;
-        int t = sd_item_element_geom(v, o, e, &g, &rs, &ns);
+        int t = sd_item_element_geom(v, o, e, &Pi, &Pj, &g, &rs, &ns);
         o->iters[e] = ns.iterations;
         o->supports[e] = ns.supports;
         if (t > 0) {
@@ -548,7 +606,11 @@ SD_HD static SD_INLINE int sd_item_elements(const sd_step_view *v, sd_pair_out *
             cm = sd_v3_add(cm, g.point);
             ++nc;
             o->delta[e] = g.delta; /* marks the touching pairs for the second pass */
-        } else if (t == 0) {
+        } else if (t == 0 && o->delta[e] > SD_R(0.0)) {
+            /* apart now; a pair that was apart too (delta <= 0: the
+             * rebuild and sd_pair_none leave its force, torques, energy
+             * and spring zero) has nothing to write, as in the sphere
+             * loop: most element pairs of a run, and most of its stores */
             int flip = o->flip[e];
             sd_vec3 ds = o->ds[e];
             sd_pair_result r = sd_pair_none(&ds);
@@ -579,7 +641,7 @@ SD_HD static SD_INLINE int sd_item_elements(const sd_step_view *v, sd_pair_out *
             rs = keep_r[k];
         } else {
             sd_narrow_count ns;
-            (void)sd_item_element_geom(v, o, e, &g, &rs, &ns);
+            (void)sd_item_element_geom(v, o, e, &Pi, &Pj, &g, &rs, &ns);
         }
         ++k;
         int flip = o->flip[e];

@@ -39,15 +39,22 @@ typedef struct sd_convex_contact {
     int epa_status;                /* sd_epa_status when used_epa, else -1 */
 } sd_convex_contact;
 
-/* Contact of the swept bodies a and b. warm_dir (may be NULL) holds the
- * pair's cached GJK direction; it is read as the start and updated. */
-SD_HD static SD_INLINE sd_convex_contact sd_convex_collide(const sd_convex *a, const sd_convex *b, sd_vec3 *warm_dir)
+/* Contact of the swept bodies A->c and B->c, their rotation matrices
+ * given (sd_gjk_body_of; built once by a caller that queries one body many
+ * times). warm_dir (may be NULL) holds the pair's cached GJK direction; it
+ * is read as the start and updated. gap 0: a caller that needs only the
+ * touching pairs skips the normal and the gap of a pair that GJK proved
+ * apart early (bounded: touching 0, delta 0, n +z, point the midpoint);
+ * every other field, and *warm_dir, as with gap 1. */
+SD_HD static SD_INLINE sd_convex_contact sd_convex_collide_bodies(const sd_gjk_body *A, const sd_gjk_body *B,
+                                                                  sd_vec3 *warm_dir, int gap)
 {
     sd_convex_contact c;
+    const sd_convex *a = A->c, *b = B->c;
     const sd_real ra = a->shape->radius, rb = b->shape->radius;
     /* the swept bodies cannot touch once the core distance exceeds ra + rb:
      * GJK stops as soon as a support point proves it (gjk.h, rule 0) */
-    sd_gjk_result g = sd_gjk_distance_bounded(a, b, warm_dir ? *warm_dir : sd_v3_zero(), ra + rb);
+    sd_gjk_result g = sd_gjk_distance_bodies(A, B, warm_dir ? *warm_dir : sd_v3_zero(), ra + rb);
     if (warm_dir)
         *warm_dir = g.dir;
     c.status = g.status;
@@ -60,7 +67,7 @@ SD_HD static SD_INLINE sd_convex_contact sd_convex_collide(const sd_convex *a, c
     c.n = sd_v3(SD_R(0.0), SD_R(0.0), SD_R(1.0));
     c.point = sd_v3_scale(sd_v3_add(a->x, b->x), SD_R(0.5));
     c.delta = SD_R(0.0);
-    if (g.status == SD_GJK_DEGENERATE)
+    if (g.status == SD_GJK_DEGENERATE || (g.bounded && !gap))
         return c;
 
     sd_vec3 pa = g.pa, pb = g.pb;
@@ -102,6 +109,13 @@ SD_HD static SD_INLINE sd_convex_contact sd_convex_collide(const sd_convex *a, c
     c.touching = c.delta > SD_R(0.0);
     c.point = sd_v3_scale(sd_v3_add(sd_v3_madd(pa, -ra, c.n), sd_v3_madd(pb, rb, c.n)), SD_R(0.5));
     return c;
+}
+
+/* Contact of the swept bodies a and b (sd_convex_collide_bodies). */
+SD_HD static SD_INLINE sd_convex_contact sd_convex_collide(const sd_convex *a, const sd_convex *b, sd_vec3 *warm_dir)
+{
+    const sd_gjk_body A = sd_gjk_body_of(a), B = sd_gjk_body_of(b);
+    return sd_convex_collide_bodies(&A, &B, warm_dir, 1);
 }
 
 /* Body-frame point p of a's core in the world (the pose convention of

@@ -429,16 +429,20 @@ SD_HD static SD_INLINE void sd_gjk_support_body(const sd_gjk_body *a, const sd_g
  * r.bounded = 1; distance is then that lower bound (not the distance),
  * the witnesses are the current simplex's, and dir is the direction that
  * separates, the best warm start for the next query. A negative
- * stop_beyond never stops early (sd_gjk_distance). */
-SD_HD static SD_INLINE sd_gjk_result sd_gjk_distance_bounded(const sd_convex *a, const sd_convex *b, sd_vec3 warm_dir,
-                                                             sd_real stop_beyond)
+ * stop_beyond never stops early (sd_gjk_distance). The bodies carry their
+ * rotation matrices (sd_gjk_body_of): a caller that queries one body
+ * against many builds it once (a composite's element, posed once for all
+ * the element pairs of its run, backend/items.h); the same matrices, so
+ * the same bits as sd_gjk_distance_bounded. */
+SD_HD static SD_INLINE sd_gjk_result sd_gjk_distance_bodies(const sd_gjk_body *pA, const sd_gjk_body *pB,
+                                                            sd_vec3 warm_dir, sd_real stop_beyond)
 {
     sd_gjk_result r;
+    const sd_convex *a = pA->c, *b = pB->c;
     const sd_real L = sd_gjk_length_scale(a, b);
     const sd_real abs_tol2 = sd_sq(SD_GJK_ABS_TOL * L);
     const int bound_on = stop_beyond >= SD_R(0.0);
     const sd_real stop2 = bound_on ? stop_beyond * stop_beyond : SD_R(0.0);
-    const sd_gjk_body A = sd_gjk_body_of(a), B = sd_gjk_body_of(b);
 
     sd_vec3 d = warm_dir;
     if (!(sd_v3_norm2(d) > SD_R(0.0)) || !sd_gjk_finite(d))
@@ -456,7 +460,7 @@ SD_HD static SD_INLINE sd_gjk_result sd_gjk_distance_bounded(const sd_convex *a,
     r.bounded = 0;
     r.iterations = 0;
     r.support_calls = 1;
-    sd_gjk_support_body(&A, &B, d, &y[0]);
+    sd_gjk_support_body(pA, pB, d, &y[0]);
     act[0] = 0;
     lam[0] = SD_R(1.0);
     r.dir = d;
@@ -490,7 +494,7 @@ SD_HD static SD_INLINE sd_gjk_result sd_gjk_distance_bounded(const sd_convex *a,
             while (used & (1 << f))
                 ++f;
             sd_gjk_vertex *w = &y[f];
-            sd_gjk_support_body(&A, &B, d, w);
+            sd_gjk_support_body(pA, pB, d, w);
             r.support_calls++;
             if (!sd_gjk_finite(w->w)) {
                 r.status = SD_GJK_DEGENERATE;
@@ -580,6 +584,14 @@ SD_HD static SD_INLINE sd_gjk_result sd_gjk_distance_bounded(const sd_convex *a,
         r.distance = SD_R(0.0);
     }
     return r;
+}
+
+/* sd_gjk_distance_bodies on two posed convex bodies. */
+SD_HD static SD_INLINE sd_gjk_result sd_gjk_distance_bounded(const sd_convex *a, const sd_convex *b, sd_vec3 warm_dir,
+                                                             sd_real stop_beyond)
+{
+    const sd_gjk_body A = sd_gjk_body_of(a), B = sd_gjk_body_of(b);
+    return sd_gjk_distance_bodies(&A, &B, warm_dir, stop_beyond);
 }
 
 /* GJK distance between the cores of a and b (no early stop). */
