@@ -200,7 +200,7 @@ typedef struct sd_world_def {
     sd_v3d domain_lo, domain_hi; /* m, the periodic box; read on the periodic axes only */
     int multi_contact;      /* SD_MULTI_CONTACT_AVERAGE (model B, default, seed 004 eq. 21) or
                                SD_MULTI_CONTACT_SUM (model A, eq. 18): composite pairs */
-    sd_backend_kind backend; /* SD_BACKEND_AUTO by default; the grid solver runs on the CPU */
+    sd_backend_kind backend; /* SD_BACKEND_AUTO by default; for either solver */
     double max_overlap;     /* -, the overlap guard: a contact deeper than this fraction of the
                                smaller radius stops the step with SD_ERR_PHYSICS (0.5 by
                                default; 0 = off; cells solver) */

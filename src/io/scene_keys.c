@@ -149,9 +149,9 @@ const sd_scene_key sd_scene_keys[] = {
      "cells: the general engine; grid: the dense grid-stencil solver of [Naderi 2024] for equal "
      "(R_max/R_min <= 2) spheres inside a box wall, same physics (docs/grid-solver.md)"},
     {SD_SEC_SIMULATION, "backend", SD_KT_ENUM, SD_KR_ANY, "auto|cpu|cuda", ALL, 0, "", "auto",
-     "where the cells solver's step runs: auto (an NVIDIA GPU when shapedem was built with CUDA and "
+     "where the step runs (either solver): auto (an NVIDIA GPU when shapedem was built with CUDA and "
      "one is usable, else the CPU; summary.txt says which and why), cpu, or cuda (refused, with the "
-     "reason, when no GPU is usable); the same bits on both; the grid solver runs on the CPU"},
+     "reason, when no GPU is usable); the same bits on both"},
     {SD_SEC_SIMULATION, "periodic", SD_KT_ENUM_LIST, SD_KR_ANY, "x|y|z", ALL, 0, "", "[]",
      "axes with periodic boundaries (LIGGGHTS' boundary p), e.g. [x, y]: a particle leaving the "
      "domain on one side comes back on the other, and contacts act across the boundary; needs "
