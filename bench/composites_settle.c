@@ -11,17 +11,24 @@
  *             (sd_world_add_composite_preset; overlapping elements)
  * Each case: particles on a loose lattice with random velocities, `warm`
  * steps to bring them into contact, then `steps` timed steps. Prints per
- * case particle-steps per second, element-pair tests per second (element
- * pairs in the list, each evaluated once per step) and the ratio to the
- * sphere case (with one thread per CPU second of the process, with more
- * per wall second). Build against a release library build, e.g.
+ * case particle-steps per second, element-pair tests per second and the
+ * ratio to the sphere case (with one thread per CPU second of the process,
+ * with more per wall second). The element-pair tests are the element pairs
+ * that went through GJK (the world's narrow-phase counters, exact; pairs
+ * whose element bounding spheres are apart are culled before it and not
+ * counted) plus, for the clumps, the sphere-element pairs, each tested by
+ * the analytic sphere law (the element pairs in the list, read after every
+ * 50-step chunk). element_pairs_per_s is all element pairs in the list,
+ * read the same way. state_hash (FNV-1a of every particle's position,
+ * velocity, spin and orientation at the end) shows whether a change kept
+ * the bits (bench/ab). Build against a release library build, e.g.
  *   cmake -S . -B build-release -DCMAKE_BUILD_TYPE=Release && cmake --build build-release -j 2 --target shapedem_lib
  *   cc -O2 -std=c17 -fopenmp -Isrc -Iinclude bench/composites_settle.c \
  *      build-release/libshapedem.a -lyaml -lhdf5 -lm -o build-release/composites_settle
  *   build-release/composites_settle [--json] [threads] [steps] [warm]
  * --json: one JSON line per kind ({"case":"composites-settle","kind",
  * "particles","steps","threads","wall_s","cpu_s","psps","element_pair_tests_per_s",
- * "cost_vs_spheres","load1"}), as bench/run prints them.
+ * "element_pairs_per_s","cost_vs_spheres","state_hash","load1"}), as bench/run prints them.
  */
 #include <math.h>
 #include <stdio.h>
@@ -69,8 +76,33 @@ static double load1(void)
     return l;
 }
 
-static void run(const char *kind, int threads, int steps, int warm, double *psps_out, double *tests_out,
-                double *wall_out, double *cpu_out)
+/* What one case measured. */
+typedef struct result {
+    double psps, tests, pairs, wall, cpu; /* pairs: element pairs in the list per second */
+    unsigned long long hash;
+} result;
+
+/* FNV-1a over each particle's position, velocity, spin and orientation in
+ * storage order (the same scene and steps give the same order). */
+static unsigned long long state_hash(const sd_world *w)
+{
+    unsigned long long h = 1469598103934665603ull;
+    for (size_t k = 0; k < sd_world_particle_count(w); ++k) {
+        sd_particle_state p;
+        sd_world_get_particle(w, k, &p);
+        double v[] = {p.position.x, p.position.y, p.position.z, p.velocity.x, p.velocity.y, p.velocity.z,
+                      p.angular_velocity.x, p.angular_velocity.y, p.angular_velocity.z, p.quat[0], p.quat[1],
+                      p.quat[2], p.quat[3]};
+        const unsigned char *b = (const unsigned char *)v;
+        for (size_t i = 0; i < sizeof v; ++i) {
+            h ^= b[i];
+            h *= 1099511628211ull;
+        }
+    }
+    return h;
+}
+
+static void run(const char *kind, int threads, int steps, int warm, result *res)
 {
     sd_error err;
     sd_world *w;
@@ -167,27 +199,35 @@ static void run(const char *kind, int threads, int steps, int warm, double *psps
         sd_world_add_bodies(w, N, b, &err);
     if (sd_world_step(w, warm, &err) != SD_OK)
         exit(1);
-    double t0 = now(), c0 = cpu(), tests = 0;
+    long long gjk0 = w->narrow[SD_SHAPE_COMPOSITE][SD_SHAPE_COMPOSITE][0];
+    double t0 = now(), c0 = cpu(), pairs = 0;
     int chunk = 50;
     for (int k = 0; k < steps; k += chunk) {
         sd_world_step(w, chunk, &err);
         const sd_pair_list *l = &w->pairs;
-        tests += (double)chunk * (double)(l->kind_start[SD_PAIR_ELEMENTS + 1] - l->kind_start[SD_PAIR_ELEMENTS]);
+        pairs += (double)chunk * (double)(l->kind_start[SD_PAIR_ELEMENTS + 1] - l->kind_start[SD_PAIR_ELEMENTS]);
     }
     double t = now() - t0, c = cpu() - c0;
+    /* element pairs through GJK; a clump's element pairs are all spheres,
+     * each tested by the sphere law */
+    double tests = (double)(w->narrow[SD_SHAPE_COMPOSITE][SD_SHAPE_COMPOSITE][0] - gjk0);
+    if (!strcmp(kind, "clumps"))
+        tests += pairs;
     sd_stats st;
     sd_world_stats(w, &st);
     /* per CPU second with one thread, per wall second with more */
     double tt = threads == 1 ? c : t;
     double psps = (double)N * steps / tt;
-    *psps_out = psps;
-    *tests_out = tests / tt;
-    *wall_out = t;
-    *cpu_out = c;
+    res->psps = psps;
+    res->tests = tests / tt;
+    res->pairs = pairs / tt;
+    res->wall = t;
+    res->cpu = c;
+    res->hash = state_hash(w);
     if (!json)
-        printf("%-8s threads %d: %8.0f particle-steps/s, %10.0f element-pair tests/s, %ld contacts, %ld wall contacts, "
-           "%zu candidate pairs, %.2f s wall, %.2f s CPU\n",
-           kind, threads, psps, tests / tt, st.contacts, st.wall_contacts, st.pairs, t, c);
+        printf("%-8s threads %d: %8.0f particle-steps/s, %10.0f element-pair tests/s (%10.0f element pairs/s), "
+               "%ld contacts, %ld wall contacts, %zu candidate pairs, %.2f s wall, %.2f s CPU, state %016llx\n",
+               kind, threads, psps, tests / tt, pairs / tt, st.contacts, st.wall_contacts, st.pairs, t, c, res->hash);
     fflush(stdout);
     sd_world_destroy(w);
 }
@@ -203,14 +243,17 @@ int main(int argc, char **argv)
         warm = argc > a0 + 2 ? atoi(argv[a0 + 2]) : 1000;
     enum { K = 5 };
     static const char *kinds[K] = {"spheres", "cubes", "clumps", "crosses", "cross3d"};
-    double p[K], tests[K], wall[K], cpus[K];
+    result r[K];
+    double p[K];
     for (int k = 0; k < K; ++k) {
-        run(kinds[k], threads, steps, warm, &p[k], &tests[k], &wall[k], &cpus[k]);
+        run(kinds[k], threads, steps, warm, &r[k]);
+        p[k] = r[k].psps;
         if (json)
             printf("{\"case\":\"composites-settle\",\"kind\":\"%s\",\"particles\":%d,\"steps\":%d,\"threads\":%d,"
                    "\"wall_s\":%.4g,\"cpu_s\":%.4g,\"psps\":%.4g,\"element_pair_tests_per_s\":%.4g,"
-                   "\"cost_vs_spheres\":%.3g,\"load1\":%.2f}\n",
-                   kinds[k], N, steps, threads, wall[k], cpus[k], p[k], tests[k], p[0] / p[k], load1());
+                   "\"element_pairs_per_s\":%.4g,\"cost_vs_spheres\":%.3g,\"state_hash\":\"%016llx\",\"load1\":%.2f}\n",
+                   kinds[k], N, steps, threads, r[k].wall, r[k].cpu, p[k], r[k].tests, r[k].pairs, p[0] / p[k],
+                   r[k].hash, load1());
         fflush(stdout);
     }
     if (!json)
