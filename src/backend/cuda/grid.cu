@@ -21,6 +21,7 @@
  * (grid/grid_step.c), so it stays one code path.
  */
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "backend/cuda/state.h"
@@ -126,6 +127,25 @@ extern "C" sd_status sd_cuda_grid_upload(sd_grid_state *g, const sd_pair_params 
         (void)sd_cg_put(d, &d->over, g->over, g->nover * sizeof(uint32_t), "over");
     d->n = g->n;
     d->nover = g->nover;
+    if (bad && d->c.status == SD_ERR_MEMORY) {
+        /* the bytes the whole state needs, for the message */
+        size_t need = 0;
+#define SD_X_SIZE(member, type, count, back) need += (count) * sizeof(type);
+        SD_CG_ARRAYS(SD_X_SIZE)
+#undef SD_X_SIZE
+        need += (size_t)nm * (size_t)nm * sizeof *mix + (g->occ ? g->nocc * sizeof *g->occ : 0) +
+                nblock1 * nw * 2 * sizeof(sd_vec3) + g->n * (1 + sizeof(uint32_t));
+        size_t free_b = 0, total = 0;
+        (void)cudaMemGetInfo(&free_b, &total);
+        char why[sizeof d->c.message];
+        snprintf(why, sizeof why, "%s", d->c.message);
+        snprintf(d->c.message, sizeof d->c.message,
+                 "out of device memory: the grid solver's state of %zu particles and %zu cells needs %.1f MiB on "
+                 "the device (%.1f MiB free of %.1f MiB; %.200s)",
+                 g->n, g->ncell, (double)need / 1048576.0, (double)free_b / 1048576.0, (double)total / 1048576.0,
+                 why);
+        return sd_cg_status(d, err);
+    }
     (void)sd_cuda_check(&d->c, cudaStreamSynchronize(d->c.stream), "grid upload", "the copies");
     return sd_cg_status(d, err);
 }
