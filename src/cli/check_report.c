@@ -23,7 +23,6 @@
 #include "io/output.h"
 #include "io/scene.h"
 #include "io/scene_process.h"
-#include "mpi/mpi.h"
 #include "world/dt_report.h"
 #include "world/process.h" /* sd_size_moment */
 
@@ -111,27 +110,19 @@ typedef struct sd_check_probe_at {
     int material;
 } sd_check_probe_at;
 
-static void sd_check_probe_body(sd_body_def *b, size_t *nb, const sd_check_probe_at *at, int shape)
+/* Adds the pair: a body of template `shape` (>= 0) or a sphere of radius r. */
+static void sd_check_probe_pair(sd_body_def *b, size_t *nb, sd_sphere_def *d, size_t *nd,
+                                const sd_check_probe_at *at, int shape, double r)
 {
     for (int k = 0; k < 2; ++k) {
-        memset(&b[*nb], 0, sizeof b[*nb]);
-        b[*nb].position = k ? at->high : at->low;
-        b[*nb].velocity = at->velocity;
-        b[*nb].shape = shape;
-        b[*nb].material = at->material;
-        ++*nb;
-    }
-}
-
-static void sd_check_probe_sphere(sd_sphere_def *d, size_t *nd, const sd_check_probe_at *at, double r)
-{
-    for (int k = 0; k < 2; ++k) {
-        memset(&d[*nd], 0, sizeof d[*nd]);
-        d[*nd].position = k ? at->high : at->low;
-        d[*nd].velocity = at->velocity;
-        d[*nd].radius = r;
-        d[*nd].material = at->material;
-        ++*nd;
+        sd_v3d x = k ? at->high : at->low;
+        if (shape >= 0) {
+            b[*nb] = (sd_body_def){.position = x, .velocity = at->velocity, .shape = shape, .material = at->material};
+            ++*nb;
+        } else {
+            d[*nd] = (sd_sphere_def){.position = x, .velocity = at->velocity, .radius = r, .material = at->material};
+            ++*nd;
+        }
     }
 }
 
@@ -155,14 +146,14 @@ static double sd_check_probe_template(const sd_world *w, const sd_scene *s, size
         if (sd_world_get_shape(w, k, &sk) != SD_OK || !sk.name || strncmp(sk.name, prefix, (size_t)len) != 0 ||
             sk.name[len] < '0' || sk.name[len] > '9')
             continue;
-        sd_check_probe_body(b, nb, at, (int)k);
+        sd_check_probe_pair(b, nb, NULL, NULL, at, (int)k, 0);
         sum += rho * sk.volume;
         ci->rmin = fmin(ci->rmin, sk.bounding_radius);
         ci->rmax = fmax(ci->rmax, sk.bounding_radius);
         found++;
     }
     if (!found) {
-        sd_check_probe_body(b, nb, at, en->shape);
+        sd_check_probe_pair(b, nb, NULL, NULL, at, en->shape, 0);
         sum = rho * si.volume;
         ci->rmin = fmin(ci->rmin, si.bounding_radius);
         ci->rmax = fmax(ci->rmax, si.bounding_radius);
@@ -219,9 +210,9 @@ void sd_check_insertions(const sd_scene *s, sd_check_insert *ci)
             } else {
                 double rlo, rhi, rho = s->materials[en->material].def.density;
                 sd_check_law_range(&en->size, &rlo, &rhi);
-                sd_check_probe_sphere(d, &nd, &at, rlo);
+                sd_check_probe_pair(NULL, NULL, d, &nd, &at, -1, rlo);
                 if (rhi > rlo)
-                    sd_check_probe_sphere(d, &nd, &at, rhi);
+                    sd_check_probe_pair(NULL, NULL, d, &nd, &at, -1, rhi);
                 ci->rmin = fmin(ci->rmin, rlo);
                 ci->rmax = fmax(ci->rmax, rhi);
                 m = dim2 ? rho * SD_PI_D * sd_size_moment(&en->size, 2)
@@ -542,53 +533,4 @@ int sd_check_print_dt(FILE *f, const sd_world *w)
         n++;
     }
     return n;
-}
-
-void sd_check_print_ranks(FILE *f, const sd_world *w, long ranks)
-{
-    size_t n = sd_world_particle_count(w);
-    int r = (int)ranks;
-    double *x = malloc((n ? n : 1) * sizeof *x);
-    uint64_t *id = malloc((n ? n : 1) * sizeof *id);
-    sd_mpi_cut *cuts = malloc((size_t)r * sizeof *cuts);
-    size_t *count = calloc((size_t)r, sizeof *count);
-    if (!x || !id || !cuts || !count) {
-        fprintf(f, "ranks        %d: out of memory for the split of %zu particles\n", r, n);
-        free(x);
-        free(id);
-        free(cuts);
-        free(count);
-        return;
-    }
-    for (size_t k = 0; k < n; ++k) {
-        sd_particle_state p;
-        sd_world_get_particle(w, k, &p);
-        x[k] = p.position.x;
-        id[k] = p.id;
-    }
-    if (sd_mpi_split(n, x, id, r, cuts) == SD_OK) {
-        for (size_t k = 0; k < n; ++k)
-            count[sd_mpi_rank_of(cuts, r, x[k], id[k])]++;
-        fprintf(f, "ranks        %d, split along x by particle count (particles at the start)%s:", r,
-#ifdef SHAPEDEM_HAVE_MPI
-                ""
-#else
-                " [this build has no MPI: configure with -DSHAPEDEM_MPI=ON]"
-#endif
-        );
-        if (r > 1) {
-            fprintf(f, " cuts at x =");
-            for (int c = 0; c < r - 1; ++c)
-                fprintf(f, "%s %.6g", c ? "," : "", cuts[c].x);
-            fprintf(f, " m;");
-        }
-        fprintf(f, " particles per rank");
-        for (int c = 0; c < r; ++c)
-            fprintf(f, " %zu", count[c]);
-        fprintf(f, "\n");
-    }
-    free(x);
-    free(id);
-    free(cuts);
-    free(count);
 }
