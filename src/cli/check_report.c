@@ -444,6 +444,16 @@ void sd_check_format_bytes(double b, char *buf, size_t size)
         snprintf(buf, size, "%.2f GB", b / 1e9);
 }
 
+void sd_check_print_stop(FILE *f, const sd_scene *s)
+{
+    if (s->stop_given)
+        fprintf(f,
+                "stop         at the first stats row (every %ld steps) from t = %.4g s whose kinetic energy is below "
+                "%.4g J (simulation.stop_when): the run may end before its steps; the run time and output below "
+                "are for all of them\n",
+                s->output.stats_every, s->stop_after, s->stop_ke_below);
+}
+
 void sd_check_print_grid(FILE *f, const sd_scene *s)
 {
     sd_pour_def pd;

@@ -70,6 +70,9 @@ void sd_check_time(const sd_scene *s, sd_world *w, size_t total, long steps, sd_
  * contact duration (s), dt the time step. */
 int sd_check_units(FILE *f, const sd_scene *s, const sd_check_counts *c, double tc, double dt);
 
+/* The stop: line, when the scene has simulation.stop_when (io/run.c). */
+void sd_check_print_stop(FILE *f, const sd_scene *s);
+
 /* The pour: and outlet: lines of the report (solver grid), when given. */
 void sd_check_print_grid(FILE *f, const sd_scene *s);
 
@@ -86,10 +89,5 @@ void sd_check_print_output(FILE *f, const sd_scene *s, const sd_world *w, size_t
 
 /* "1.23 MB", "4.5 GB" */
 void sd_check_format_bytes(double b, char *buf, size_t size);
-
-/* `check --ranks N`: how the static MPI split (mpi/mpi.h, along x by (x,
- * stable id), equal particle counts) would share the world's particles out
- * over N ranks: the cuts and the particles per rank. */
-void sd_check_print_ranks(FILE *f, const sd_world *w, long ranks);
 
 #endif

@@ -8,6 +8,7 @@
 #    0.05 s on is at or above it; summary.txt's steps_run and stop_when line
 #    name that step; a closing frame and the coordination row of that step
 #    are written; stdout says so;
+#  - shapedem check on it prints the condition (its stop line);
 #  - stop_scenes/never.yaml (a threshold of 1e-30 J): the run goes to its
 #    end and summary.txt says the condition was not met.
 # (Bad values of stop_when are scenes of tests/cli/bad/, stop-*.yaml.)
@@ -52,6 +53,12 @@ crow=$(awk -F, -v s="$first" 'NR > 1 && $2 == s { n++ } END { print n + 0 }' "$t
 check "settle: coordination.csv has the row of step $first" "$((crow == 1))"
 grep -q "stop_when met at step $first" "$tmp/s.out"
 check "settle: stdout says the run stopped" "$((! $?))"
+
+"$bin" check "$scenes/settle.yaml" --threads 1 >"$tmp/check.out"
+grep "^stop " "$tmp/check.out"
+grep -q "^stop         at the first stats row (every 250 steps) from t = 0.05 s whose kinetic energy is below 1e-06 J" \
+    "$tmp/check.out"
+check "check: says the run may stop early, when and below what" "$((! $?))"
 
 "$bin" run "$scenes/never.yaml" --quiet -o "$tmp/n" >"$tmp/n.out" 2>"$tmp/n.err"
 rc=$?
