@@ -4,7 +4,9 @@
  * The scenes cover every interaction kind the engine has (sphere pairs with
  * the linear and Hertz laws, convex shapes by GJK/EPA, sharp polyhedra under
  * the volume law, the planar mode, plane and box walls, moving and servo
- * walls, the grid solver with its pour and outlet), so a change of the step
+ * walls, the grid solver with its pour and outlet, composites: clumps of
+ * nine spheres and crosses of three cylinders, element pairs by the sphere
+ * law and by GJK/EPA), so a change of the step
  * pipeline that changes one bit anywhere shows here. The hash is FNV-1a over
  * each particle's position, velocity, spin and orientation in stable-id
  * order, then each wall's force and torque.
@@ -36,6 +38,7 @@ static const hash_case cases[] = {
     {"bench/scenes/sharp-cubes-settle.yaml", 8000, 20, 0xf0db151d79b2b0f2ull},
     {"bench/scenes/spheres-settle-8000.yaml", 400, 40, 0xacc94b96dc686adbull},
     {"tests/validation/scenes/mixed-packing.yaml", 14000, 20, 0xaacfedeca31d5577ull},
+    {"tests/unit/scenes/restart-composites.yaml", 8000, 10, 0x3cdcf00bbb0869dcull},
 };
 
 static void mix(uint64_t *h, const void *data, size_t size)
