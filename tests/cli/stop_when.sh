@@ -8,6 +8,7 @@
 #    0.05 s on is at or above it; summary.txt's steps_run and stop_when line
 #    name that step; a closing frame and the coordination row of that step
 #    are written; stdout says so;
+#  - with 1 thread it stops at the same row, the same energy to the digit;
 #  - shapedem check on it prints the condition (its stop line);
 #  - stop_scenes/never.yaml (a threshold of 1e-30 J): the run goes to its
 #    end and summary.txt says the condition was not met.
@@ -53,6 +54,11 @@ crow=$(awk -F, -v s="$first" 'NR > 1 && $2 == s { n++ } END { print n + 0 }' "$t
 check "settle: coordination.csv has the row of step $first" "$((crow == 1))"
 grep -q "stop_when met at step $first" "$tmp/s.out"
 check "settle: stdout says the run stopped" "$((! $?))"
+
+"$bin" run "$scenes/settle.yaml" --threads 1 --quiet -o "$tmp/s1" >/dev/null 2>&1
+a=$(grep "^stop_when: " "$tmp/s/summary.txt")
+b=$(grep "^stop_when: " "$tmp/s1/summary.txt")
+check "settle: 1 thread stops at the same row with the same energy as 2" "$([[ -n $a && $a == "$b" ]] && echo 1 || echo 0)"
 
 "$bin" check "$scenes/settle.yaml" --threads 1 >"$tmp/check.out"
 grep "^stop " "$tmp/check.out"
