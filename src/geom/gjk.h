@@ -433,9 +433,11 @@ SD_HD static SD_INLINE void sd_gjk_support_body(const sd_gjk_body *a, const sd_g
  * rotation matrices (sd_gjk_body_of): a caller that queries one body
  * against many builds it once (a composite's element, posed once for all
  * the element pairs of its run, backend/items.h); the same matrices, so
- * the same bits as sd_gjk_distance_bounded. */
-SD_HD static SD_INLINE sd_gjk_result sd_gjk_distance_bodies(const sd_gjk_body *pA, const sd_gjk_body *pB,
-                                                            sd_vec3 warm_dir, sd_real stop_beyond)
+ * the same bits as sd_gjk_distance_bounded. Always inlined: the result
+ * (its simplex 0.4 KB) is then built in the caller's frame, not copied out
+ * at every query (3 % of a composite bed's instructions). */
+SD_HD static SD_HOT sd_gjk_result sd_gjk_distance_bodies(const sd_gjk_body *pA, const sd_gjk_body *pB,
+                                                         sd_vec3 warm_dir, sd_real stop_beyond)
 {
     sd_gjk_result r;
     const sd_convex *a = pA->c, *b = pB->c;
