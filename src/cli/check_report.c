@@ -23,6 +23,7 @@
 #include "io/output.h"
 #include "io/scene.h"
 #include "io/scene_process.h"
+#include "mpi/mpi.h"
 #include "world/dt_report.h"
 #include "world/process.h" /* sd_size_moment */
 
@@ -543,4 +544,53 @@ int sd_check_print_dt(FILE *f, const sd_world *w)
         n++;
     }
     return n;
+}
+
+void sd_check_print_ranks(FILE *f, const sd_world *w, long ranks)
+{
+    size_t n = sd_world_particle_count(w);
+    int r = (int)ranks;
+    double *x = malloc((n ? n : 1) * sizeof *x);
+    uint64_t *id = malloc((n ? n : 1) * sizeof *id);
+    sd_mpi_cut *cuts = malloc((size_t)r * sizeof *cuts);
+    size_t *count = calloc((size_t)r, sizeof *count);
+    if (!x || !id || !cuts || !count) {
+        fprintf(f, "ranks        %d: out of memory for the split of %zu particles\n", r, n);
+        free(x);
+        free(id);
+        free(cuts);
+        free(count);
+        return;
+    }
+    for (size_t k = 0; k < n; ++k) {
+        sd_particle_state p;
+        sd_world_get_particle(w, k, &p);
+        x[k] = p.position.x;
+        id[k] = p.id;
+    }
+    if (sd_mpi_split(n, x, id, r, cuts) == SD_OK) {
+        for (size_t k = 0; k < n; ++k)
+            count[sd_mpi_rank_of(cuts, r, x[k], id[k])]++;
+        fprintf(f, "ranks        %d, split along x by particle count (particles at the start)%s:", r,
+#ifdef SHAPEDEM_HAVE_MPI
+                ""
+#else
+                " [this build has no MPI: configure with -DSHAPEDEM_MPI=ON]"
+#endif
+        );
+        if (r > 1) {
+            fprintf(f, " cuts at x =");
+            for (int c = 0; c < r - 1; ++c)
+                fprintf(f, "%s %.6g", c ? "," : "", cuts[c].x);
+            fprintf(f, " m;");
+        }
+        fprintf(f, " particles per rank");
+        for (int c = 0; c < r; ++c)
+            fprintf(f, " %zu", count[c]);
+        fprintf(f, "\n");
+    }
+    free(x);
+    free(id);
+    free(cuts);
+    free(count);
 }

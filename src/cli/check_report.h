@@ -90,4 +90,9 @@ void sd_check_print_output(FILE *f, const sd_scene *s, const sd_world *w, size_t
 /* "1.23 MB", "4.5 GB" */
 void sd_check_format_bytes(double b, char *buf, size_t size);
 
+/* `check --ranks N`: how the static MPI split (mpi/mpi.h, along x by (x,
+ * stable id), equal particle counts) would share the world's particles out
+ * over N ranks: the cuts and the particles per rank. */
+void sd_check_print_ranks(FILE *f, const sd_world *w, long ranks);
+
 #endif

@@ -49,7 +49,7 @@ static void sd_usage(FILE *f)
             "usage: shapedem run SCENE.yaml [-o DIR] [--threads N] [--steps N] [--quiet] [--bench NAME]\n"
             "                  [--profile] [--restart CHECKPOINT.h5] [--backend auto|cpu|cuda]\n"
             "       shapedem info CHECKPOINT.h5\n"
-            "       shapedem check SCENE.yaml [--threads N]\n"
+            "       shapedem check SCENE.yaml [--threads N] [--ranks N]\n"
             "       shapedem shape info KIND --size X[,Y,Z] [--rounding R] [--margin M] [--density RHO]\n"
             "       shapedem shape info SCENE.yaml\n"
             "       shapedem shape fit-fourier OUTLINE.csv [--order N] [--directions M] [--beta B]\n"
@@ -75,6 +75,8 @@ static void sd_usage(FILE *f)
             "  --quiet      no progress line and no summary on the terminal\n"
             "  --bench NAME write no files; print one JSON line of timings for case NAME\n"
             "  --profile    print the wall time of each stage of the step at the end\n"
+            "  --ranks N    check: how the MPI split along x would share the particles over N\n"
+            "               ranks (cuts, particles per rank)\n"
             "  --restart F  continue the run of checkpoint F (written by this scene) bit for bit;\n"
             "               SIGINT/SIGTERM write a final checkpoint (docs/checkpoints.md)\n"
             "  info F.h5    what a checkpoint holds (step, time, particles, datasets)\n");
@@ -104,6 +106,7 @@ typedef struct sd_cli {
     const char *restart;  /* --restart: the checkpoint to continue */
     long threads;
     long steps;
+    long ranks;           /* check --ranks: the MPI split to report, 0 none */
     int backend;          /* --backend: an sd_backend_kind, SD_BACKEND_COUNT when not given */
     int quiet;
     int markdown;
@@ -142,6 +145,10 @@ static int sd_parse_args(int argc, char **argv, sd_cli *c)
                 return sd_usage_error("--threads needs a whole number from 1 to " SD_XSTR(SD_SCENE_MAX_THREADS)
                                       ", got '%s'",
                                       next ? next : "");
+            ++k;
+        } else if (!strcmp(a, "--ranks")) {
+            if (!next || sd_parse_long(next, 1, &c->ranks) || c->ranks > 65536)
+                return sd_usage_error("--ranks needs a whole number from 1 to 65536, got '%s'", next ? next : "");
             ++k;
         } else if (!strcmp(a, "--backend")) {
             if (!next || (c->backend = sd_backend_kind_from_name(next)) == SD_BACKEND_COUNT)
@@ -442,6 +449,8 @@ static int sd_cmd_check(const sd_cli *c)
     printf("contact      shortest estimated contact duration %.4g s (%.1f steps)\n", tc, tc / dt);
     printf("time step    %.4g s recommended; stability limit %.4g s\n", rec, tc / 5);
     printf("threads      %d\n", sd_world_threads(w));
+    if (c->ranks > 0) /* the MPI split, along x by particle count (mpi/mpi.h) */
+        sd_check_print_ranks(stdout, w, c->ranks);
     printf("backend      %s (%s)\n", sd_world_backend(w), sd_world_backend_note(w));
     const char *unit2d = info.dimension == 2 ? " per 1 m of thickness" : "";
     printf("mass         %.6g kg%s", cnt.mass_now + cnt.mass_poured + ins.mass, unit2d);
