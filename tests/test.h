@@ -73,4 +73,18 @@ static inline sd_v3d sd_test_v(double x, double y, double z)
     return v;
 }
 
+/* The grid tests' material: [Naderi 2024]'s parameter set 1 (density
+ * 2700 kg/m^3, k = 5e4 N/m, damping 0.5, k_t = k_n, mu = 0.5). */
+static inline sd_material_def sd_test_material_set1(void)
+{
+    sd_material_def m = sd_material_def_default();
+    m.name = "set1";
+    m.density = 2700;
+    m.stiffness = 50000;
+    m.damping = 0.5;
+    m.tangential_stiffness_ratio = 1;
+    m.friction = 0.5;
+    return m;
+}
+
 #endif

@@ -129,6 +129,27 @@ static long compare_particles(const sd_world *a, const sd_world *b, double *max_
     return bad;
 }
 
+/* How many of the two worlds' state arrays (sd_world_snapshot) differ in a
+ * bit, naming the first few; *n: the arrays compared. */
+static size_t differing_arrays(const sd_world *a, const sd_world *b, const char *label, size_t *n)
+{
+    sd_error err;
+    sd_snapshot xa, xb;
+    CHECK(sd_world_snapshot(a, &xa, &err) == SD_OK);
+    CHECK(sd_world_snapshot(b, &xb, &err) == SD_OK);
+    size_t differ = xa.n == xb.n ? 0 : 1;
+    for (size_t k = 0; k < xa.n && k < xb.n; ++k)
+        if (!same_item(&xa.items[k], &xb.items[k])) {
+            if (differ < 4)
+                printf("  %s: state '%s' differs\n", label, xa.items[k].name);
+            ++differ;
+        }
+    *n = xa.n;
+    sd_snapshot_free(&xa);
+    sd_snapshot_free(&xb);
+    return differ;
+}
+
 static sd_status build(const char *path, sd_backend_kind backend, int threads, sd_scene **s, sd_world **w,
                        sd_error *err)
 {
@@ -184,20 +205,11 @@ static void run_case(const char *src, const emu_case *c)
     CHECK(rs == SD_OK);
     double max_dx = 0;
     long bad = compare_particles(a, b, &max_dx);
-    sd_snapshot xa, xb;
-    CHECK(sd_world_snapshot(a, &xa, &err) == SD_OK);
-    CHECK(sd_world_snapshot(b, &xb, &err) == SD_OK);
-    size_t differ = xa.n == xb.n ? 0 : 1;
-    for (size_t k = 0; k < xa.n && k < xb.n; ++k)
-        if (!same_item(&xa.items[k], &xb.items[k])) {
-            if (differ < 4)
-                printf("  %s: state '%s' differs\n", c->scene, xa.items[k].name);
-            ++differ;
-        }
+    size_t arrays = 0, differ = differing_arrays(a, b, c->scene, &arrays);
     printf("%-4s %-44s %6zu particles, %5ld contacts (%ld with walls) at step %ld, +%ld steps: "
            "%ld particles or walls differ (max |dx| %.3g m), %zu of %zu state arrays differ [%s]\n",
            bad == 0 && differ == 0 ? "ok" : "FAIL", c->scene, sd_world_particle_count(a),
-           st.contacts + st.wall_contacts, st.wall_contacts, c->warm, c->run, bad, max_dx, differ, xa.n, c->covers);
+           st.contacts + st.wall_contacts, st.wall_contacts, c->warm, c->run, bad, max_dx, differ, arrays, c->covers);
     sd_grid_info gi;
     sd_grid_get_info(b, &gi);
     if (gi.active) /* which of the grid's paths the device run took */
@@ -209,8 +221,6 @@ static void run_case(const char *src, const emu_case *c)
     CHECK(differ == 0);
     CHECK(sd_world_step_count(a) == sd_world_step_count(b) && sd_world_time(a) == sd_world_time(b));
     CHECK(st.contacts + st.wall_contacts > 0); /* the comparison runs with live contacts */
-    sd_snapshot_free(&xa);
-    sd_snapshot_free(&xb);
     sd_world_destroy(a);
     sd_world_destroy(b);
     sd_scene_free(sa);
@@ -235,13 +245,7 @@ static sd_world *conflict_world(sd_backend_kind backend)
     d.threads = 1;
     d.backend = backend;
     sd_test_require(sd_world_create(&d, &w, &err) == SD_OK, "grid world", &err);
-    sd_material_def m = sd_material_def_default();
-    m.name = "set1";
-    m.density = 2700;
-    m.stiffness = 50000;
-    m.damping = 0.5;
-    m.tangential_stiffness_ratio = 1;
-    m.friction = 0.5;
+    sd_material_def m = sd_test_material_set1();
     int mat = sd_world_add_material(w, &m, &err);
     sd_world_add_box(w, "box", sd_test_v(0, 0, 0), sd_test_v(1, 1, 1), 0, mat, &err);
     static const double xyz[][3] = {{0.5101, 0.5101, 0.5101}, {0.5301, 0.5301, 0.5201}, {0.3101, 0.5101, 0.1101},
@@ -263,30 +267,18 @@ static sd_world *conflict_world(sd_backend_kind backend)
  * particle, wall and state array bit for bit; `label` names the case. */
 static void compare_grid_worlds(const sd_world *a, const sd_world *b, const char *label)
 {
-    sd_error err;
     double max_dx = 0;
     long bad = compare_particles(a, b, &max_dx);
-    sd_snapshot xa, xb;
-    CHECK(sd_world_snapshot(a, &xa, &err) == SD_OK);
-    CHECK(sd_world_snapshot(b, &xb, &err) == SD_OK);
-    size_t differ = xa.n == xb.n ? 0 : 1;
-    for (size_t k = 0; k < xa.n && k < xb.n; ++k)
-        if (!same_item(&xa.items[k], &xb.items[k])) {
-            if (differ < 4)
-                printf("  %s: state '%s' differs\n", label, xa.items[k].name);
-            ++differ;
-        }
+    size_t arrays = 0, differ = differing_arrays(a, b, label, &arrays);
     sd_grid_info gi;
     sd_grid_get_info(b, &gi);
     printf("%-4s %s: %zu particles (%zu poured), %ld cell conflicts (at most %zu without a cell, %zu now), step "
            "%ld: %ld particles or walls differ (max |dx| %.3g m), %zu of %zu state arrays differ\n",
            bad == 0 && differ == 0 ? "ok" : "FAIL", label, sd_world_particle_count(a), gi.poured, gi.conflicts,
-           gi.max_overflow, gi.in_overflow, sd_world_step_count(b), bad, max_dx, differ, xa.n);
+           gi.max_overflow, gi.in_overflow, sd_world_step_count(b), bad, max_dx, differ, arrays);
     CHECK(bad == 0);
     CHECK(differ == 0);
     CHECK(sd_world_step_count(a) == sd_world_step_count(b));
-    sd_snapshot_free(&xa);
-    sd_snapshot_free(&xb);
 }
 
 static void grid_conflicts(void)

@@ -29,13 +29,7 @@ static sd_world *world(sd_solver solver, double dt, double gz, int box)
     d.solver = solver;
     d.threads = 1;
     sd_test_require(sd_world_create(&d, &w, &err) == SD_OK, "world", &err);
-    sd_material_def m = sd_material_def_default();
-    m.name = "set1";
-    m.density = 2700;
-    m.stiffness = 50000;
-    m.damping = 0.5;
-    m.tangential_stiffness_ratio = 1;
-    m.friction = 0.5;
+    sd_material_def m = sd_test_material_set1();
     mat = sd_world_add_material(w, &m, &err);
     if (box)
         sd_world_add_box(w, "box", sd_test_v(0, 0, 0), sd_test_v(1, 1, 1), 0, mat, &err);

@@ -62,13 +62,7 @@ int main(void)
     d.solver = SD_SOLVER_GRID;
     d.seed = 2024;
     sd_test_require(sd_world_create(&d, &w, &err) == SD_OK, "world", &err);
-    sd_material_def m = sd_material_def_default();
-    m.name = "set1";
-    m.density = 2700;
-    m.stiffness = 50000;
-    m.damping = 0.5;
-    m.tangential_stiffness_ratio = 1;
-    m.friction = 0.5;
+    sd_material_def m = sd_test_material_set1();
     int mat = sd_world_add_material(w, &m, &err);
     sd_test_require(sd_world_add_box(w, "box", sd_test_v(0, 0, 0), sd_test_v(1, 1, 2), 0, mat, &err) >= 0, "box",
                     &err);

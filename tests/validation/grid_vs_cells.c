@@ -38,13 +38,7 @@ static sd_world *make(sd_solver solver, int threads)
     d.solver = solver;
     d.threads = threads;
     sd_test_require(sd_world_create(&d, &w, &err) == SD_OK, "world", &err);
-    sd_material_def m = sd_material_def_default();
-    m.name = "set1";
-    m.density = 2700;
-    m.stiffness = 50000;
-    m.damping = 0.5;
-    m.tangential_stiffness_ratio = 1;
-    m.friction = 0.5;
+    sd_material_def m = sd_test_material_set1();
     int mat = sd_world_add_material(w, &m, &err);
     sd_test_require(mat >= 0, "material", &err);
     const double r = 0.05, gap = 0.105;
