@@ -127,6 +127,19 @@ static void sd_check_probe_pair(sd_body_def *b, size_t *nb, sd_sphere_def *d, si
     }
 }
 
+/* 1 when s is one or more decimal digits and nothing else: a scaled copy's
+ * class number, not a composite copy's element (BASE_iIeEsK.eJ, which is
+ * a template too but never a particle of its own). */
+static int sd_check_all_digits(const char *s)
+{
+    if (!*s)
+        return 0;
+    for (; *s; ++s)
+        if (*s < '0' || *s > '9')
+            return 0;
+    return 1;
+}
+
 /* The probe bodies of a template entry: its scaled copies (named
  * BASE_iIeEsK by sd_world_add_insertion, world/process.c), else the
  * template as it is. Returns their mean mass (kg; the classes of a law
@@ -145,7 +158,7 @@ static double sd_check_probe_template(const sd_world *w, const sd_scene *s, size
     for (size_t k = 0; k < sd_world_shape_count(w); ++k) {
         sd_shape_info sk;
         if (sd_world_get_shape(w, k, &sk) != SD_OK || !sk.name || strncmp(sk.name, prefix, (size_t)len) != 0 ||
-            sk.name[len] < '0' || sk.name[len] > '9')
+            !sd_check_all_digits(sk.name + len))
             continue;
         sd_check_probe_pair(b, nb, NULL, NULL, at, (int)k, 0);
         sum += rho * sk.volume;

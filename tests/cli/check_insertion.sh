@@ -9,7 +9,15 @@
 #    scaled copy sets the step);
 #  - the particles line counts the 200 inserted, the mass line their mass
 #    (100 spheres of the uniform law's mean r^3 and 100 cubes);
-#  - the memory and output lines are there and positive.
+#  - the memory and output lines are there and positive;
+#  - a composite template scaled to an equivalent radius (a cross3d preset,
+#    whose scaled copy brings element templates named COPY.eJ) is probed
+#    as the composite alone: its mass line is 100 x the sphere of that
+#    radius and its contact line equals that of 100 spheres of the same
+#    radius (linear law: the mass alone). Before, the elements were probed
+#    as free bodies too: the mass line was the mean of composite and
+#    elements (0.40 of the truth for examples/packing-crosses2d.yaml) and
+#    the contact an element's.
 set -u
 bin="$1"
 root="$2"
@@ -85,6 +93,38 @@ check "memory: per particle with every inserted one in, > 100 bytes (got $bpp)" 
     "$(awk -v b="$bpp" 'BEGIN { print (b > 100) ? 1 : 0 }')"
 ob=$(sed -n 's/^output .*(\([0-9]*\) bytes).*/\1/p' <<<"$ins")
 check "output: an estimate for the inserted particles (got $ob bytes)" "$([[ -n $ob && $ob -gt 10000 ]] && echo 1 || echo 0)"
+
+for kind in composite spheres; do
+    if [[ $kind == composite ]]; then
+        shapes='shapes:
+  - {name: cross, type: composite, preset: cross3d, diameter: 0.0025, length: 0.008}'
+        entry='{material: glass, shape: cross, radius: 0.0015}'
+    else
+        shapes=''
+        entry='{material: glass, radius: 0.0015}'
+    fi
+    cat >"$kind.yaml" <<EOF
+$common
+$shapes
+insert:
+  - {name: fill, region: box, min: [0.002, 0.002, 0.002], max: [0.038, 0.038, 0.09], count: 100, mix: [$entry]}
+EOF
+done
+comp=$("$bin" check composite.yaml --threads 1)
+rc_c=$?
+sph=$("$bin" check spheres.yaml --threads 1)
+rc_s=$?
+check "check exits 0 on the composite and sphere insertions (got $rc_c, $rc_s)" "$((rc_c == 0 && rc_s == 0))"
+m=$(awk '/^mass / {print $2}' <<<"$comp")
+check "mass: $m kg = 100 cross3d of r_eq 1.5 mm, 2500 kg/m^3, within 1e-5" \
+    "$(awk -v m="$m" 'BEGIN { e = 100 * 2500 * 4 / 3 * 3.14159265358979 * 0.0015^3; d = (m - e) / e
+        print (d < 1e-5 && d > -1e-5) ? 1 : 0 }')"
+a=$(grep "^contact  " <<<"$comp")
+b=$(grep "^contact  " <<<"$sph")
+echo "     composite: $a"
+echo "     spheres:   $b"
+check "contact: the scaled composite's estimate equals the spheres' of its equivalent radius" \
+    "$([[ -n $a && $a == "$b" ]] && echo 1 || echo 0)"
 
 echo "$pass passed, $fail failed"
 ((fail == 0))
