@@ -23,6 +23,9 @@
 
 #include "cli/check_report.h"
 #include "cli/commands.h"
+#ifdef SHAPEDEM_CLI_MPI
+#include "cli/mpi_run.h"
+#endif
 
 #define SD_STR(x) #x
 #define SD_XSTR(x) SD_STR(x) /* a macro's value as a string literal */
@@ -111,6 +114,7 @@ typedef struct sd_cli {
     int quiet;
     int markdown;
     int profile;
+    int restart_later;    /* shapedem-mpi: --restart is applied after the split (cli/mpi_run.c) */
 } sd_cli;
 
 static int sd_parse_long(const char *s, long lo, long *out)
@@ -183,35 +187,49 @@ static int sd_parse_args(int argc, char **argv, sd_cli *c)
     return 0;
 }
 
-/* Loads, applies the command-line overrides, builds. */
-static int sd_load_world(const sd_cli *c, sd_scene **scene, sd_world **world)
+/* Loads, applies the command-line overrides, builds; on bad input fills
+ * msg with the one line to print after "shapedem: " and returns 2. */
+static int sd_load_world_msg(const sd_cli *c, sd_scene **scene, sd_world **world, char *msg, size_t size)
 {
     sd_error err;
     memset(&err, 0, sizeof err);
-    if (!c->scene)
-        return sd_usage_error("%s needs a scene file", c->command);
-    if (sd_scene_load(c->scene, scene, &err) != SD_OK)
-        return sd_cli_fail_input(&err);
-    if (c->threads > 0)
-        sd_scene_set_threads(*scene, (int)c->threads);
-    if (c->steps >= 0)
-        sd_scene_set_steps(*scene, c->steps);
-    sd_scene_set_backend(*scene, (sd_backend_kind)c->backend); /* SD_BACKEND_COUNT: the scene's */
-    if (sd_scene_build(*scene, world, &err) != SD_OK) {
-        sd_scene_free(*scene);
-        *scene = NULL;
-        return sd_cli_fail_input(&err);
+    *scene = NULL;
+    *world = NULL;
+    if (!c->scene) {
+        snprintf(msg, size, "%s needs a scene file (see 'shapedem help')", c->command);
+        return 2;
+    }
+    int failed = sd_scene_load(c->scene, scene, &err) != SD_OK;
+    if (!failed) {
+        if (c->threads > 0)
+            sd_scene_set_threads(*scene, (int)c->threads);
+        if (c->steps >= 0)
+            sd_scene_set_steps(*scene, c->steps);
+        sd_scene_set_backend(*scene, (sd_backend_kind)c->backend); /* SD_BACKEND_COUNT: the scene's */
+        failed = sd_scene_build(*scene, world, &err) != SD_OK;
     }
     /* --restart: the checkpoint's state replaces the scene's start (refused
      * with the reason: another scene, version, a damaged file) */
-    if (c->restart && sd_checkpoint_restore(*world, c->restart, &err) != SD_OK) {
+    if (!failed && c->restart && !c->restart_later)
+        failed = sd_checkpoint_restore(*world, c->restart, &err) != SD_OK;
+    if (failed) {
+        sd_error_format(&err, msg, size);
         sd_world_destroy(*world);
         sd_scene_free(*scene);
         *world = NULL;
         *scene = NULL;
-        return sd_cli_fail_input(&err);
+        return 2;
     }
     return 0;
+}
+
+static int sd_load_world(const sd_cli *c, sd_scene **scene, sd_world **world)
+{
+    char msg[1200];
+    int rc = sd_load_world_msg(c, scene, world, msg, sizeof msg);
+    if (rc)
+        fprintf(stderr, "shapedem: %s\n", msg);
+    return rc;
 }
 
 /* shapedem info CHECKPOINT.h5 */
@@ -266,9 +284,21 @@ static int sd_cmd_run(const sd_cli *c)
 {
     sd_scene *scene = NULL;
     sd_world *w = NULL;
+#ifdef SHAPEDEM_CLI_MPI
+    /* under mpirun (cli/mpi_run.c): every rank builds the scene and keeps
+     * its part; rank 0 goes on below with the whole world gathered (w), the
+     * others follow its steps and return here at the end */
+    sd_cli_mpi *mp = NULL;
+    sd_cli cm = *c;
+    cm.restart_later = 1; /* the checkpoint goes into the split world (cli/mpi_run.c) */
+    int rc = sd_cli_mpi_begin(&cm, (sd_cli_load_fn)sd_load_world_msg, c->restart, &scene, &w, &mp);
+    if (rc >= 0)
+        return rc;
+#else
     int rc = sd_load_world(c, &scene, &w);
     if (rc)
         return rc;
+#endif
     sd_scene_info info;
     sd_scene_get_info(scene, &info);
     for (size_t k = 0; k < info.shape_count; ++k)
@@ -291,10 +321,17 @@ static int sd_cmd_run(const sd_cli *c)
         sd_scene_output_directory(scene, dir, sizeof dir);
     sd_run *run = NULL;
     if (sd_run_open(scene, w, c->bench ? NULL : dir, &run, &err) != SD_OK) {
+#ifdef SHAPEDEM_CLI_MPI
+        sd_cli_mpi_end(mp, NULL, NULL, 0);
+        sd_cli_mpi_free(mp);
+#endif
         sd_world_destroy(w);
         sd_scene_free(scene);
         return sd_cli_fail_input(&err);
     }
+#ifdef SHAPEDEM_CLI_MPI
+    sd_cli_mpi_run(mp, run);
+#endif
     signal(SIGINT, sd_on_signal);
     signal(SIGTERM, sd_on_signal);
 
@@ -327,7 +364,12 @@ static int sd_cmd_run(const sd_cli *c)
      * stops between chunks, so the world is between steps) */
     char ckpt[1100] = "";
     sd_status ckpt_st = SD_OK;
-    if (sd_interrupted && !failed && !c->bench) {
+#ifdef SHAPEDEM_CLI_MPI
+    int final_checkpoint = 0; /* not under mpirun yet (docs/mpi.md) */
+#else
+    int final_checkpoint = 1;
+#endif
+    if (sd_interrupted && !failed && !c->bench && final_checkpoint) {
         sd_error cerr0;
         memset(&cerr0, 0, sizeof cerr0);
         ckpt_st = sd_run_checkpoint(run, &cerr0);
@@ -348,6 +390,10 @@ static int sd_cmd_run(const sd_cli *c)
     memset(&cerr, 0, sizeof cerr);
     char stop_note[256]; /* the run is freed by sd_run_close */
     snprintf(stop_note, sizeof stop_note, "%s", sd_run_stop_note(run));
+    char ranks_note[1024] = ""; /* under mpirun: the ranks' lines of summary.txt */
+#ifdef SHAPEDEM_CLI_MPI
+    sd_cli_mpi_end(mp, run, ranks_note, sizeof ranks_note);
+#endif
     if (sd_run_close(run, &cerr) != SD_OK && !failed) {
         char buf[1024];
         sd_error_format(&cerr, buf, sizeof buf);
@@ -371,6 +417,8 @@ static int sd_cmd_run(const sd_cli *c)
         printf("          backend %s (%s)\n", sd_world_backend(w), sd_world_backend_note(w));
         if (stop_note[0]) /* simulation.stop_when, as summary.txt */
             printf("          stop_when %s\n", stop_note);
+        if (ranks_note[0]) /* mpirun: the split, as summary.txt */
+            printf("%s", ranks_note);
     }
     /* insertions that fell short: one line each (also in summary.txt) */
     for (size_t k = 0; k < sd_world_insertion_count(w); ++k) {
@@ -379,8 +427,16 @@ static int sd_cmd_run(const sd_cli *c)
             fprintf(stderr, "shapedem: insert %s: inserted %zu of the %zu asked for: %s\n", ii.name, ii.inserted,
                     ii.asked, ii.why);
     }
+#ifdef SHAPEDEM_CLI_MPI
+    if (c->profile) /* rank 0's part: the stages of its own steps */
+        sd_print_profile(sd_cli_mpi_part(mp));
+#else
     if (c->profile)
         sd_print_profile(w);
+#endif
+#ifdef SHAPEDEM_CLI_MPI
+    sd_cli_mpi_free(mp); /* rank 0's part (w is the gathered world) */
+#endif
     sd_world_destroy(w);
     sd_scene_free(scene);
     if (sd_interrupted) {
@@ -537,8 +593,61 @@ static int sd_cmd_check(const sd_cli *c)
     return 0;
 }
 
+#ifndef SHAPEDEM_CLI_MPI
+/* `shapedem run` started by mpirun (or another MPI launcher: its
+ * environment says so): this program has no MPI in it, so that the serial
+ * build never needs libmpi to load; it hands the run to shapedem-mpi, the
+ * same commands with MPI (cli/mpi_run.c), installed beside it when built
+ * with SHAPEDEM_MPI. Returns -1 when not started by a launcher (and for a
+ * launcher's single process without shapedem-mpi: a serial run). */
+static int sd_mpi_handoff(char **argv)
+{
+    const char *sz = getenv("OMPI_COMM_WORLD_SIZE"), *rk = getenv("OMPI_COMM_WORLD_RANK");
+    if (!sz) { /* MPICH's and Slurm's PMI */
+        sz = getenv("PMI_SIZE");
+        rk = getenv("PMI_RANK");
+    }
+    if (!sz)
+        return -1;
+    long size = strtol(sz, NULL, 10), rank = rk ? strtol(rk, NULL, 10) : 0;
+#ifdef SHAPEDEM_HAVE_MPI
+    (void)size; /* one process too: the decomposed run's bits are those of any rank count */
+    char path[4096];
+    ssize_t n = readlink("/proc/self/exe", path, sizeof path - 32);
+    if (n > 0) {
+        path[n] = 0;
+        char *slash = strrchr(path, '/');
+        snprintf(slash ? slash + 1 : path, 32, "shapedem-mpi");
+        argv[0] = path;
+        execv(path, argv);
+    }
+    if (rank == 0)
+        fprintf(stderr, "shapedem: started by an MPI launcher, but cannot start %s: %s (it is built and installed "
+                "beside shapedem with SHAPEDEM_MPI; docs/mpi.md)\n", n > 0 ? path : "shapedem-mpi",
+                strerror(errno));
+    return 2;
+#else
+    (void)argv;
+    if (size <= 1)
+        return -1;
+    if (rank == 0)
+        fprintf(stderr, "shapedem: started by an MPI launcher with %ld processes, but this shapedem was built "
+                "without MPI, so each would run the whole scene alone: build with -DSHAPEDEM_MPI=ON "
+                "(docs/mpi.md), or run one process\n", size);
+    return 2;
+#endif
+}
+#endif
+
 int main(int argc, char **argv)
 {
+#ifndef SHAPEDEM_CLI_MPI
+    if (argc >= 2 && !strcmp(argv[1], "run")) {
+        int rc = sd_mpi_handoff(argv);
+        if (rc >= 0)
+            return rc;
+    }
+#endif
     if (argc >= 2 && (!strcmp(argv[1], "--version") || !strcmp(argv[1], "version"))) {
         printf("shapedem %s\n", SD_VERSION_STRING);
         return 0;

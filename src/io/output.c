@@ -601,6 +601,8 @@ static void sd_output_summary_text(FILE *fp, const sd_output *o, const sd_world 
         fprintf(fp, "peak_rss_MiB: %.3f\n", (double)sum->peak_rss / mib);
         if (sum->stop && sum->stop[0])
             fprintf(fp, "stop_when: %s\n", sum->stop);
+        if (sum->note)
+            fputs(sum->note, fp);
     }
     fprintf(fp, "frames: %ld\n", o->frames);
     fprintf(fp, "stats_rows: %ld\n", o->stats_rows);

@@ -31,6 +31,7 @@ typedef struct sd_run_summary {
     size_t peak_memory;       /* bytes, shapedem allocator peak */
     size_t peak_rss;          /* bytes, process peak resident set */
     const char *stop;         /* simulation.stop_when: what happened, NULL or "" when not given */
+    const char *note;         /* more lines (each ended by '\n'), NULL none: a decomposed run's ranks */
 } sd_run_summary;
 
 sd_status sd_output_open(const sd_output_def *def, const sd_world *w, sd_output **out, sd_error *err);

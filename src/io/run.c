@@ -28,6 +28,7 @@
 #include "core/alloc.h"
 #include "core/error.h"
 #include "io/output.h"
+#include "io/run.h"
 #include "io/scene.h"
 #include "io/scene_analysis.h"
 #include "io/scene_process.h"
@@ -52,6 +53,9 @@ struct sd_run {
     long asked_steps;            /* steps before a stop_when cut them */
     char stop[256];              /* simulation.stop_when: "" when not given, else what happened */
     int stopped;                 /* it was met: steps == done */
+    sd_run_stepper stepper;      /* NULL: sd_world_step (io/run.h) */
+    void *stepper_ctx;
+    char *note;                  /* summary.txt's extra lines, NULL none */
 };
 
 /* simulation.stop_when at a stats row: met once its time has come, every
@@ -254,7 +258,8 @@ sd_status sd_run_advance(sd_run *r, long steps, sd_error *err)
             next = target;
         double t0 = sd_run_now();
         size_t n_before = sd_world_particle_count(r->w);
-        if ((st = sd_world_step(r->w, next - r->done, err)) != SD_OK) {
+        st = r->stepper ? r->stepper(r->stepper_ctx, next - r->done, err) : sd_world_step(r->w, next - r->done, err);
+        if (st != SD_OK) {
             r->failed = 1;
             sd_run_failed_state(r, err);
             return st;
@@ -299,6 +304,21 @@ void sd_run_get_progress(const sd_run *r, sd_run_progress *out)
 
 const char *sd_run_stop_note(const sd_run *r) { return r->stop; }
 
+void sd_run_set_stepper(sd_run *r, sd_run_stepper step, void *ctx)
+{
+    r->stepper = step;
+    r->stepper_ctx = ctx;
+}
+
+void sd_run_set_note(sd_run *r, const char *lines)
+{
+    sd_free(r->note);
+    size_t n = strlen(lines);
+    r->note = sd_malloc(n + 1);
+    if (r->note)
+        memcpy(r->note, lines, n + 1);
+}
+
 const char *sd_run_directory(const sd_run *r) { return r->out ? r->dir : ""; }
 
 sd_status sd_run_close(sd_run *r, sd_error *err)
@@ -319,10 +339,12 @@ sd_status sd_run_close(sd_run *r, sd_error *err)
         sum.peak_memory = sd_memory_peak();
         sum.peak_rss = sd_run_peak_rss();
         sum.stop = r->stop;
+        sum.note = r->note;
         sd_error local;
         memset(&local, 0, sizeof local);
         st = sd_output_close(r->out, r->w, &sum, err ? err : &local);
     }
+    sd_free(r->note);
     sd_free(r);
     return st;
 }

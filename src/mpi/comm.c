@@ -718,3 +718,13 @@ _Noreturn void sd_mpi_fail(const sd_mpi *m, const char *stage, sd_status st, con
     MPI_Abort(m ? m->comm : MPI_COMM_WORLD, st == SD_ERR_INPUT ? 2 : 1);
     abort(); /* MPI_Abort does not return */
 }
+
+/* ---- for the other files of the decomposition (mpi.h) ---------------------- */
+
+size_t sd_mpi_row_size(void) { return sd_row_size(); }
+unsigned char *sd_mpi_row_pack(const sd_particles *p, size_t k, unsigned char *b) { return sd_row_pack(p, k, b); }
+const unsigned char *sd_mpi_row_unpack(sd_particles *p, size_t k, const unsigned char *b)
+{
+    return sd_row_unpack(p, k, b);
+}
+const sd_mpi_cut *sd_mpi_cuts(const sd_mpi *m) { return m->cuts; }

@@ -84,5 +84,55 @@ sd_status sd_mpi_gather(const sd_mpi *m, const sd_world *w, sd_particle_state **
 /* Ends the whole job after an error on this rank: one message on stderr,
  * naming the rank and the stage, then MPI_Abort with status 2 (input) or 1. */
 _Noreturn void sd_mpi_fail(const sd_mpi *m, const char *stage, sd_status st, const sd_error *err);
+/* The rank - 1 cuts of the split in use. */
+const sd_mpi_cut *sd_mpi_cuts(const sd_mpi *m);
+
+/* A particle as one row of bytes: every SD_PARTICLE_FIELDS field in turn
+ * (comm.c; what migration and the ghosts send). */
+struct sd_particles;
+size_t sd_mpi_row_size(void);
+unsigned char *sd_mpi_row_pack(const struct sd_particles *p, size_t k, unsigned char *b);
+const unsigned char *sd_mpi_row_unpack(struct sd_particles *p, size_t k, const unsigned char *b);
+
+/* ---- the whole world on rank 0 (mpi/view.c) ------------------------------------ */
+
+/* Collective. Puts into g, on rank 0, the state of the decomposed world w
+ * as one serial world would hold it: every rank's owned particles in
+ * stable-id order; the pairs (each once: from the rank that owns its lower
+ * id) and the wall pairs, in (kind, key) order, their bodies indexed in g;
+ * the walls with their totals summed over those wall pairs in that order;
+ * the clock. g is a world built from the same scene and never stepped
+ * (the output reads it: frames, stats.csv, walls.csv, the analyses,
+ * checkpoints); the other ranks pass NULL. The sums over g are therefore
+ * in an order of stable ids, the same bits on any rank count. */
+sd_status sd_mpi_view(const sd_mpi *m, const sd_world *w, sd_world *g, sd_error *err);
+
+/* ---- `shapedem run` under mpirun (mpi/drive.c) ------------------------------------ */
+
+/* Rank 0 runs the scene's schedule (io/run.c) on the view g and tells the
+ * other ranks, which follow, when to step: a command is broadcast, every
+ * rank steps its particles, then the view is gathered. */
+typedef struct sd_mpi_drive {
+    sd_mpi *m;
+    sd_world *w; /* this rank's part */
+    sd_world *g; /* rank 0: the view (sd_mpi_view) */
+} sd_mpi_drive;
+
+/* Rank 0, the run's stepper (io/run.h): every rank steps n steps, then g
+ * is gathered. An error of a rank's step ends the job from that rank
+ * (sd_mpi_fail); a failed gather is returned. */
+sd_status sd_mpi_drive_step(void *drive, long n, sd_error *err);
+/* Rank 0, collective with the followers: g gathered again (after a
+ * restore or a change outside the steps). */
+sd_status sd_mpi_drive_view(sd_mpi_drive *d, sd_error *err);
+/* Rank 0: the followers stop; note gets summary.txt's lines on the ranks
+ * (the split, particles per rank now, migrations). */
+void sd_mpi_drive_end(sd_mpi_drive *d, char *note, size_t size);
+/* sd_mpi_attach for a world that sd_scene_build made (prepared, at step
+ * 0): its pair lists, ghosts and rebuild count are dropped first, so the
+ * decomposed world prepares as one never prepared would. */
+sd_status sd_mpi_attach_built(sd_world *w, sd_mpi **out, sd_error *err);
+/* Ranks other than 0: follow rank 0's commands until it ends the run. */
+void sd_mpi_follow(sd_mpi *m, sd_world *w);
 
 #endif

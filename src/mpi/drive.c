@@ -1,0 +1,126 @@
+/* drive.c — `shapedem run` under mpirun (mpi.h: sd_mpi_drive): rank 0
+ * runs the scene's schedule on the view (mpi/view.c) and broadcasts each
+ * step count to the other ranks, which follow.
+ *
+ * Why one driver: every decision of the run (when to write, when
+ * simulation.stop_when is met, a checkpoint due by the wall clock, an
+ * interrupt) is then taken once, on rank 0, from the view: no rank can
+ * decide otherwise and leave the others waiting in a collective. The
+ * followers hold no schedule; they step when told and send their part of
+ * the view.
+ */
+#include <mpi.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "core/error.h"
+#include "mpi/mpi.h"
+#include "world/world.h"
+
+enum { SD_DRIVE_STEP = 1, SD_DRIVE_VIEW = 2, SD_DRIVE_END = 3 };
+
+/* One command: what, and how many steps. */
+static void sd_drive_bcast(long long *cmd)
+{
+    MPI_Bcast(cmd, 2, MPI_LONG_LONG, 0, MPI_COMM_WORLD);
+}
+
+/* Every rank: the command's work. Step errors end the job from the rank
+ * that met them (no other rank could go on without it). */
+static sd_status sd_drive_do(sd_mpi *m, sd_world *w, sd_world *g, const long long *cmd, sd_error *err)
+{
+    if (cmd[0] == SD_DRIVE_STEP || !w->prepared) { /* a VIEW first prepares (collective: the rebuild's hooks) */
+        sd_status st = sd_world_step(w, cmd[0] == SD_DRIVE_STEP ? (long)cmd[1] : 0, err);
+        if (st != SD_OK)
+            sd_mpi_fail(m, "step", st, err);
+    }
+    return sd_mpi_view(m, w, g, err);
+}
+
+sd_status sd_mpi_drive_step(void *drive, long n, sd_error *err)
+{
+    sd_mpi_drive *d = drive;
+    long long cmd[2] = {SD_DRIVE_STEP, n};
+    sd_drive_bcast(cmd);
+    return sd_drive_do(d->m, d->w, d->g, cmd, err);
+}
+
+sd_status sd_mpi_drive_view(sd_mpi_drive *d, sd_error *err)
+{
+    long long cmd[2] = {SD_DRIVE_VIEW, 0};
+    sd_drive_bcast(cmd);
+    return sd_drive_do(d->m, d->w, d->g, cmd, err);
+}
+
+/* The ranks' lines of summary.txt (rank 0) from every rank's count and
+ * migrations, gathered. */
+static void sd_drive_note(sd_mpi *m, const sd_world *w, char *note, size_t size)
+{
+    int ranks = sd_mpi_size(m);
+    unsigned long long mine[2] = {w->p.n, sd_mpi_migrated(m)}, all[128];
+    MPI_Gather(mine, 2, MPI_UNSIGNED_LONG_LONG, all, 2, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
+    if (!note)
+        return;
+    size_t used = 0;
+#define SD_NOTE(...)                                                         \
+    do {                                                                     \
+        if (used < size)                                                     \
+            used += (size_t)snprintf(note + used, size - used, __VA_ARGS__); \
+    } while (0)
+    SD_NOTE("mpi_ranks: %d\n", ranks);
+    SD_NOTE("mpi_split: along x by (x, stable id), equal particle counts; cuts at x =");
+    const sd_mpi_cut *cuts = sd_mpi_cuts(m);
+    for (int r = 0; r + 1 < ranks; ++r)
+        SD_NOTE(" %.10g", cuts[r].x);
+    if (ranks == 1)
+        SD_NOTE(" (none)");
+    SD_NOTE(" m\nmpi_particles_per_rank:");
+    unsigned long long moved = 0;
+    for (int r = 0; r < ranks; ++r) {
+        SD_NOTE(" %llu", all[2 * r]);
+        moved += all[2 * r + 1];
+    }
+    SD_NOTE("\nmpi_migrations: %llu\n", moved);
+#undef SD_NOTE
+}
+
+void sd_mpi_drive_end(sd_mpi_drive *d, char *note, size_t size)
+{
+    long long cmd[2] = {SD_DRIVE_END, 0};
+    sd_drive_bcast(cmd);
+    sd_drive_note(d->m, d->w, note, size);
+}
+
+void sd_mpi_follow(sd_mpi *m, sd_world *w)
+{
+    for (;;) {
+        long long cmd[2];
+        sd_drive_bcast(cmd);
+        if (cmd[0] == SD_DRIVE_END)
+            break;
+        sd_error err;
+        memset(&err, 0, sizeof err);
+        (void)sd_drive_do(m, w, NULL, cmd, &err); /* a failed gather is rank 0's to report */
+    }
+    sd_drive_note(m, w, NULL, 0);
+}
+
+sd_status sd_mpi_attach_built(sd_world *w, sd_mpi **out, sd_error *err)
+{
+    if (w->step != 0 || w->time != 0) {
+        *out = NULL;
+        return sd_error_set(err, SD_ERR_INTERNAL, "", 0, "", "sd_mpi_attach_built: the world has stepped");
+    }
+    /* what the serial prepare made: its pair lists (whose first force pass
+     * started the springs of the pairs touching at step 0), its ghosts and
+     * the rebuild it counted; the decomposed prepare makes them again */
+    w->pairs.n = 0;
+    memset(w->pairs.kind_start, 0, sizeof w->pairs.kind_start);
+    w->wpairs.n = 0;
+    memset(w->wpairs.kind_start, 0, sizeof w->wpairs.kind_start);
+    w->n_ghost = 0;
+    w->rebuilds = 0;
+    w->prepared = 0;
+    w->dirty = 1;
+    return sd_mpi_attach(w, out, err);
+}

@@ -1,0 +1,94 @@
+#!/usr/bin/env bash
+# cli_ranks.sh — `mpirun -np N shapedem run` (issue 18; docs/mpi.md): the
+# scene tests/mpi/run_scene.yaml on 1, 2, 3 and 4 ranks (oversubscribed:
+# CI has two cores; Open MPI as root needs --allow-run-as-root) must write
+# the same frames, frames.pvd, stats.csv and walls.csv, byte for byte;
+# summary.txt names the ranks and the split. The plain serial program sums
+# in another order (docs/architecture.md, "MPI decomposition"), so it is
+# compared within a tolerance. Then the failures: bad input on every rank,
+# on some ranks only, and ranks that built different worlds end the job
+# with one message and exit 2, never a hang (each run under `timeout`).
+#   cli_ranks.sh SHAPEDEM MPIEXEC SOURCE_DIR
+set -euo pipefail
+bin=$1
+mpiexec=${2:-mpirun}
+src=$3
+scene=$src/tests/mpi/run_scene.yaml
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+export OMP_NUM_THREADS=1
+fail=0
+ok() { echo "ok: $*"; }
+bad() { echo "FAIL: $*"; fail=1; }
+mpi() { timeout 300 "$mpiexec" --oversubscribe --allow-run-as-root "$@"; }
+
+"$bin" run "$scene" -o "$tmp/serial" -q || bad "the serial run failed"
+for np in 1 2 3 4; do
+  mpi -np "$np" "$bin" run "$scene" -o "$tmp/r$np" -q || bad "$np ranks: the run failed (exit $?)"
+done
+files=$(cd "$tmp/r1" && ls particles_*.vtu walls_*.vtp frames.pvd stats.csv walls.csv)
+[[ $(echo "$files" | grep -c particles_) -eq 5 ]] || bad "1 rank: $(echo "$files" | grep -c particles_) particle frames, not 5"
+for np in 2 3 4; do
+  same=1
+  for f in $files; do
+    cmp -s "$tmp/r1/$f" "$tmp/r$np/$f" || { bad "$np ranks: $f differs from 1 rank's"; same=0; }
+  done
+  [[ $same -eq 1 ]] && ok "$np ranks: $(echo "$files" | wc -w) files the same bytes as 1 rank's ($(cat "$tmp/r$np"/* | wc -c) bytes)"
+  # summary.txt: the ranks, the split and every particle on some rank
+  s=$tmp/r$np/summary.txt
+  per=$(sed -n 's/^mpi_particles_per_rank: //p' "$s")
+  if grep -q "^mpi_ranks: $np$" "$s" && [[ $(echo "$per" | wc -w) -eq $np ]] &&
+    [[ $((${per// /+})) -eq 720 ]] && grep -q '^mpi_split: along x' "$s" &&
+    [[ $(sed -n 's/^mpi_migrations: //p' "$s") -gt 0 ]]; then
+    ok "$np ranks: summary.txt: $(grep '^mpi_' "$s" | tr '\n' ';')"
+  else
+    bad "$np ranks: summary.txt lacks the ranks' lines:"; grep '^mpi_' "$s" || true
+  fi
+done
+# the serial program against 1 rank, particle by particle in id order
+/usr/bin/python3 - "$src/scripts/frame_to_csv.py" "$tmp/serial" "$tmp/r1" <<'PY' || fail=1
+import csv, io, subprocess, sys
+conv, a, b = sys.argv[1:]
+def rows(d, f):
+    out = subprocess.run([sys.executable, conv, f"{d}/{f}"], capture_output=True, text=True, check=True).stdout
+    return [r for r in csv.reader(io.StringIO(out)) if r and not r[0].startswith('#') and r[0] != 'x']
+dx = 0.0
+for f in ("particles_000000.vtu", "particles_000004.vtu"):
+    ra, rb = rows(a, f), rows(b, f)
+    assert len(ra) == len(rb) == 720, (len(ra), len(rb))
+    dx = max(dx, max(abs(float(p[c]) - float(q[c])) for p, q in zip(ra, rb) for c in range(3)))
+def stats(d):
+    return list(csv.DictReader(open(f"{d}/stats.csv")))
+sa, sb = stats(a), stats(b)
+de = max(abs(float(p["total_energy"]) - float(q["total_energy"])) / abs(float(p["total_energy"])) for p, q in zip(sa, sb))
+same_counts = all(p["contacts"] == q["contacts"] and p["wall_contacts"] == q["wall_contacts"] for p, q in zip(sa, sb))
+print(f"serial vs 1 rank: max |dx| = {dx:.3e} m (tolerance 1e-9 m), max relative total-energy difference "
+      f"{de:.3e} (tolerance 1e-9), contact counts equal: {same_counts}")
+sys.exit(0 if dx <= 1e-9 and de <= 1e-9 and same_counts and len(sa) == len(sb) == 9 else 1)
+PY
+
+# failures: one message, exit 2, no hang, nothing written
+printf 'simulation:\n  dt: 1.0e-5\n  steps: 10\nmaterials:\n  - name: a\n    densty: 2500\n' >"$tmp/bad.yaml"
+check_fail() { # name rc errfile pattern
+  local n=$1 rc=$2 err=$3 pat=$4 msgs
+  msgs=$(grep -c '^shapedem:' "$err" || true)
+  if [[ $rc -eq 2 && $msgs -eq 1 ]] && grep -q "$pat" "$err"; then
+    ok "$n: exit 2, one message: $(grep '^shapedem:' "$err")"
+  else
+    bad "$n: exit $rc (124: a hang), $msgs messages from shapedem:"; cat "$err"
+  fi
+}
+set +e
+mpi -np 3 "$bin" run "$tmp/bad.yaml" -o "$tmp/f1" >/dev/null 2>"$tmp/f1.err"
+check_fail "bad input on every rank" $? "$tmp/f1.err" "^shapedem: $tmp/bad.yaml:6: materials\[0\].densty"
+# MPMD: ranks 1 and 2 read the bad scene, rank 0 the good one
+mpi -np 1 "$bin" run "$scene" -o "$tmp/f2" : -np 2 "$bin" run "$tmp/bad.yaml" -o "$tmp/f2" >/dev/null 2>"$tmp/f2.err"
+check_fail "bad input on ranks 1 and 2 only" $? "$tmp/f2.err" "^shapedem: rank 1 of 3: $tmp/bad.yaml:6"
+sed 's/count: \[40, 6, 3\]/count: [40, 6, 2]/' "$scene" >"$tmp/other.yaml"
+mpi -np 1 "$bin" run "$scene" -o "$tmp/f3" : -np 1 "$bin" run "$tmp/other.yaml" -o "$tmp/f3" >/dev/null 2>"$tmp/f3.err"
+check_fail "ranks that built different worlds" $? "$tmp/f3.err" "different worlds"
+set -e
+for d in f1 f2 f3; do
+  [[ -e $tmp/$d ]] && bad "$d: the output directory was created by a run that failed on its input"
+done
+exit $fail
