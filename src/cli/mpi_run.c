@@ -101,6 +101,7 @@ int sd_cli_mpi_begin(const void *cli, sd_cli_load_fn load, const char *restart, 
         MPI_Finalize();
         return rc;
     }
+    sd_mpi_set_rebalance(m, (*scene)->mpi_rebalance_every, 0); /* simulation.mpi_rebalance_every */
     mp->m = m;
     mp->rank = rank;
     mp->size = size;

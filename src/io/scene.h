@@ -186,6 +186,7 @@ struct sd_scene {
     sd_world_def world;
     int simulation_line;          /* line of the simulation: key, for errors */
     long steps;                   /* >= 0; from steps or duration/dt */
+    long mpi_rebalance_every;     /* simulation.mpi_rebalance_every: steps between re-cuts under mpirun, 0 none */
     int dt_line;                  /* line of simulation.dt, for errors */
     /* simulation.stop_when (io/run.c): the run ends at the first stats row
      * at or after stop_after s whose kinetic energy is below stop_ke_below J */

@@ -160,6 +160,10 @@ const sd_scene_key sd_scene_keys[] = {
     {SD_SEC_SIMULATION, "domain", SD_KT_BOX, SD_KR_ANY, NULL, ALL, 0, "m", "-",
      "the periodic box {min: [x, y, z], max: [x, y, z]}; read on the periodic axes, where every "
      "particle must start inside [min, max); frames show positions wrapped into it"},
+    {SD_SEC_SIMULATION, "mpi_rebalance_every", SD_KT_INT, SD_KR_NONNEG, NULL, ALL, 0, "", "0",
+     "under mpirun (docs/mpi.md): at the first pair-list rebuild after every this many steps, the "
+     "split along x is cut again into equal particle counts (0: the split of the start is kept); "
+     "the results do not change"},
     {SD_SEC_SIMULATION, "stop_when", SD_KT_MAP, SD_KR_ANY, NULL, ALL, 0, "", "-",
      "end the run before its steps when the particles have come to rest (the keys of "
      "simulation.stop_when); summary.txt says when and why"},

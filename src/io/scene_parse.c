@@ -163,6 +163,8 @@ static sd_status sd_parse_simulation(sd_parse *p, yaml_node_t *root)
                        v.line ? "" : " (the default [0, 0, -9.81])");
     sd_yaml_get(&p->y, sim, SD_SEC_SIMULATION, "seed", path, &v);
     s->world.seed = (uint64_t)v.integer;
+    sd_yaml_get(&p->y, sim, SD_SEC_SIMULATION, "mpi_rebalance_every", path, &v);
+    s->mpi_rebalance_every = (long)v.integer;
     sd_yaml_get(&p->y, sim, SD_SEC_SIMULATION, "threads", path, &v);
     if (v.integer > SD_SCENE_MAX_THREADS)
         return sd_fail(p, v.line, "simulation.threads",

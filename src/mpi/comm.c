@@ -38,6 +38,9 @@ struct sd_mpi {
     size_t sbuf_cap, rbuf_cap;
     size_t migrated;           /* particles this rank sent away, since attach */
     size_t carried;            /* and their pair and wall springs sent with them */
+    long rebalance_every;      /* steps between re-cuts (mpi/rebalance.c), 0 none */
+    long rebalance_next;       /* the step from which the next rebuild re-cuts */
+    long rebalances;           /* re-cuts made */
 };
 
 /* ---- rows ------------------------------------------------------------------ */
@@ -168,6 +171,13 @@ static sd_status sd_hook_migrate(void *ctx, sd_world *w, sd_error *err)
 {
     sd_mpi *m = ctx;
     sd_particles *p = &w->p;
+    if (m->rebalance_every > 0 && w->step >= m->rebalance_next) { /* the same step on every rank */
+        sd_status rst = sd_mpi_recut(w, m->size, m->cuts, err);
+        if (rst != SD_OK)
+            return rst;
+        m->rebalances++;
+        m->rebalance_next = w->step + m->rebalance_every;
+    }
     size_t n = p->n, leave = 0, rs = sd_row_size();
     int *dest = sd_malloc((n ? n : 1) * sizeof *dest);
     if (!dest)
@@ -728,3 +738,10 @@ const unsigned char *sd_mpi_row_unpack(sd_particles *p, size_t k, const unsigned
     return sd_row_unpack(p, k, b);
 }
 const sd_mpi_cut *sd_mpi_cuts(const sd_mpi *m) { return m->cuts; }
+
+void sd_mpi_set_rebalance(sd_mpi *m, long every, long from_step)
+{
+    m->rebalance_every = every;
+    m->rebalance_next = from_step + every;
+}
+long sd_mpi_rebalances(const sd_mpi *m) { return m->rebalances; }

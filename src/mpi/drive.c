@@ -68,7 +68,8 @@ static void sd_drive_note(sd_mpi *m, const sd_world *w, char *note, size_t size)
             used += (size_t)snprintf(note + used, size - used, __VA_ARGS__); \
     } while (0)
     SD_NOTE("mpi_ranks: %d\n", ranks);
-    SD_NOTE("mpi_split: along x by (x, stable id), equal particle counts; cuts at x =");
+    SD_NOTE("mpi_split: along x by (x, stable id) into equal particle counts at the start%s; cuts now at x =",
+            sd_mpi_rebalances(m) > 0 ? " and at each re-cut" : "");
     const sd_mpi_cut *cuts = sd_mpi_cuts(m);
     for (int r = 0; r + 1 < ranks; ++r)
         SD_NOTE(" %.10g", cuts[r].x);
@@ -80,7 +81,7 @@ static void sd_drive_note(sd_mpi *m, const sd_world *w, char *note, size_t size)
         SD_NOTE(" %llu", all[2 * r]);
         moved += all[2 * r + 1];
     }
-    SD_NOTE("\nmpi_migrations: %llu\n", moved);
+    SD_NOTE("\nmpi_migrations: %llu\nmpi_rebalances: %ld\n", moved, sd_mpi_rebalances(m));
 #undef SD_NOTE
 }
 

@@ -87,6 +87,18 @@ _Noreturn void sd_mpi_fail(const sd_mpi *m, const char *stage, sd_status st, con
 /* The rank - 1 cuts of the split in use. */
 const sd_mpi_cut *sd_mpi_cuts(const sd_mpi *m);
 
+/* Rebalancing (mpi/rebalance.c): at the first rebuild at or after every
+ * `every` steps from from_step, before the migration, the cuts are made
+ * again from every rank's particles (sd_mpi_split: equal counts by (x,
+ * id)), and the migration moves the particles to their new ranks. The
+ * state does not change (its bits do not depend on the split), nor do the
+ * rebuilds' steps: no rebuild is added. */
+void sd_mpi_set_rebalance(sd_mpi *m, long every, long from_step);
+long sd_mpi_rebalances(const sd_mpi *m);
+/* Collective: new cuts (ranks - 1) from the owned particles of every rank
+ * of w. */
+sd_status sd_mpi_recut(const sd_world *w, int ranks, sd_mpi_cut *cuts, sd_error *err);
+
 /* A particle as one row of bytes: every SD_PARTICLE_FIELDS field in turn
  * (comm.c; what migration and the ghosts send). */
 struct sd_particles;

@@ -3,7 +3,8 @@
 # scene tests/mpi/run_scene.yaml on 1, 2, 3 and 4 ranks (oversubscribed:
 # CI has two cores; Open MPI as root needs --allow-run-as-root) must write
 # the same frames, frames.pvd, stats.csv and walls.csv, byte for byte;
-# summary.txt names the ranks and the split. The plain serial program sums
+# summary.txt names the ranks and the split; a run rebalanced every 50
+# steps writes the same bytes. The plain serial program sums
 # in another order (docs/architecture.md, "MPI decomposition"), so it is
 # compared within a tolerance. Then the failures: bad input on every rank,
 # on some ranks only, and ranks that built different worlds end the job
@@ -45,6 +46,23 @@ for np in 2 3 4; do
     bad "$np ranks: summary.txt lacks the ranks' lines:"; grep '^mpi_' "$s" || true
   fi
 done
+# simulation.mpi_rebalance_every: the split cut again every 50 steps (at
+# the next rebuild) changes no byte of the output, and evens the counts
+sed 's/^  threads: 1$/  threads: 1\n  mpi_rebalance_every: 50/' "$scene" >"$tmp/rebalance.yaml"
+mpi -np 3 "$bin" run "$tmp/rebalance.yaml" -o "$tmp/b3" -q || bad "3 ranks, rebalanced: the run failed"
+same=1
+for f in $files; do
+  cmp -s "$tmp/r1/$f" "$tmp/b3/$f" || { bad "3 ranks, rebalanced: $f differs from 1 rank's"; same=0; }
+done
+spread() { sed -n 's/^mpi_particles_per_rank: //p' "$1" | tr ' ' '\n' | sort -n | sed -n '1p;$p' | paste -sd' ' | awk '{print $2 - $1}'; }
+cuts=$(sed -n 's/^mpi_rebalances: //p' "$tmp/b3/summary.txt")
+if [[ $same -eq 1 && ${cuts:-0} -gt 0 && $(spread "$tmp/b3/summary.txt") -le $(spread "$tmp/r3/summary.txt") ]]; then
+  ok "3 ranks, rebalanced $cuts times: the same bytes as 1 rank's; particles per rank at the end spread by" \
+    "$(spread "$tmp/b3/summary.txt") (without: $(spread "$tmp/r3/summary.txt"))"
+else
+  bad "3 ranks, rebalanced: $cuts re-cuts, spread $(spread "$tmp/b3/summary.txt") vs $(spread "$tmp/r3/summary.txt")"
+fi
+
 # the serial program against 1 rank, particle by particle in id order
 /usr/bin/python3 - "$src/scripts/frame_to_csv.py" "$tmp/serial" "$tmp/r1" <<'PY' || fail=1
 import csv, io, subprocess, sys
