@@ -11,6 +11,14 @@
  * A pair of an owned particle and another rank's ghost is then the same
  * computation, on the same copies of the same state, on both ranks, and
  * each rank gathers its own side.
+ *
+ * Composites: the bins write a run of element pairs with the elements of
+ * the body stored first outer, so the run's order, in which its item sums
+ * N_c and the centroid of the contact points (backend/items.h,
+ * sd_item_elements), would follow storage too; each run is put in the
+ * order of its keys (lower id's element outer, the other's inner). A run
+ * stays where the bins put it, contiguous, its (i, j) the same for all its
+ * pairs.
  */
 #include <string.h>
 
@@ -40,6 +48,43 @@ static int sd_canon_before(const sd_pair_list *l, uint32_t g, uint32_t h)
     return qa < qb;
 }
 
+/* Element pair e's sub-indices before f's, in key order (sub_lo, sub_hi). */
+static int sd_canon_elem_before(const sd_pair_list *l, size_t e, size_t f)
+{
+    const sd_pair_key *a = &l->key[e], *b = &l->key[f];
+    return a->sub_lo != b->sub_lo ? a->sub_lo < b->sub_lo : a->sub_hi < b->sub_hi;
+}
+
+/* Swaps pairs e and f in every field (the list's rows, SD_PAIR_FIELDS). */
+static void sd_canon_swap(sd_pair_list *l, size_t e, size_t f)
+{
+#define SD_X_SWAP(type, name, per, role, doc)                      \
+    for (size_t s = 0; s < (size_t)(per); ++s) {                 \
+        type t = l->name[(size_t)(per) * e + s];                 \
+        l->name[(size_t)(per) * e + s] = l->name[(size_t)(per) * f + s]; \
+        l->name[(size_t)(per) * f + s] = t;                       \
+    }
+    SD_PAIR_FIELDS(SD_X_SWAP)
+#undef SD_X_SWAP
+}
+
+/* Each run of element pairs (one composite pair: the same i and j) in key
+ * order: an insertion sort of whole rows (a run holds a few to a few tens
+ * of element pairs, often in order already). */
+static void sd_canon_element_runs(sd_pair_list *l)
+{
+    size_t e0 = l->kind_start[SD_PAIR_ELEMENTS], e1 = l->kind_start[SD_PAIR_ELEMENTS + 1];
+    for (size_t r = e0; r < e1;) {
+        size_t end = r + 1;
+        while (end < e1 && l->i[end] == l->i[r] && l->j[end] == l->j[r])
+            ++end;
+        for (size_t a = r + 1; a < end; ++a)
+            for (size_t b = a; b > r && sd_canon_elem_before(l, b, b - 1); --b)
+                sd_canon_swap(l, b, b - 1);
+        r = end;
+    }
+}
+
 sd_status sd_pairs_canonical(const sd_bins_input *in, sd_pair_list *l)
 {
     size_t no = in->n_owned, total = l->n;
@@ -51,6 +96,7 @@ sd_status sd_pairs_canonical(const sd_bins_input *in, sd_pair_list *l)
             l->flip[e] = 0;
         }
     }
+    sd_canon_element_runs(l);
     uint32_t *cur = sd_malloc((no ? no : 1) * sizeof *cur);
     if (!cur)
         return SD_ERR_MEMORY;

@@ -37,7 +37,8 @@ struct sd_mpi {
     unsigned char *sbuf, *rbuf;
     size_t sbuf_cap, rbuf_cap;
     size_t migrated;           /* particles this rank sent away, since attach */
-    size_t carried;            /* and their pair and wall springs sent with them */
+    size_t carried;            /* and their pair and wall history entries sent with them */
+    size_t carried_hints;      /* of which, entries holding a volume law's overlap hint */
     long rebalance_every;      /* steps between re-cuts (mpi/rebalance.c), 0 none */
     long rebalance_next;       /* the step from which the next rebuild re-cuts */
     long rebalances;           /* re-cuts made */
@@ -136,13 +137,39 @@ static double sd_hook_min(void *ctx, double v)
     return out;
 }
 
-/* A history entry in transit: a pair's key or a wall pair's, its spring. */
+/* A history entry in transit: a pair's key or a wall pair's, and every
+ * HISTORY field of its list (broad/pairs.h): the spring, and for a
+ * particle pair the volume law's overlap hint (the interior point x0 of
+ * the last overlap, seed 000 eqs. 12-22), from which the next overlap is
+ * computed, so its bits follow the hint. */
 typedef struct sd_hist_row {
     sd_pair_key key;
     sd_wall_pair_key wkey;
     sd_vec3 ds;
-    int wall; /* 1: a wall pair's entry */
+    sd_vec3 x0;
+    int x0_ok; /* 1: x0 holds a point of the last overlap */
+    int wall;  /* 1: a wall pair's entry */
 } sd_hist_row;
+
+/* The HISTORY fields are those sd_hist_row carries: a new one needs a
+ * member there (and its line in sd_hist_of / the arrival). */
+#define SD_X_HIST_COUNT(type, name, per, role, doc) +((role) == SD_PF_HISTORY)
+_Static_assert(0 SD_PAIR_FIELDS(SD_X_HIST_COUNT) == 3 && 0 SD_WALL_PAIR_FIELDS(SD_X_HIST_COUNT) == 1,
+               "sd_hist_row carries every HISTORY field of SD_PAIR_FIELDS and SD_WALL_PAIR_FIELDS");
+#undef SD_X_HIST_COUNT
+
+/* Pair e of a list carries history worth sending: a spring or, for a
+ * particle pair, an overlap hint (the bins keep the same entries:
+ * broad/bins.c, sd_history_keep). */
+static int sd_hist_pair_keep(const sd_pair_list *l, size_t e)
+{
+    return l->ds[e].x != 0 || l->ds[e].y != 0 || l->ds[e].z != 0 || l->x0_ok[e];
+}
+
+static int sd_hist_wall_keep(const sd_wall_pair_list *l, size_t e)
+{
+    return l->ds[e].x != 0 || l->ds[e].y != 0 || l->ds[e].z != 0;
+}
 
 /* A departing particle: its id and the rank it goes to. */
 typedef struct sd_leaver {
@@ -165,8 +192,11 @@ static int sd_dest_of(const sd_leaver *v, size_t n, uint64_t id)
 }
 
 /* Migration (mpi.h): the particles and their history, then the arrays
- * compacted and the arrivals appended. The entries with a zero spring
- * carry nothing (the bins keep only non-zero ones: broad/bins.c). */
+ * compacted and the arrivals appended. The entries with a zero spring and
+ * no overlap hint carry nothing (the bins keep only the others:
+ * broad/bins.c). The GJK warm start and the other ZERO fields start again
+ * at every rebuild on every rank (broad/pairs.h), and every rank rebuilds
+ * at the same step, so they need not travel. */
 static sd_status sd_hook_migrate(void *ctx, sd_world *w, sd_error *err)
 {
     sd_mpi *m = ctx;
@@ -214,16 +244,19 @@ static sd_status sd_hook_migrate(void *ctx, sd_world *w, sd_error *err)
             if (dest[k] != m->rank)
                 nrow[dest[k]]++;
         for (size_t e = 0; leave && e < l->n; ++e) {
-            if (l->ds[e].x == 0 && l->ds[e].y == 0 && l->ds[e].z == 0)
+            if (!sd_hist_pair_keep(l, e))
                 continue;
             int a = sd_dest_of(ids, leave, l->key[e].id_lo), b = sd_dest_of(ids, leave, l->key[e].id_hi);
+            size_t c = (size_t)(a >= 0) + (size_t)(b >= 0 && b != a);
             if (a >= 0)
                 nhist[a]++;
             if (b >= 0 && b != a)
                 nhist[b]++;
+            if (l->x0_ok[e])
+                m->carried_hints += c;
         }
         for (size_t e = 0; leave && e < wl->n; ++e) {
-            if (wl->ds[e].x == 0 && wl->ds[e].y == 0 && wl->ds[e].z == 0)
+            if (!sd_hist_wall_keep(wl, e))
                 continue;
             int a = sd_dest_of(ids, leave, wl->key[e].id);
             if (a >= 0)
@@ -258,13 +291,15 @@ static sd_status sd_hook_migrate(void *ctx, sd_world *w, sd_error *err)
                 if (dest[k] != m->rank)
                     cur[dest[k]] = sd_row_pack(p, k, cur[dest[k]]);
             for (size_t e = 0; leave && e < l->n; ++e) {
-                if (l->ds[e].x == 0 && l->ds[e].y == 0 && l->ds[e].z == 0)
+                if (!sd_hist_pair_keep(l, e))
                     continue;
                 int a = sd_dest_of(ids, leave, l->key[e].id_lo), b = sd_dest_of(ids, leave, l->key[e].id_hi);
                 sd_hist_row h;
                 memset(&h, 0, sizeof h);
                 h.key = l->key[e];
                 h.ds = l->ds[e];
+                h.x0 = l->x0[e];
+                h.x0_ok = l->x0_ok[e];
                 for (int t = 0; t < 2; ++t) {
                     int r = t ? b : a;
                     if (r < 0 || (t && b == a))
@@ -274,7 +309,7 @@ static sd_status sd_hook_migrate(void *ctx, sd_world *w, sd_error *err)
                 }
             }
             for (size_t e = 0; leave && e < wl->n; ++e) {
-                if (wl->ds[e].x == 0 && wl->ds[e].y == 0 && wl->ds[e].z == 0)
+                if (!sd_hist_wall_keep(wl, e))
                     continue;
                 int a = sd_dest_of(ids, leave, wl->key[e].id);
                 if (a < 0)
@@ -354,8 +389,8 @@ static sd_status sd_hook_migrate(void *ctx, sd_world *w, sd_error *err)
                 size_t e = w->pairs.n++;
                 w->pairs.key[e] = h.key;
                 w->pairs.ds[e] = h.ds;
-                w->pairs.x0_ok[e] = 0;
-                w->pairs.x0[e] = sd_v3_zero();
+                w->pairs.x0_ok[e] = (uint8_t)h.x0_ok;
+                w->pairs.x0[e] = h.x0;
             }
         }
     }
@@ -560,10 +595,11 @@ static sd_status sd_mpi_refuse(const sd_world *w, sd_error *err)
     MPI_Comm_size(MPI_COMM_WORLD, &size);
     if (size > 64)
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "", "at most 64 MPI ranks in this version, got %d", size);
-    if (w->has_shapes || w->dim2)
-        return sd_error_set(err, SD_ERR_INPUT, "", 0, "particles",
-                            "MPI ranks take plain spheres only in this version (shapes, composites and the "
-                            "planar mode are not decomposed yet)");
+    /* every particle kind is decomposed: spheres, convex shapes, sharp
+     * polyhedra (their overlap hints travel with the pair history),
+     * composites (element runs in key order, broad/canonical.c) and the
+     * planar mode; the ghost reach is 2 r + skin from the largest bounding
+     * radius, a composite's enclosing all its elements */
     if (w->walls_moving || w->process || w->mesh_count)
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "walls",
                             "MPI ranks take fixed plane and box walls only in this version (no moving or mesh "
@@ -664,6 +700,7 @@ int sd_mpi_rank(const sd_mpi *m) { return m->rank; }
 int sd_mpi_size(const sd_mpi *m) { return m->size; }
 size_t sd_mpi_migrated(const sd_mpi *m) { return m->migrated; }
 size_t sd_mpi_carried(const sd_mpi *m) { return m->carried; }
+size_t sd_mpi_carried_hints(const sd_mpi *m) { return m->carried_hints; }
 size_t sd_mpi_ghosts(const sd_mpi *m) { return m->ghost_n; }
 
 static int sd_state_cmp(const void *a, const void *b)

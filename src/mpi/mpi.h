@@ -1,6 +1,8 @@
 /* mpi.h — domain decomposition over MPI ranks (built with SHAPEDEM_MPI;
- * the serial build has none of it). The first slice: plain spheres on the
- * cells solver and the CPU backend, a static split along x.
+ * the serial build has none of it): every particle kind (spheres, convex
+ * shapes, sharp polyhedra under the volume law, composites, the planar
+ * mode) with fixed plane and box walls, on the cells solver and the CPU
+ * backend, a static split along x.
  *
  * Each rank builds the same world (the same scene: every particle on every
  * rank), then sd_mpi_attach keeps the particles of its own sub-domain and
@@ -13,9 +15,13 @@
  *   migration: at each rebuild (every rank rebuilds when any must), an
  *          owned particle whose (x, id) left its sub-domain goes to the rank
  *          that owns it now, with its pair and wall history entries (by
- *          key: the receiving rank's next list finds them as its own)
+ *          key: the receiving rank's next list finds them as its own;
+ *          every HISTORY field of broad/pairs.h: springs, and the volume
+ *          law's overlap hints x0)
  *   ghosts: at each rebuild every owned particle within the contact reach
- *          2 r_max + skin of another rank's slab is sent there as a ghost
+ *          2 r_max + skin (r_max: the largest bounding radius of all
+ *          ranks, a composite's enclosing its elements) of another rank's
+ *          slab is sent there as a ghost
  *          (ghost_owner SD_GHOST_REMOTE); each step the same particles'
  *          rows are sent again, after the drift
  *   periodic axes: every owned particle's images (world/rebuild.c's rule
@@ -28,7 +34,8 @@
  *          pair kept)
  *   order: the pair lists take the canonical order (sd_pairs_canonical),
  *          so each particle's force sum, and so the state, has the same
- *          bits on any rank count
+ *          bits on any rank count (a composite pair's run of element
+ *          pairs in the order of its keys' sub-indices)
  *
  * Errors: a failing MPI call aborts every rank (MPI_ERRORS_ARE_FATAL, the
  * default); an engine error on one rank is reported by that rank and ends
@@ -63,10 +70,11 @@ void sd_mpi_slab(const sd_mpi_cut *cuts, int ranks, int r, double *lo, double *h
 typedef struct sd_mpi sd_mpi;
 
 /* Splits world w (every rank's copy holding the same particles, not yet
- * prepared) over the ranks of MPI_COMM_WORLD: keeps this rank's particles
- * and installs the hooks. MPI must be initialised. Refuses what the slice
- * does not cover yet (non-sphere particles, the grid solver,
- * a device backend, servo walls, insertions) with SD_ERR_INPUT. */
+ * prepared: sd_mpi_attach_built takes a world sd_scene_build made) over
+ * the ranks of MPI_COMM_WORLD: keeps this rank's particles and installs
+ * the hooks. MPI must be initialised. Refuses what
+ * is not decomposed yet (the grid solver, a device backend, moving and
+ * mesh walls, insertions and outlets) with SD_ERR_INPUT. */
 sd_status sd_mpi_attach(sd_world *w, sd_mpi **out, sd_error *err);
 /* The hooks off and the memory freed (the world stays, holding its own
  * particles). */
@@ -75,8 +83,11 @@ int sd_mpi_rank(const sd_mpi *m);
 int sd_mpi_size(const sd_mpi *m);
 /* Particles this rank has sent to others since attach; ghosts it holds. */
 size_t sd_mpi_migrated(const sd_mpi *m);
-/* Spring entries (pair and wall history) sent with the migrated particles. */
+/* History entries (pair and wall springs, overlap hints) sent with the
+ * migrated particles; of them, those holding a volume law's overlap hint
+ * (the interior point x0, broad/pairs.h). */
 size_t sd_mpi_carried(const sd_mpi *m);
+size_t sd_mpi_carried_hints(const sd_mpi *m);
 size_t sd_mpi_ghosts(const sd_mpi *m);
 /* The owned particles of every rank, on rank 0, in stable-id order: *out
  * gets *n states (sd_free them; NULL and 0 on the other ranks). Collective. */

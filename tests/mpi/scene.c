@@ -1,0 +1,154 @@
+/* scene.c — one rank count's run of a scene for the MPI tests
+ * (tests/mpi/kinds.sh): the scene (simulation.steps of it) built on every
+ * rank, split along x over the ranks of mpirun, stepped with migrations
+ * and contact history across rank boundaries. Every step the ranks'
+ * particle count and id sums are checked against the whole set (none
+ * lost, none duplicated); at the end rank 0 writes the gathered states, in
+ * stable-id order, to the file given, which kinds.sh compares byte for
+ * byte across rank counts.
+ *
+ *   mpi_scene SCENE OUT [--serial] [--hints]
+ *     --serial: the plain world, no attach
+ *     --hints:  on more than one rank, volume-law overlap hints (x0) must
+ *               have travelled with migrating particles
+ *
+ * On more than one rank particles must migrate and carry history entries
+ * (the scenes are made so: fast particles in contact across the cuts).
+ */
+#include <mpi.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <shapedem/scene.h>
+
+#include "core/alloc.h"
+#include "mpi/mpi.h"
+
+/* The whole set's count and id sums (every rank holds it before attach). */
+static void id_sums(const sd_world *w, unsigned long long out[3])
+{
+    out[0] = out[1] = out[2] = 0;
+    size_t n = sd_world_particle_count(w);
+    for (size_t k = 0; k < n; ++k) {
+        sd_particle_state p;
+        sd_world_get_particle(w, k, &p);
+        out[0]++;
+        out[1] += p.id;
+        out[2] += (unsigned long long)p.id * p.id;
+    }
+}
+
+int main(int argc, char **argv)
+{
+    MPI_Init(&argc, &argv);
+    int rank = 0, size = 1;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    if (argc < 3) {
+        fprintf(stderr, "usage: mpi_scene SCENE OUT [--serial] [--hints]\n");
+        MPI_Abort(MPI_COMM_WORLD, 2);
+    }
+    int serial = 0, hints = 0;
+    for (int a = 3; a < argc; ++a) {
+        if (strcmp(argv[a], "--serial") == 0)
+            serial = 1;
+        else if (strcmp(argv[a], "--hints") == 0)
+            hints = 1;
+        else {
+            fprintf(stderr, "mpi_scene: unknown option %s\n", argv[a]);
+            MPI_Abort(MPI_COMM_WORLD, 2);
+        }
+    }
+    sd_error err;
+    sd_scene *sc = NULL;
+    sd_world *w = NULL;
+    sd_status st;
+    if ((st = sd_scene_load(argv[1], &sc, &err)) != SD_OK)
+        sd_mpi_fail(NULL, "scene", st, &err);
+    sd_scene_set_threads(sc, 1);
+    if ((st = sd_scene_build(sc, &w, &err)) != SD_OK)
+        sd_mpi_fail(NULL, "scene", st, &err);
+    long steps = sd_scene_steps(sc);
+    unsigned long long want[3];
+    id_sums(w, want);
+    sd_mpi *m = NULL;
+    if (!serial && (st = sd_mpi_attach_built(w, &m, &err)) != SD_OK)
+        sd_mpi_fail(m, "attach", st, &err);
+    long bad_steps = 0, contacts_max = 0;
+    for (long step = 0; step < steps; ++step) {
+        if ((st = sd_world_step(w, 1, &err)) != SD_OK)
+            sd_mpi_fail(m, "step", st, &err);
+        unsigned long long mine[3], all[3];
+        id_sums(w, mine);
+        MPI_Allreduce(mine, all, 3, MPI_UNSIGNED_LONG_LONG, MPI_SUM, MPI_COMM_WORLD);
+        if (all[0] != want[0] || all[1] != want[1] || all[2] != want[2]) {
+            if (rank == 0 && bad_steps == 0)
+                fprintf(stderr, "step %ld: %llu particles (want %llu), id sums %llu %llu (want %llu %llu)\n", step,
+                        all[0], want[0], all[1], all[2], want[1], want[2]);
+            ++bad_steps;
+        }
+        sd_stats stats;
+        sd_world_stats(w, &stats);
+        long c = stats.contacts, call = 0;
+        MPI_Allreduce(&c, &call, 1, MPI_LONG, MPI_SUM, MPI_COMM_WORLD);
+        contacts_max = call > contacts_max ? call : contacts_max;
+    }
+    unsigned long long moved[3] = {m ? sd_mpi_migrated(m) : 0, m ? sd_mpi_carried(m) : 0,
+                                   m ? sd_mpi_carried_hints(m) : 0},
+                       moved_all[3] = {0, 0, 0};
+    MPI_Reduce(moved, moved_all, 3, MPI_UNSIGNED_LONG_LONG, MPI_SUM, 0, MPI_COMM_WORLD);
+    sd_particle_state *s = NULL;
+    size_t n = 0;
+    if (m) {
+        if ((st = sd_mpi_gather(m, w, &s, &n, &err)) != SD_OK)
+            sd_mpi_fail(m, "gather", st, &err);
+    } else if (rank == 0) {
+        n = sd_world_particle_count(w);
+        s = sd_malloc((n ? n : 1) * sizeof *s);
+        for (size_t k = 0; k < n; ++k)
+            sd_world_get_particle(w, k, &s[k]);
+        /* in stable-id order, as the gather gives them */
+        for (size_t a = 1; a < n; ++a)
+            for (size_t b = a; b > 0 && s[b].id < s[b - 1].id; --b) {
+                sd_particle_state t = s[b];
+                s[b] = s[b - 1];
+                s[b - 1] = t;
+            }
+    }
+    int fail = 0;
+    if (rank == 0) {
+        FILE *f = fopen(argv[2], "wb");
+        if (!f) {
+            fprintf(stderr, "cannot write %s\n", argv[2]);
+            MPI_Abort(MPI_COMM_WORLD, 1);
+        }
+        /* the dynamic state, field by field (the struct's padding stays out) */
+        for (size_t k = 0; k < n; ++k) {
+            const sd_particle_state *p = &s[k];
+            double v[] = {p->position.x, p->position.y, p->position.z, p->velocity.x, p->velocity.y,
+                          p->velocity.z, p->angular_velocity.x, p->angular_velocity.y, p->angular_velocity.z,
+                          p->quat[0], p->quat[1], p->quat[2], p->quat[3]};
+            fwrite(&p->id, sizeof p->id, 1, f);
+            fwrite(v, sizeof v, 1, f);
+        }
+        fclose(f);
+        printf("%s: %d rank%s%s: %zu of %llu particles gathered, %ld steps, at most %ld particle contacts; "
+               "%llu migrations carrying %llu history entries (%llu overlap hints); steps with a wrong count "
+               "or id set: %ld\n",
+               argv[1], size, size > 1 ? "s" : "", serial ? " (serial world)" : "", n, want[0], steps,
+               contacts_max, moved_all[0], moved_all[1], moved_all[2], bad_steps);
+        fail = n != want[0] || bad_steps != 0 || contacts_max == 0;
+        /* on more than one rank, particles must cross, some in contact */
+        if (size > 1 && !serial && (moved_all[0] == 0 || moved_all[1] == 0 || (hints && moved_all[2] == 0))) {
+            printf("  FAIL: no migration, or no history carried with one%s\n", hints ? " (or no overlap hint)" : "");
+            fail = 1;
+        }
+    }
+    sd_free(s);
+    sd_mpi_detach(w, m);
+    sd_world_destroy(w);
+    sd_scene_free(sc);
+    MPI_Finalize();
+    return fail;
+}
