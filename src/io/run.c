@@ -55,6 +55,8 @@ struct sd_run {
     int stopped;                 /* it was met: steps == done */
     sd_run_stepper stepper;      /* NULL: sd_world_step (io/run.h) */
     void *stepper_ctx;
+    void (*before_ckpt)(void *ctx); /* NULL: none (io/run.h) */
+    void *before_ckpt_ctx;
     char *note;                  /* summary.txt's extra lines, NULL none */
 };
 
@@ -194,6 +196,8 @@ sd_status sd_run_checkpoint(sd_run *r, sd_error *err)
         return SD_OK; /* a run without files writes no checkpoint either */
     char path[sizeof r->ckpt_last];
     snprintf(path, sizeof path, "%s/checkpoint-%06ld.h5", r->dir, sd_world_step_count(r->w));
+    if (r->before_ckpt)
+        r->before_ckpt(r->before_ckpt_ctx);
     sd_status st = sd_checkpoint_write(r->w, path, err);
     if (st == SD_OK) {
         snprintf(r->ckpt_last, sizeof r->ckpt_last, "%s", path);
@@ -308,6 +312,12 @@ void sd_run_set_stepper(sd_run *r, sd_run_stepper step, void *ctx)
 {
     r->stepper = step;
     r->stepper_ctx = ctx;
+}
+
+void sd_run_set_checkpoint_hook(sd_run *r, void (*before)(void *ctx), void *ctx)
+{
+    r->before_ckpt = before;
+    r->before_ckpt_ctx = ctx;
 }
 
 void sd_run_set_note(sd_run *r, const char *lines)

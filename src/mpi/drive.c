@@ -13,11 +13,13 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "core/alloc.h"
 #include "core/error.h"
 #include "mpi/mpi.h"
+#include "world/view.h"
 #include "world/world.h"
 
-enum { SD_DRIVE_STEP = 1, SD_DRIVE_VIEW = 2, SD_DRIVE_END = 3 };
+enum { SD_DRIVE_STEP = 1, SD_DRIVE_VIEW = 2, SD_DRIVE_END = 3, SD_DRIVE_CHECKPOINT = 4 };
 
 /* One command: what, and how many steps. */
 static void sd_drive_bcast(long long *cmd)
@@ -29,6 +31,16 @@ static void sd_drive_bcast(long long *cmd)
  * that met them (no other rank could go on without it). */
 static sd_status sd_drive_do(sd_mpi *m, sd_world *w, sd_world *g, const long long *cmd, sd_error *err)
 {
+    if (cmd[0] == SD_DRIVE_CHECKPOINT) {
+        /* a checkpoint's state (the view) holds no pair lists for a step to
+         * use: every restart rebuilds them at its first step, from the
+         * springs by key; the run that wrote it does the same, on every
+         * rank, so a restart on any rank count continues with its bits */
+        w->dirty = 1;
+        if (g)
+            g->dirty = 1;
+        return SD_OK;
+    }
     if (cmd[0] == SD_DRIVE_STEP || !w->prepared) { /* a VIEW first prepares (collective: the rebuild's hooks) */
         sd_status st = sd_world_step(w, cmd[0] == SD_DRIVE_STEP ? (long)cmd[1] : 0, err);
         if (st != SD_OK)
@@ -85,6 +97,14 @@ static void sd_drive_note(sd_mpi *m, const sd_world *w, char *note, size_t size)
 #undef SD_NOTE
 }
 
+void sd_mpi_drive_checkpoint(void *drive)
+{
+    sd_mpi_drive *d = drive;
+    long long cmd[2] = {SD_DRIVE_CHECKPOINT, 0};
+    sd_drive_bcast(cmd);
+    (void)sd_drive_do(d->m, d->w, d->g, cmd, NULL);
+}
+
 void sd_mpi_drive_end(sd_mpi_drive *d, char *note, size_t size)
 {
     long long cmd[2] = {SD_DRIVE_END, 0};
@@ -124,4 +144,51 @@ sd_status sd_mpi_attach_built(sd_world *w, sd_mpi **out, sd_error *err)
     w->prepared = 0;
     w->dirty = 1;
     return sd_mpi_attach(w, out, err);
+}
+
+sd_status sd_mpi_attach_restored(sd_world *w, sd_mpi **out, sd_error *err)
+{
+    /* the springs by key (and the volume law's overlap points): every
+     * entry, the other ranks' particles' too, so that the first rebuild
+     * finds each of this rank's pairs' history whoever held it */
+    sd_pair_list *l = &w->pairs;
+    size_t n = l->n;
+    sd_pair_key *key = sd_malloc((n ? n : 1) * sizeof *key);
+    sd_vec3 *ds = sd_malloc((n ? n : 1) * sizeof *ds), *x0 = sd_malloc((n ? n : 1) * sizeof *x0);
+    uint8_t *x0_ok = sd_malloc(n ? n : 1);
+    int kept = key && ds && x0 && x0_ok;
+    if (kept) {
+        memcpy(key, l->key, n * sizeof *key);
+        memcpy(ds, l->ds, n * sizeof *ds);
+        memcpy(x0, l->x0, n * sizeof *x0);
+        memcpy(x0_ok, l->x0_ok, n);
+    }
+    l->n = 0;
+    memset(l->kind_start, 0, sizeof l->kind_start);
+    w->n_ghost = 0;  /* made again at the first rebuild */
+    w->prepared = 0; /* for sd_mpi_attach (collective: every rank calls it); the forces came with the state */
+    sd_status st = sd_mpi_attach(w, out, err);
+    if (st == SD_OK && (!kept || sd_pairs_reserve(l, n) != SD_OK))
+        st = sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory keeping %zu springs", n);
+    if (st == SD_OK) {
+        for (size_t e = 0; e < n; ++e) {
+            l->i[e] = l->j[e] = 0; /* read by no one: the first step rebuilds before the forces */
+            l->key[e] = key[e];
+            l->ds[e] = ds[e];
+            l->x0[e] = x0[e];
+            l->x0_ok[e] = x0_ok[e];
+        }
+        l->n = n;
+        for (int k = 1; k <= SD_PAIR_KIND_COUNT; ++k)
+            l->kind_start[k] = n;
+        w->dirty = 1;
+        w->prepared = 1;
+        if (sd_world_views(w) != SD_OK)
+            st = sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory for the views");
+    }
+    sd_free(key);
+    sd_free(ds);
+    sd_free(x0);
+    sd_free(x0_ok);
+    return st;
 }

@@ -155,6 +155,15 @@ void sd_mpi_drive_end(sd_mpi_drive *d, char *note, size_t size);
  * 0): its pair lists, ghosts and rebuild count are dropped first, so the
  * decomposed world prepares as one never prepared would. */
 sd_status sd_mpi_attach_built(sd_world *w, sd_mpi **out, sd_error *err);
+/* sd_mpi_attach for a world restored from a checkpoint (prepared, its
+ * forces those saved): the pair lists keep only the springs, by key, of
+ * every pair, and the world is marked for a rebuild at its next step
+ * (the rebuild carries them), which the run that wrote the checkpoint
+ * made too (sd_mpi_drive_checkpoint). */
+sd_status sd_mpi_attach_restored(sd_world *w, sd_mpi **out, sd_error *err);
+/* Rank 0, before each checkpoint (io/run.h's hook): every rank's world,
+ * and the view, marked for a rebuild at the next step. */
+void sd_mpi_drive_checkpoint(void *drive);
 /* Ranks other than 0: follow rank 0's commands until it ends the run. */
 void sd_mpi_follow(sd_mpi *m, sd_world *w);
 

@@ -19,9 +19,7 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 export OMP_NUM_THREADS=1
 fail=0
-ok() { echo "ok: $*"; }
-bad() { echo "FAIL: $*"; fail=1; }
-mpi() { timeout 300 "$mpiexec" --oversubscribe --allow-run-as-root "$@"; }
+source "$src/tests/mpi/lib.sh"
 
 "$bin" run "$scene" -o "$tmp/serial" -q || bad "the serial run failed"
 for np in 1 2 3 4; do
@@ -87,15 +85,6 @@ PY
 
 # failures: one message, exit 2, no hang, nothing written
 printf 'simulation:\n  dt: 1.0e-5\n  steps: 10\nmaterials:\n  - name: a\n    densty: 2500\n' >"$tmp/bad.yaml"
-check_fail() { # name rc errfile pattern
-  local n=$1 rc=$2 err=$3 pat=$4 msgs
-  msgs=$(grep -c '^shapedem:' "$err" || true)
-  if [[ $rc -eq 2 && $msgs -eq 1 ]] && grep -q "$pat" "$err"; then
-    ok "$n: exit 2, one message: $(grep '^shapedem:' "$err")"
-  else
-    bad "$n: exit $rc (124: a hang), $msgs messages from shapedem:"; cat "$err"
-  fi
-}
 set +e
 mpi -np 3 "$bin" run "$tmp/bad.yaml" -o "$tmp/f1" >/dev/null 2>"$tmp/f1.err"
 check_fail "bad input on every rank" $? "$tmp/f1.err" "^shapedem: $tmp/bad.yaml:6: materials\[0\].densty"
