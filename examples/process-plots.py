@@ -7,14 +7,23 @@ CSV files their analysis: sections write.
   python3 examples/process-plots.py bed     out/fixed-bed      -> fixed-bed.png
   python3 examples/process-plots.py reactor out/reactor-fill   -> reactor-fill.png
   python3 examples/process-plots.py heap    out/heap-pour      -> heap-pour.png
+  python3 examples/process-plots.py packing out                -> packing-*.png
 
 drum: coordination.csv (mean Z, with and without the drum's contacts) and
-  energy.csv (mean speed) against time, and surface_angle.csv's angle.
+  energy.csv (mean speed) against time, and surface_angle.csv's angle; the
+  bed before the drum starts (its last 0.1 s at rest) and the second half.
 drum2d: velocity_field.csv averaged over its last 0.3 s (weighted by the
   particles per cell) as arrows on the drum's cross section, by speed.
 bed, reactor: the last block of the radial porosity profile
   (radial_porosity.csv) against r / R.
 heap: repose_angle.csv's angle and bed_height.csv's heights against time.
+packing: for each out/packing-SHAPE run (examples/packing-*.yaml) the table
+  row (porosity.csv's last row, coordination.csv's last row and its mean
+  over the last 0.02 s, summary.txt's stop, wall time and threads), one
+  picture of the bed by `shapedem render` (packing-SHAPE.png, coloured by
+  contact force; the binary is $SHAPEDEM, else build/shapedem), and
+  packing-settle.png: kinetic energy and mean coordination against time
+  for every shape.
 Each prints the numbers it plots; the PNG goes into the output directory
 (and, with a third argument, into that directory too, e.g. docs/examples).
 Standard library for the numbers; matplotlib for the plots.
@@ -45,6 +54,11 @@ def save(fig, out, name, also):
         print("copied to", os.path.join(also, name))
 
 
+# examples/drum-periodic.yaml's drum: at rest until start, then its speed
+# ramps to rpm over ramp (walls[0].start and .ramp, s)
+DRUM_START, DRUM_RAMP = 0.5, 0.25
+
+
 def drum(out, also):
     import matplotlib
     matplotlib.use("Agg")
@@ -59,6 +73,13 @@ def drum(out, also):
     v = [float(r["mean_speed"]) for r in en]
     ta = [float(r["time"]) for r in sa]
     ang = [float(r["angle_deg"]) for r in sa]
+    # the bed before the drum turns: the last 0.1 s before its start
+    pre = [i for i, x in enumerate(t) if DRUM_START - 0.1 <= x < DRUM_START]
+    pre_e = [i for i, x in enumerate(te) if DRUM_START - 0.1 <= x < DRUM_START]
+    if pre and pre_e:
+        print("drum: settled bed before the drum starts (%.2f-%.2f s): mean Z %.3f (%.3f-%.3f), mean speed %.2g m/s"
+              % (DRUM_START - 0.1, DRUM_START, sum(z[i] for i in pre) / len(pre), min(z[i] for i in pre),
+                 max(z[i] for i in pre), sum(v[i] for i in pre_e) / len(pre_e)))
     late = [i for i, x in enumerate(t) if x >= t[-1] / 2]
     zm = sum(z[i] for i in late) / len(late)
     late_e = [i for i, x in enumerate(te) if x >= te[-1] / 2]
@@ -77,6 +98,9 @@ def drum(out, also):
     ax[2].plot(ta, ang, "o-", ms=3)
     ax[2].set_ylabel("surface angle (deg)")
     ax[2].set_xlabel("time (s)")
+    for a in ax:  # the drum at rest, then its ramp to full speed
+        a.axvspan(DRUM_START, DRUM_START + DRUM_RAMP, color="0.9")
+    ax[1].set_yscale("log")
     ax[0].set_title("drum-periodic: Z %.2f, speed %.3f m/s, %.0f deg (second half)" % (zm, vm, am))
     fig.tight_layout()
     save(fig, out, "drum-periodic.png", also)
@@ -168,8 +192,64 @@ def heap(out, also):
     save(fig, out, "heap-pour.png", also)
 
 
+PACKINGS = ["spheres", "cylinders", "cubes", "tetrahedra", "crosses2d", "crosses3d"]
+
+
+def summary(path):
+    out = {}
+    with open(path) as f:
+        for line in f:
+            if ":" in line and not line.startswith("#"):
+                k, v = line.split(":", 1)
+                out[k.strip()] = v.strip()
+    return out
+
+
+def packing(top, also):
+    import subprocess
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    exe = os.environ.get("SHAPEDEM", os.path.join("build", "shapedem"))
+    fig, ax = plt.subplots(2, 1, figsize=(6.4, 6.4), sharex=True)
+    print("| shape | stopped at | porosity | coordination at the stop | mean coordination, last 0.02 s "
+          "| wall time | threads |")
+    print("| --- | --- | --- | --- | --- | --- | --- |")
+    for s in PACKINGS:
+        out = os.path.join(top, "packing-" + s)
+        if not os.path.exists(os.path.join(out, "summary.txt")):
+            print("| %s | not run | | | | | |" % s)
+            continue
+        sm = summary(os.path.join(out, "summary.txt"))
+        por = rows(out, "porosity.csv")[-1]
+        co = rows(out, "coordination.csv")
+        t_end = float(co[-1]["time"])
+        late = [float(r["mean"]) for r in co if float(r["time"]) >= t_end - 0.02 - 1e-9]
+        st = rows(out, "stats.csv")
+        print("| %s | %.3f s | %.3f | %.2f | %.2f (%.2f-%.2f) | %.0f s | %s |"
+              % (s, float(sm["simulated_time_s"]), float(por["porosity"]), float(co[-1]["mean"]),
+                 sum(late) / len(late), min(late), max(late), float(sm["wall_seconds"]), sm["threads"]))
+        ax[0].semilogy([float(r["time"]) for r in st],
+                       [float(r["kinetic_translational"]) + float(r["kinetic_rotational"]) for r in st], label=s)
+        ax[1].plot([float(r["time"]) for r in co], [float(r["mean"]) for r in co], label=s)
+        name = "packing-%s.png" % s
+        subprocess.run([exe, "render", os.path.join(out, "frames.pvd"), "-o", os.path.join(out, name),
+                        "--field", "force", "--size", "400x300"], check=True)
+        print("wrote", os.path.join(out, name))
+        if also:
+            shutil.copy(os.path.join(out, name), os.path.join(also, name))
+    ax[0].axhline(1e-6, color="k", lw=0.6, ls="--")
+    ax[0].set_ylabel("kinetic energy (J)")
+    ax[0].legend(fontsize=8)
+    ax[1].set_ylabel("mean coordination")
+    ax[1].set_xlabel("time (s)")
+    ax[0].set_title("packings: settling until kinetic energy < 1e-6 J (dashed)")
+    fig.tight_layout()
+    save(fig, top, "packing-settle.png", also)
+
+
 def main(argv):
-    if len(argv) < 2 or argv[0] not in ("drum", "drum2d", "bed", "reactor", "heap"):
+    if len(argv) < 2 or argv[0] not in ("drum", "drum2d", "bed", "reactor", "heap", "packing"):
         print(__doc__)
         return 2
     out, also = argv[1], argv[2] if len(argv) > 2 else None
@@ -179,6 +259,8 @@ def main(argv):
         drum2d(out, also)
     elif argv[0] == "heap":
         heap(out, also)
+    elif argv[0] == "packing":
+        packing(out, also)
     else:
         profile(out, also, {"bed": "fixed-bed", "reactor": "reactor-fill"}[argv[0]])
     return 0
