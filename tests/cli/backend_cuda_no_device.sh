@@ -13,11 +13,7 @@ set -u
 bin="$1"
 root="$2"
 [[ $bin == */* ]] && bin=$(cd "$(dirname "$bin")" && pwd)/$(basename "$bin")
-pass=0
-fail=0
-check() {
-    if [[ "$2" == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1 ($3)"; fi
-}
+. "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/lib.sh"  # pass, fail, check NAME 0|1 [DETAIL], finish
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/sd_backend.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
 
@@ -81,5 +77,4 @@ else
     check "check --backend cuda exits 2 too" "$([[ $rc == 2 ]] && echo 1)" "exit $rc"
 fi
 
-echo "$pass passed, $fail failed"
-[[ $fail == 0 ]]
+finish

@@ -22,11 +22,7 @@ set -u
 bin="$1"
 root="$2"
 [[ $bin == */* ]] && bin=$(cd "$(dirname "$bin")" && pwd)/$(basename "$bin")
-pass=0
-fail=0
-check() {
-    if [[ "$2" == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi
-}
+. "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/lib.sh"  # pass, fail, check NAME 0|1, finish
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/sd_check_insertion.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
 cd "$tmp" || exit 1
@@ -126,5 +122,4 @@ echo "     spheres:   $b"
 check "contact: the scaled composite's estimate equals the spheres' of its equivalent radius" \
     "$([[ -n $a && $a == "$b" ]] && echo 1 || echo 0)"
 
-echo "$pass passed, $fail failed"
-((fail == 0))
+finish

@@ -10,11 +10,7 @@ bin="$1"
 root="$2"
 [[ $bin == */* ]] && bin=$(cd "$(dirname "$bin")" && pwd)/$(basename "$bin")
 root=$(cd "$root" && pwd)
-pass=0
-fail=0
-check() {
-    if [[ "$2" == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi
-}
+. "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/lib.sh"  # pass, fail, check NAME 0|1, finish
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/sd_check_links.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
 cd "$tmp" || exit 1
@@ -50,5 +46,4 @@ link_case stats.csv scene.yaml 20
 link_case .frames.pvd.tmp scene.yaml 20
 link_case biaxial.csv "$root/examples/biaxial-2d.yaml" 10
 
-echo "check_output_links: $pass passed, $fail failed"
-[[ $fail == 0 ]]
+finish check_output_links

@@ -14,11 +14,7 @@ bin="$1"
 root="$2"
 [[ $bin == */* ]] && bin=$(cd "$(dirname "$bin")" && pwd)/$(basename "$bin")
 root=$(cd "$root" && pwd)
-pass=0
-fail=0
-check() {
-    if [[ "$2" == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi
-}
+. "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/lib.sh"  # pass, fail, check NAME 0|1, finish
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/sd_check_reload.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
 cd "$tmp" || exit 1
@@ -123,5 +119,4 @@ depth=$(sed -n 's/.*overlap at the start by \([0-9.e-]*\) m.*/\1/p' err.txt)
 check "the depth is the true one: $depth m against 5e-05 m within 1e-9" \
     "$(awk -v d="${depth:-0}" 'BEGIN {print (d > 5e-5 - 1e-9 && d < 5e-5 + 1e-9) ? 1 : 0}')"
 
-echo "check_packing_reload: $pass passed, $fail failed"
-[[ $fail == 0 ]]
+finish check_packing_reload

@@ -6,11 +6,7 @@
 set -u
 bin="$1"
 root="$2"
-pass=0
-fail=0
-check() {
-    if [[ "$2" == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi
-}
+. "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/lib.sh"  # pass, fail, check NAME 0|1, finish
 scene="$root/examples/settle-spheres.yaml"
 out=$("$bin" check "$scene" --ranks 3 2>&1)
 rc=$?
@@ -34,5 +30,4 @@ rc=$?
 echo "$err"
 check "--ranks 0 is refused with exit 2 naming --ranks" \
     "$([[ $rc == 2 && $(grep -c -- '--ranks' <<<"$err") == 1 ]] && echo 1 || echo 0)"
-echo "$pass passed, $fail failed"
-((fail == 0))
+finish

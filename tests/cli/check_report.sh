@@ -13,11 +13,7 @@ root="$2"
 # Absolute paths: the CLI runs in a scratch directory.
 [[ $bin == */* ]] && bin=$(cd "$(dirname "$bin")" && pwd)/$(basename "$bin")
 root=$(cd "$root" && pwd)
-pass=0
-fail=0
-check() {
-    if [[ "$2" == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi
-}
+. "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/lib.sh"  # pass, fail, check NAME 0|1, finish
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/sd_check_report.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
 cd "$tmp" || exit 1
@@ -102,5 +98,4 @@ for scene in "$root"/examples/*.yaml; do
         "$([[ $rc == 0 && $(grep -c '^warning .*SI' <<<"$out") == 0 ]] && echo 1 || echo 0)"
 done
 
-echo "check_report: $pass passed, $fail failed"
-[[ $fail == 0 ]]
+finish check_report

@@ -11,11 +11,7 @@
 #    recommended step and warns, naming the key.
 set -u
 bin="$1"
-pass=0
-fail=0
-check() {
-    if [[ "$2" == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi
-}
+. "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/lib.sh"  # pass, fail, check NAME 0|1, finish
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 scene() { # $1: extra material line
@@ -71,5 +67,4 @@ check "seed's law: the resting-face limit set the step" \
     "$([[ "$out" == *"set by: volume law: the resting-face limit"* ]] && echo 1 || echo 0)"
 check "seed's law: warns and names the key" \
     "$([[ "$out" == *"above the resting-face limit"*"volume_face_omega_dt"* ]] && echo 1 || echo 0)"
-echo "$pass passed, $fail failed"
-((fail == 0))
+finish

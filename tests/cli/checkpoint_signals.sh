@@ -12,11 +12,7 @@
 set -u
 bin="$1"
 src="$2"
-pass=0
-fail=0
-check() {
-    if [[ "$2" == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi
-}
+. "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/lib.sh"  # pass, fail, check NAME 0|1, finish
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 scene="$tmp/chute.yaml"
@@ -97,5 +93,4 @@ echo "kill -9: $trials trials with a checkpoint written, $good loaded and restar
 check "kill -9: the last checkpoint loads and restarts in every trial ($good of $trials, at least 5 trials)" \
     "$([[ $trials -ge 5 && $good == "$trials" ]] && echo 1 || echo 0)"
 
-echo "$pass passed, $fail failed"
-[[ $fail == 0 ]]
+finish

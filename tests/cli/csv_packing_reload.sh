@@ -14,11 +14,7 @@ root="$2"
 root=$(cd "$root" && pwd)
 py=/usr/bin/python3
 conv=$root/scripts/frame_to_csv.py
-pass=0
-fail=0
-check() {
-    if [[ "$2" == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi
-}
+. "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/lib.sh"  # pass, fail, check NAME 0|1, finish
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/sd_csv_reload.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
 cd "$tmp" || exit 1
@@ -127,5 +123,4 @@ rc=$?
 check "a truncated frame is refused with exit 2 and one line (got $rc: $(head -c 200 err.txt))" \
     "$([[ $rc == 2 && $(wc -l <err.txt) == 1 ]] && echo 1 || echo 0)"
 
-echo "csv_packing_reload: $pass passed, $fail failed"
-[[ $fail == 0 ]]
+finish csv_packing_reload

@@ -8,11 +8,7 @@
 set -u
 bin="$1"
 root="$2"
-pass=0
-fail=0
-check() {
-    if [[ "$2" == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi
-}
+. "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/lib.sh"  # pass, fail, check NAME 0|1, finish
 py=/usr/bin/python3  # Debian's interpreter: the one deps.sh installs modules for
 if [[ ! -x $py ]]; then
     echo "FAIL $py is missing: scripts/deps.sh installs the Debian package python3"
@@ -33,5 +29,4 @@ for case in python3-matplotlib:python3-matplotlib build-essential:make; do
     check "without $pkg: the check fails (rc $rc) and names $want ($named line(s))" \
         "$([[ $rc == 1 && $named -ge 1 ]] && echo 1 || echo 0)"
 done
-echo "$pass passed, $fail failed"
-((fail == 0))
+finish

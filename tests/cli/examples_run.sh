@@ -10,11 +10,7 @@ set -u
 bin="$1"
 root="$2"
 steps=${SD_EXAMPLE_STEPS:-40}
-pass=0
-fail=0
-check() {
-    if [[ "$2" == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi
-}
+. "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/lib.sh"  # pass, fail, check NAME 0|1, finish
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 shopt -s nullglob
@@ -42,5 +38,4 @@ for scene in "${scenes[@]}"; do
     fi
     rm -rf "$out"
 done
-echo "$pass passed, $fail failed"
-((fail == 0))
+finish

@@ -15,11 +15,7 @@ root="$2"
 dir="$root/tests/cli/outlines"
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/sd_fit_fourier.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
-pass=0
-fail=0
-check() {
-    if [[ "$2" == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi
-}
+. "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/lib.sh"  # pass, fail, check NAME 0|1, finish
 near() { # near VALUE EXPECTED TOL -> 1 if |VALUE - EXPECTED| <= TOL
     awk -v v="$1" -v e="$2" -v t="$3" 'BEGIN { d = v - e; if (d < 0) d = -d; print (v != "" && d <= t) ? 1 : 0 }'
 }
@@ -95,5 +91,4 @@ bad "unknown option" "--frobnicate" "$dir/rock.csv" --frobnicate 1
 rc=$?
 check "no outline: usage, exit 2 (got $rc)" "$([[ $rc == 2 ]] && echo 1 || echo 0)"
 
-echo "$pass passed, $fail failed"
-[[ $fail == 0 ]]
+finish

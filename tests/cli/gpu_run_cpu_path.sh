@@ -13,11 +13,7 @@ set -u
 bin="$1"
 src="$2"
 build=$(cd "$(dirname "$bin")" && pwd)
-pass=0
-fail=0
-check() {
-    if [[ "$2" == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi
-}
+. "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/lib.sh"  # pass, fail, check NAME 0|1, finish
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 if [[ ! -x "$build/tests/sd_ckpt_diff" ]]; then
@@ -54,5 +50,4 @@ check "sd_ckpt_diff: the same step of another run on 2 threads is identical (exi
 "$build/tests/sd_ckpt_diff" "$a/checkpoint-000100.h5" "$tmp/none.h5" >"$tmp/d3" 2>&1
 rc=$?
 check "sd_ckpt_diff: a missing file is exit 2 with the reason ($(head -1 "$tmp/d3"))" "$([[ $rc == 2 ]] && grep -q 'none.h5' "$tmp/d3" && echo 1 || echo 0)"
-echo "$pass passed, $fail failed"
-[[ $fail == 0 ]]
+finish

@@ -11,11 +11,7 @@
 # at the end, and summary.txt.
 set -u
 bin="$1"
-pass=0
-fail=0
-check() {
-    if [[ "$2" == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi
-}
+. "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/lib.sh"  # pass, fail, check NAME 0|1, finish
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 cat >"$tmp/escape.yaml" <<'EOF'
@@ -75,5 +71,4 @@ check "summary: grid_discharged 1, grid_escaped 1, grid_removed 2" \
 check "summary: grid_discharged_mass_kg $sdm = $ma" "$([[ -n "$sdm" ]] && near "$sdm" "$ma" || echo 0)"
 check "summary: grid_escaped_mass_kg $sem = $mb" "$([[ -n "$sem" ]] && near "$sem" "$mb" || echo 0)"
 
-echo "$pass passed, $fail failed"
-[[ $fail == 0 ]]
+finish

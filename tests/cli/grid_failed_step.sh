@@ -11,11 +11,7 @@
 set -u
 bin="$1"
 root="$2"
-pass=0
-fail=0
-check() {
-    if [[ "$2" == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi
-}
+. "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/lib.sh"  # pass, fail, check NAME 0|1, finish
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
@@ -63,5 +59,4 @@ for case in fast slower hopper; do
     check "$case: stats.csv has its one row (step 0), got $rows" "$([[ $rows == 1 ]] && echo 1 || echo 0)"
 done
 
-echo "$pass passed, $fail failed"
-[[ $fail == 0 ]]
+finish

@@ -14,11 +14,7 @@
 set -u
 bin="$1"
 root="$2"
-pass=0
-fail=0
-check() {
-    if [[ "$2" == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi
-}
+. "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/lib.sh"  # pass, fail, check NAME 0|1, finish
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 scene="$tmp/hopper-short.yaml"
@@ -91,5 +87,4 @@ check "pour with solver cells: exit 2 (got $rc)" "$([[ $rc == 2 ]] && echo 1 || 
 check "pour with solver cells: message names the key ($msg)" \
     "$(grep -q 'pour needs simulation.solver: grid' <<<"$msg" && echo 1 || echo 0)"
 
-echo "$pass passed, $fail failed"
-[[ $fail == 0 ]]
+finish

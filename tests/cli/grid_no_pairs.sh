@@ -7,11 +7,7 @@
 # sanitizer report (halt_on_error), in any build it checks the exit status.
 set -u
 bin="$1"
-pass=0
-fail=0
-check() {
-    if [[ "$2" == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi
-}
+. "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/lib.sh"  # pass, fail, check NAME 0|1, finish
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
@@ -42,5 +38,4 @@ for s in cells grid; do
         "$(grep -qx 'particles: 1' "$tmp/out-$s/summary.txt" && grep -qx 'contacts: 0' "$tmp/out-$s/summary.txt" \
             && echo 1 || echo 0)"
 done
-echo "$pass passed, $fail failed"
-[[ $fail == 0 ]]
+finish

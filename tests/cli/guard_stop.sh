@@ -14,11 +14,7 @@ exe=${1:?usage: guard_stop.sh SHAPEDEM REPO}
 [[ $exe == */* ]] && exe=$(cd "$(dirname "$exe")" && pwd)/$(basename "$exe")
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/sd_guard_stop.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
-pass=0
-fail=0
-check() { # check NAME 0|1
-    if [[ $2 == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi
-}
+. "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/lib.sh"  # pass, fail, check NAME 0|1, finish
 scene() { # $1: extra simulation keys
     cat <<EOF
 simulation: {dt: 1.0e-5, steps: 1500, gravity: [0, 0, 0], contact_law: linear$1}
@@ -81,5 +77,4 @@ check "max_overlap -1: names negative.yaml:1: simulation.max_overlap" \
     "$(grep -q 'negative.yaml:1: simulation.max_overlap: ' "$tmp/negative.err" && echo 1 || echo 0)"
 check "max_overlap -1: no output directory" "$([[ ! -e $tmp/out-negative ]] && echo 1 || echo 0)"
 
-echo "$pass passed, $fail failed"
-[[ $fail == 0 ]]
+finish

@@ -22,11 +22,7 @@ set -u
 bin="$1"
 root=$(cd "$2" && pwd)  # absolute: the test works in its temporary directory
 build=$(cd "$(dirname "$bin")" && pwd)
-pass=0
-fail=0
-check() {
-    if [[ "$2" == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi
-}
+. "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/lib.sh"  # pass, fail, check NAME 0|1, finish
 ok() { [[ $1 == 0 ]] && echo 1 || echo 0; }
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/sd_install.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
@@ -182,5 +178,4 @@ else
     echo "SKIP scene example: examples/c/run_scene.c not present"
 fi
 
-echo "$pass passed, $fail failed"
-[[ $fail == 0 ]]
+finish

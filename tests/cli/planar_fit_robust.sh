@@ -22,11 +22,7 @@ bin="$1"
 root="$2"
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/sd_planar_fit.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
-pass=0
-fail=0
-check() {
-    if [[ "$2" == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi
-}
+. "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/lib.sh"  # pass, fail, check NAME 0|1, finish
 field() { # field NAME OUTPUT: the first number after the label
     awk -v k="$1" '$1 == k { gsub(/[(,]/, " "); print $2; exit }' <<<"$2"
 }
@@ -151,5 +147,4 @@ check "12-gon at (1e5, 1e5): moment $jf as at the origin ($jn), to 1e-6" \
 check "12-gon at (1e5, 1e5): centre of mass x = 1e5 within 1e-6 m (got $cf)" \
     "$(awk -v v="$cf" 'BEGIN { d = v - 1e5; if (d < 0) d = -d; print (v != "" && d <= 1e-6) }')"
 
-echo "$pass passed, $fail failed"
-[[ $fail == 0 ]]
+finish

@@ -9,11 +9,7 @@
 set -u
 bin="$1"
 root="$2"
-pass=0
-fail=0
-check() {
-    if [[ "$2" == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi
-}
+. "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/lib.sh"  # pass, fail, check NAME 0|1, finish
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 scene="$root/examples/polyhedra-pour.yaml"
@@ -34,5 +30,4 @@ check "no NaN in the summary" "$(! grep -qi 'nan' "$tmp/out1/summary.txt" && ech
 e1=$(grep -E '^(kinetic|potential|total)' "$tmp/out1/summary.txt")
 e2=$(grep -E '^(kinetic|potential|total)' "$tmp/out2/summary.txt")
 check "1 and 2 threads: same energies" "$([[ -n "$e1" && "$e1" == "$e2" ]] && echo 1 || echo 0)"
-echo "$pass passed, $fail failed"
-((fail == 0))
+finish

@@ -13,11 +13,7 @@
 set -u
 bin="$1"
 root="$2"
-pass=0
-fail=0
-check() {
-    if [[ "$2" == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi
-}
+. "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/lib.sh"  # pass, fail, check NAME 0|1, finish
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 scenes=$root/tests/cli/process_scenes
@@ -61,5 +57,4 @@ echo "     walls_000000.vtp: $polys"
 check "graded-drum: the drum drawn in the walls file (48 mantle quads, 2 caps)" \
     "$([[ $polys == 'NumberOfPolys="50"' ]] && echo 1 || echo 0)"
 
-echo "$pass passed, $fail failed"
-((fail == 0))
+finish

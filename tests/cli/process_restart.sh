@@ -8,11 +8,7 @@
 set -u
 bin="$1"
 root="$2"
-pass=0
-fail=0
-check() {
-    if [[ "$2" == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi
-}
+. "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/lib.sh"  # pass, fail, check NAME 0|1, finish
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 scene=$root/tests/cli/process_scenes/mesh-feed.yaml
@@ -32,5 +28,4 @@ check "the same insertion record (asked, inserted, mass)" "$([[ -n $ins_a && $in
 # the straight run's frames are 0, 400, 800; the resumed run's 400, 800
 cmp -s "$tmp/a/particles_000002.vtu" "$tmp/b/particles_000001.vtu"
 check "the last frame (step 800) is the same, byte for byte" "$((! $?))"
-echo "$pass passed, $fail failed"
-((fail == 0))
+finish

@@ -16,11 +16,7 @@
 set -u
 bin="$1"
 root="$2"
-pass=0
-fail=0
-check() {
-    if [[ "$2" == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi
-}
+. "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/lib.sh"  # pass, fail, check NAME 0|1, finish
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 py=/usr/bin/python3
@@ -117,5 +113,4 @@ head -c $((full - 1000)) "$tmp/simple/shapes_000000.vtp" >"$tmp/shapes_000009.vt
 bad "a shapes file cut in its header" "not a shapedem frame" "$tmp/shapes_000008.vtp" -o "$tmp/bad.png"
 bad "a shapes file cut in its data" "not a shapedem frame: an array" "$tmp/shapes_000009.vtp" -o "$tmp/bad.png"
 
-echo "$pass passed, $fail failed"
-exit $((fail > 0))
+finish

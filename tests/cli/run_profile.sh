@@ -6,11 +6,7 @@
 # --profile no table is printed. Times are never compared to anything.
 set -u
 bin="$1"
-pass=0
-fail=0
-check() {
-    if [[ "$2" == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi
-}
+. "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/lib.sh"  # pass, fail, check NAME 0|1, finish
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 cat >"$tmp/mix.yaml" <<'EOF'
@@ -45,5 +41,4 @@ check "no row for a kind absent from the scene (poly_volume)" \
 check "a total row" "$(grep -q '^  total ' "$tmp/run.txt" && echo 1 || echo 0)"
 "$bin" run "$tmp/mix.yaml" -o "$tmp/out2" >"$tmp/plain.txt" 2>&1
 check "without --profile, no table" "$(grep -q '^profile:' "$tmp/plain.txt" && echo 0 || echo 1)"
-echo "$pass passed, $fail failed"
-[[ $fail == 0 ]]
+finish

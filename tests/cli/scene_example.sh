@@ -11,11 +11,7 @@ set -u
 bin="$1"
 root=$(cd "$2" && pwd)
 build=$(cd "$(dirname "$bin")" && pwd)
-pass=0
-fail=0
-check() {
-    if [[ "$2" == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi
-}
+. "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/lib.sh"  # pass, fail, check NAME 0|1, finish
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/sd_scene_example.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
 
@@ -81,5 +77,4 @@ check "a bad scene: exit 2 and the file:line: key (got $rc: $(head -1 "$tmp/bad.
     "$([[ $rc == 2 ]] && grep -q 'bad.yaml:2: materials\[0\].density' "$tmp/bad.out" && echo 1 || echo 0)"
 check "a bad scene writes nothing" "$([[ ! -e $tmp/bad ]] && echo 1 || echo 0)"
 
-echo "$pass passed, $fail failed"
-((fail == 0))
+finish

@@ -17,11 +17,7 @@ exe=${1:?usage: scene_from.sh SHAPEDEM REPO}
 [[ $exe == */* ]] && exe=$(cd "$(dirname "$exe")" && pwd)/$(basename "$exe")
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/sd_scene_from.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
-pass=0
-fail=0
-check() { # check NAME 0|1
-    if [[ $2 == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi
-}
+. "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/lib.sh"  # pass, fail, check NAME 0|1, finish
 
 head_yaml() { # the physics both scenes share; $1 = the brick's type line
     cat <<EOF
@@ -165,5 +161,4 @@ from_yaml "type: cylinder, diameter: 0.002, length: 0.004" poured/checkpoint-000
 bad "a scaled copy whose template is of another kind" \
     "template 'brick_i0e0s[0-9]' is a copy of 'brick' scaled by [0-9.e-]+, and 'brick' is a box there, a cylinder in this scene"
 
-echo "$pass passed, $fail failed"
-[[ $fail == 0 ]]
+finish

@@ -9,11 +9,7 @@
 set -u
 bin="$1"
 [[ $bin == */* ]] && bin=$(cd "$(dirname "$bin")" && pwd)/$(basename "$bin")
-pass=0
-fail=0
-check() {
-    if [[ "$2" == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi
-}
+. "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/lib.sh"  # pass, fail, check NAME 0|1, finish
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/sd_shape_flake.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
 
@@ -70,5 +66,4 @@ check "check on the four flakes and needles: exit 0 (got $rc)" "$([[ $rc == 0 ]]
 (cd "$tmp" && "$bin" run flakes.yaml -o "$tmp/out" >/dev/null 2>"$tmp/err")
 rc=$?
 check "run of the four flakes and needles: exit 0 (got $rc), stderr empty" "$([[ $rc == 0 && ! -s $tmp/err ]] && echo 1 || echo 0)"
-echo "$pass passed, $fail failed"
-[[ $fail == 0 ]]
+finish

@@ -8,11 +8,7 @@ bin="$1"
 root="$2"
 [[ $bin == */* ]] && bin=$(cd "$(dirname "$bin")" && pwd)/$(basename "$bin")
 root=$(cd "$root" && pwd)
-pass=0
-fail=0
-check() {
-    if [[ "$2" == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi
-}
+. "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/lib.sh"  # pass, fail, check NAME 0|1, finish
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/sd_shape_hull.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
 cp "$root/tests/cli/bad/nonconvex-mesh.obj" "$tmp/"
@@ -55,5 +51,4 @@ check "a convex mesh: check exit 0 (got $rc), no shape warning" \
 "$bin" run cube.yaml -o "$tmp/out2" >/dev/null 2>"$tmp/run2.err"
 rc=$?
 check "a convex mesh: run exit 0 (got $rc), stderr empty" "$([[ $rc == 0 && ! -s $tmp/run2.err ]] && echo 1 || echo 0)"
-echo "$pass passed, $fail failed"
-[[ $fail == 0 ]]
+finish

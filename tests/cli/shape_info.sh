@@ -5,11 +5,7 @@
 set -u
 bin="$1"
 root="$2"
-pass=0
-fail=0
-check() {
-    if [[ "$2" == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi
-}
+. "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/lib.sh"  # pass, fail, check NAME 0|1, finish
 out=$("$bin" shape info box --size 0.01,0.02,0.03 --density 2500)
 vol=$(awk '/^volume/ {print $2}' <<<"$out")
 mom=$(awk '/^principal moments/ {print $3}' <<<"$out" | tr -d '(,')
@@ -139,5 +135,4 @@ c3=$(awk '/^shape .*c3 \(composite\)/ {f = 1} f && /^volume/ {print $2; exit}' <
 check "3D cross: volume 8.01056e-9 m^3 within 0.2 % (got $c3)" "$(awk -v v="$c3" 'BEGIN {print (v > 7.9945e-9 && v < 8.0266e-9)}')"
 check "3D cross: lattice of 200 points per direction reported" "$(grep -c 'voxel lattice of 200 points' <<<"$out")"
 rm -rf "$tmp"
-echo "$pass passed, $fail failed"
-[[ $fail == 0 ]]
+finish

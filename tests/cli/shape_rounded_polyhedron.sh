@@ -10,11 +10,7 @@ bin="$1"
 root="$2"
 [[ $bin == */* ]] && bin=$(cd "$(dirname "$bin")" && pwd)/$(basename "$bin")
 root=$(cd "$root" && pwd)
-pass=0
-fail=0
-check() {
-    if [[ "$2" == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi
-}
+. "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/lib.sh"  # pass, fail, check NAME 0|1, finish
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/sd_shape_rounded.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
 
@@ -58,5 +54,4 @@ out=$(cd "$tmp" && "$bin" check rough.yaml 2>&1)
 rc=$?
 check "a coarsely rounded icosahedron (phi = 1.6) with a margin: a convex body, check exit 0 (got $rc)" \
     "$([[ $rc == 0 ]] && echo 1 || echo 0)"
-echo "$pass passed, $fail failed"
-[[ $fail == 0 ]]
+finish

@@ -16,11 +16,7 @@
 set -u
 bin="$1"
 root="$2"
-pass=0
-fail=0
-check() {
-    if [[ "$2" == 1 ]]; then pass=$((pass + 1)); echo "PASS $1"; else fail=$((fail + 1)); echo "FAIL $1"; fi
-}
+. "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/lib.sh"  # pass, fail, check NAME 0|1, finish
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 scenes=$root/tests/cli/stop_scenes
@@ -74,5 +70,4 @@ grep -q "^stop_when: not met (kinetic energy .* at step 5000, " "$tmp/n/summary.
     grep -q "^steps_run: 5000$" "$tmp/n/summary.txt"
 check "never: ran its 5000 steps, summary.txt says the condition was not met" "$((! $?))"
 
-echo "$pass passed, $fail failed"
-((fail == 0))
+finish

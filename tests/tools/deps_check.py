@@ -332,8 +332,18 @@ def main(argv):
     used = {}  # what -> (kind, first place, file)
     for mod, where in python_imports(repo):
         used.setdefault(("module", mod), where)
+    def defined(text):
+        return set(re.findall(r"^\s*(?:function\s+)?([A-Za-z_][A-Za-z0-9_]*)\s*\(\)", text, re.M))
+
     for rel, text in shell_sources(repo):
-        funcs = set(re.findall(r"^\s*(?:function\s+)?([A-Za-z_][A-Za-z0-9_]*)\s*\(\)", text, re.M))
+        funcs = defined(text)
+        # functions of a file the script sources from its own folder
+        # (tests/cli/lib.sh: check, finish) are the script's own too
+        for lib in re.findall(r"^\s*(?:\.|source)\s+.*/([A-Za-z0-9_.-]+\.sh)\"?\s*(?:#.*)?$", text, re.M):
+            path = os.path.join(repo, os.path.dirname(rel), lib)
+            if os.path.isfile(path):
+                with open(path, encoding="utf-8") as f:
+                    funcs |= defined(f.read())
         for cmd, where in shell_commands(rel, text, funcs):
             used.setdefault(("command", cmd), where)
 
