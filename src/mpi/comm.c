@@ -39,6 +39,7 @@ struct sd_mpi {
     size_t migrated;           /* particles this rank sent away, since attach */
     size_t carried;            /* and their pair and wall history entries sent with them */
     size_t carried_hints;      /* of which, entries holding a volume law's overlap hint */
+    size_t carried_walls;      /* of which, wall pairs' entries */
     long rebalance_every;      /* steps between re-cuts (mpi/rebalance.c), 0 none */
     long rebalance_next;       /* the step from which the next rebuild re-cuts */
     long rebalances;           /* re-cuts made */
@@ -259,8 +260,10 @@ static sd_status sd_hook_migrate(void *ctx, sd_world *w, sd_error *err)
             if (!sd_hist_wall_keep(wl, e))
                 continue;
             int a = sd_dest_of(ids, leave, wl->key[e].id);
-            if (a >= 0)
+            if (a >= 0) {
                 nhist[a]++;
+                m->carried_walls++;
+            }
         }
         size_t total = 0;
         for (int r = 0; r < m->size; ++r)
@@ -600,10 +603,24 @@ static sd_status sd_mpi_refuse(const sd_world *w, sd_error *err)
      * composites (element runs in key order, broad/canonical.c) and the
      * planar mode; the ghost reach is 2 r + skin from the largest bounding
      * radius, a composite's enclosing all its elements */
-    if (w->walls_moving || w->process || w->mesh_count)
-        return sd_error_set(err, SD_ERR_INPUT, "", 0, "walls",
-                            "MPI ranks take fixed plane and box walls only in this version (no moving or mesh "
-                            "walls, insertions or outlets)");
+    /* walls: every rank holds all of them and moves them by the same
+     * function of time (prescribed velocities, mesh motions, a drum's
+     * spin-up), so they stay the same bits everywhere; a particle's wall
+     * pairs are its own (owned particles only), and their springs travel
+     * by key. A servo wall reads its force, a sum over every rank's
+     * particles: not decomposed yet. Meshes: every rank has the whole
+     * mesh; the near facets of a particle come from a query by distance,
+     * so they are the same whatever each rank's facet bins are. */
+    for (size_t k = 0; k < w->wall_count; ++k)
+        if (w->walls[k].moving && w->walls[k].motion.servo_stress > 0)
+            return sd_error_set(err, SD_ERR_INPUT, "", 0, "walls",
+                                "wall '%s': MPI ranks do not take servo walls in this version (the servo reads "
+                                "the wall force, summed over the particles of every rank); prescribed motions, "
+                                "drums and moving meshes are decomposed", w->walls[k].name);
+    if (w->process)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "insert",
+                            "MPI ranks take no insertions or outlets in this version (an inserted particle must "
+                            "be placed against the particles of every rank)");
     if (w->prepared)
         return sd_error_set(err, SD_ERR_INTERNAL, "", 0, "", "sd_mpi_attach: the world has already stepped");
     return SD_OK;
@@ -701,6 +718,7 @@ int sd_mpi_size(const sd_mpi *m) { return m->size; }
 size_t sd_mpi_migrated(const sd_mpi *m) { return m->migrated; }
 size_t sd_mpi_carried(const sd_mpi *m) { return m->carried; }
 size_t sd_mpi_carried_hints(const sd_mpi *m) { return m->carried_hints; }
+size_t sd_mpi_carried_walls(const sd_mpi *m) { return m->carried_walls; }
 size_t sd_mpi_ghosts(const sd_mpi *m) { return m->ghost_n; }
 
 static int sd_state_cmp(const void *a, const void *b)

@@ -1,8 +1,9 @@
 /* mpi.h — domain decomposition over MPI ranks (built with SHAPEDEM_MPI;
  * the serial build has none of it): every particle kind (spheres, convex
  * shapes, sharp polyhedra under the volume law, composites, the planar
- * mode) with fixed plane and box walls, on the cells solver and the CPU
- * backend, a static split along x.
+ * mode) with fixed and moving walls (prescribed motions, drums, triangle
+ * meshes; not servo walls), on the cells solver and the CPU backend, a
+ * split along x.
  *
  * Each rank builds the same world (the same scene: every particle on every
  * rank), then sd_mpi_attach keeps the particles of its own sub-domain and
@@ -73,8 +74,8 @@ typedef struct sd_mpi sd_mpi;
  * prepared: sd_mpi_attach_built takes a world sd_scene_build made) over
  * the ranks of MPI_COMM_WORLD: keeps this rank's particles and installs
  * the hooks. MPI must be initialised. Refuses what
- * is not decomposed yet (the grid solver, a device backend, moving and
- * mesh walls, insertions and outlets) with SD_ERR_INPUT. */
+ * is not decomposed yet (the grid solver, a device backend, servo walls,
+ * insertions and outlets) with SD_ERR_INPUT. */
 sd_status sd_mpi_attach(sd_world *w, sd_mpi **out, sd_error *err);
 /* The hooks off and the memory freed (the world stays, holding its own
  * particles). */
@@ -85,9 +86,10 @@ int sd_mpi_size(const sd_mpi *m);
 size_t sd_mpi_migrated(const sd_mpi *m);
 /* History entries (pair and wall springs, overlap hints) sent with the
  * migrated particles; of them, those holding a volume law's overlap hint
- * (the interior point x0, broad/pairs.h). */
+ * (the interior point x0, broad/pairs.h), and those of wall pairs. */
 size_t sd_mpi_carried(const sd_mpi *m);
 size_t sd_mpi_carried_hints(const sd_mpi *m);
+size_t sd_mpi_carried_walls(const sd_mpi *m);
 size_t sd_mpi_ghosts(const sd_mpi *m);
 /* The owned particles of every rank, on rank 0, in stable-id order: *out
  * gets *n states (sd_free them; NULL and 0 on the other ranks). Collective. */

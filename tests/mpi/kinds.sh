@@ -4,11 +4,12 @@
 # CI has two cores; Open MPI as root needs --allow-run-as-root); the
 # gathered states must be the same bytes. Each run checks the particle
 # count and id set at every step and, on more than one rank, that particles
-# migrated carrying history (--hints: volume-law overlap hints among it).
+# migrated carrying history (--hints: volume-law overlap hints among it,
+# --walls: wall pairs' springs).
 # The serial world (no decomposition) is compared with 1 rank within a
 # tolerance only: it sums in the search's order (docs/architecture.md,
 # "MPI decomposition").
-#   kinds.sh MPI_SCENE_BINARY MPIEXEC SCENE [--hints]
+#   kinds.sh MPI_SCENE_BINARY MPIEXEC SCENE [--hints | --walls]
 set -euo pipefail
 bin=$1
 mpiexec=${2:-mpirun}

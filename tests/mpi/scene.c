@@ -7,10 +7,12 @@
  * stable-id order, to the file given, which kinds.sh compares byte for
  * byte across rank counts.
  *
- *   mpi_scene SCENE OUT [--serial] [--hints]
+ *   mpi_scene SCENE OUT [--serial] [--hints] [--walls]
  *     --serial: the plain world, no attach
  *     --hints:  on more than one rank, volume-law overlap hints (x0) must
  *               have travelled with migrating particles
+ *     --walls:  on more than one rank, wall pairs' springs must have
+ *               travelled with migrating particles
  *
  * On more than one rank particles must migrate and carry history entries
  * (the scenes are made so: fast particles in contact across the cuts).
@@ -46,15 +48,17 @@ int main(int argc, char **argv)
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     MPI_Comm_size(MPI_COMM_WORLD, &size);
     if (argc < 3) {
-        fprintf(stderr, "usage: mpi_scene SCENE OUT [--serial] [--hints]\n");
+        fprintf(stderr, "usage: mpi_scene SCENE OUT [--serial] [--hints] [--walls]\n");
         MPI_Abort(MPI_COMM_WORLD, 2);
     }
-    int serial = 0, hints = 0;
+    int serial = 0, hints = 0, walls = 0;
     for (int a = 3; a < argc; ++a) {
         if (strcmp(argv[a], "--serial") == 0)
             serial = 1;
         else if (strcmp(argv[a], "--hints") == 0)
             hints = 1;
+        else if (strcmp(argv[a], "--walls") == 0)
+            walls = 1;
         else {
             fprintf(stderr, "mpi_scene: unknown option %s\n", argv[a]);
             MPI_Abort(MPI_COMM_WORLD, 2);
@@ -75,7 +79,7 @@ int main(int argc, char **argv)
     sd_mpi *m = NULL;
     if (!serial && (st = sd_mpi_attach_built(w, &m, &err)) != SD_OK)
         sd_mpi_fail(m, "attach", st, &err);
-    long bad_steps = 0, contacts_max = 0;
+    long bad_steps = 0, contacts_max = 0, wall_contacts_max = 0;
     for (long step = 0; step < steps; ++step) {
         if ((st = sd_world_step(w, 1, &err)) != SD_OK)
             sd_mpi_fail(m, "step", st, &err);
@@ -90,14 +94,15 @@ int main(int argc, char **argv)
         }
         sd_stats stats;
         sd_world_stats(w, &stats);
-        long c = stats.contacts, call = 0;
-        MPI_Allreduce(&c, &call, 1, MPI_LONG, MPI_SUM, MPI_COMM_WORLD);
-        contacts_max = call > contacts_max ? call : contacts_max;
+        long c[2] = {stats.contacts, stats.wall_contacts}, call[2] = {0, 0};
+        MPI_Allreduce(c, call, 2, MPI_LONG, MPI_SUM, MPI_COMM_WORLD);
+        contacts_max = call[0] > contacts_max ? call[0] : contacts_max;
+        wall_contacts_max = call[1] > wall_contacts_max ? call[1] : wall_contacts_max;
     }
-    unsigned long long moved[3] = {m ? sd_mpi_migrated(m) : 0, m ? sd_mpi_carried(m) : 0,
-                                   m ? sd_mpi_carried_hints(m) : 0},
-                       moved_all[3] = {0, 0, 0};
-    MPI_Reduce(moved, moved_all, 3, MPI_UNSIGNED_LONG_LONG, MPI_SUM, 0, MPI_COMM_WORLD);
+    unsigned long long moved[4] = {m ? sd_mpi_migrated(m) : 0, m ? sd_mpi_carried(m) : 0,
+                                   m ? sd_mpi_carried_hints(m) : 0, m ? sd_mpi_carried_walls(m) : 0},
+                       moved_all[4] = {0, 0, 0, 0};
+    MPI_Reduce(moved, moved_all, 4, MPI_UNSIGNED_LONG_LONG, MPI_SUM, 0, MPI_COMM_WORLD);
     sd_particle_state *s = NULL;
     size_t n = 0;
     if (m) {
@@ -133,15 +138,17 @@ int main(int argc, char **argv)
             fwrite(v, sizeof v, 1, f);
         }
         fclose(f);
-        printf("%s: %d rank%s%s: %zu of %llu particles gathered, %ld steps, at most %ld particle contacts; "
-               "%llu migrations carrying %llu history entries (%llu overlap hints); steps with a wrong count "
+        printf("%s: %d rank%s%s: %zu of %llu particles gathered, %ld steps, at most %ld particle and %ld "
+               "wall contacts; %llu migrations carrying %llu history entries (%llu overlap hints, %llu wall pairs'); steps with a wrong count "
                "or id set: %ld\n",
                argv[1], size, size > 1 ? "s" : "", serial ? " (serial world)" : "", n, want[0], steps,
-               contacts_max, moved_all[0], moved_all[1], moved_all[2], bad_steps);
-        fail = n != want[0] || bad_steps != 0 || contacts_max == 0;
+               contacts_max, wall_contacts_max, moved_all[0], moved_all[1], moved_all[2], moved_all[3], bad_steps);
+        fail = n != want[0] || bad_steps != 0 || contacts_max == 0 || wall_contacts_max == 0;
         /* on more than one rank, particles must cross, some in contact */
-        if (size > 1 && !serial && (moved_all[0] == 0 || moved_all[1] == 0 || (hints && moved_all[2] == 0))) {
-            printf("  FAIL: no migration, or no history carried with one%s\n", hints ? " (or no overlap hint)" : "");
+        if (size > 1 && !serial &&
+            (moved_all[0] == 0 || moved_all[1] == 0 || (hints && moved_all[2] == 0) || (walls && moved_all[3] == 0))) {
+            printf("  FAIL: no migration, or no history carried with one%s%s\n", hints ? " (or no overlap hint)" : "",
+                   walls ? " (or no wall pair's spring)" : "");
             fail = 1;
         }
     }
