@@ -38,22 +38,8 @@ for np in 2 3 4; do
   fi
 done
 # the serial world against 1 rank: a sanity check of the physics (the
-# same particles, positions within 1e-3 of the smallest size's scale)
+# same particles, positions within 1e-6 m)
 if [[ -f $tmp/serial.bin && -f $tmp/1.bin ]]; then
-  /usr/bin/python3 - "$tmp/serial.bin" "$tmp/1.bin" "$name" <<'PY' || fail=1
-import struct, sys
-def load(p):
-    b = open(p, 'rb').read()
-    rec = 8 + 13 * 8
-    return [struct.unpack_from('<Q13d', b, k) for k in range(0, len(b), rec)]
-a, b = load(sys.argv[1]), load(sys.argv[2])
-assert len(a) == len(b) > 0 and all(p[0] == q[0] for p, q in zip(a, b)), (len(a), len(b))
-dx = max(abs(p[1 + c] - q[1 + c]) for p, q in zip(a, b) for c in range(3))
-same = sum(p == q for p, q in zip(a, b))
-tol = 1e-6
-print(f"{sys.argv[3]}: serial vs 1 rank: max |dx| = {dx:.3e} m (tolerance {tol:g} m), "
-      f"{same} of {len(a)} states equal to the bit")
-sys.exit(0 if dx <= tol else 1)
-PY
+  /usr/bin/python3 "$(dirname "$0")/serial_vs_rank.py" "$tmp/serial.bin" "$tmp/1.bin" "$name" || fail=1
 fi
 exit $fail

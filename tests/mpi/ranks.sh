@@ -34,21 +34,7 @@ for mode in box periodic; do
     fi
   done
   # the serial world against 1 rank: a sanity check of the physics
-  /usr/bin/python3 - "$tmp/${mode}serial.bin" "$tmp/${mode}1.bin" "$mode" <<'PY' || fail=1
-import struct, sys
-def load(p):
-    b = open(p, 'rb').read()
-    rec = 8 + 13 * 8
-    return [struct.unpack_from('<Q13d', b, k) for k in range(0, len(b), rec)]
-a, b = load(sys.argv[1]), load(sys.argv[2])
-assert len(a) == len(b) == 600, (len(a), len(b))
-dx = max(abs(p[1 + c] - q[1 + c]) for p, q in zip(a, b) for c in range(3))
-same = sum(p == q for p, q in zip(a, b))
-tol = 1e-6
-print(f"{sys.argv[3]}: serial vs 1 rank: max |dx| = {dx:.3e} m (tolerance {tol:g} m), "
-      f"{same} of {len(a)} states equal to the bit")
-sys.exit(0 if dx <= tol else 1)
-PY
+  /usr/bin/python3 "$(dirname "$0")/serial_vs_rank.py" "$tmp/${mode}serial.bin" "$tmp/${mode}1.bin" "$mode" 600 || fail=1
 done
 # a rank that fails alone (a bad material on rank 1 of 3) ends the job:
 # a non-zero status well before the timeout, one message naming the rank

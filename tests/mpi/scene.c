@@ -26,20 +26,7 @@
 
 #include "core/alloc.h"
 #include "mpi/mpi.h"
-
-/* The whole set's count and id sums (every rank holds it before attach). */
-static void id_sums(const sd_world *w, unsigned long long out[3])
-{
-    out[0] = out[1] = out[2] = 0;
-    size_t n = sd_world_particle_count(w);
-    for (size_t k = 0; k < n; ++k) {
-        sd_particle_state p;
-        sd_world_get_particle(w, k, &p);
-        out[0]++;
-        out[1] += p.id;
-        out[2] += (unsigned long long)p.id * p.id;
-    }
-}
+#include "mpi/states.h"
 
 int main(int argc, char **argv)
 {
@@ -75,23 +62,16 @@ int main(int argc, char **argv)
         sd_mpi_fail(NULL, "scene", st, &err);
     long steps = sd_scene_steps(sc);
     unsigned long long want[3];
-    id_sums(w, want);
+    mpi_test_id_sums(w, want);
     sd_mpi *m = NULL;
     if (!serial && (st = sd_mpi_attach_built(w, &m, &err)) != SD_OK)
         sd_mpi_fail(m, "attach", st, &err);
     long bad_steps = 0, contacts_max = 0, wall_contacts_max = 0;
+    int reported = 0;
     for (long step = 0; step < steps; ++step) {
         if ((st = sd_world_step(w, 1, &err)) != SD_OK)
             sd_mpi_fail(m, "step", st, &err);
-        unsigned long long mine[3], all[3];
-        id_sums(w, mine);
-        MPI_Allreduce(mine, all, 3, MPI_UNSIGNED_LONG_LONG, MPI_SUM, MPI_COMM_WORLD);
-        if (all[0] != want[0] || all[1] != want[1] || all[2] != want[2]) {
-            if (rank == 0 && bad_steps == 0)
-                fprintf(stderr, "step %ld: %llu particles (want %llu), id sums %llu %llu (want %llu %llu)\n", step,
-                        all[0], want[0], all[1], all[2], want[1], want[2]);
-            ++bad_steps;
-        }
+        bad_steps += mpi_test_check_ids(w, want, step, rank, &reported);
         sd_stats stats;
         sd_world_stats(w, &stats);
         long c[2] = {stats.contacts, stats.wall_contacts}, call[2] = {0, 0};
@@ -123,21 +103,7 @@ int main(int argc, char **argv)
     }
     int fail = 0;
     if (rank == 0) {
-        FILE *f = fopen(argv[2], "wb");
-        if (!f) {
-            fprintf(stderr, "cannot write %s\n", argv[2]);
-            MPI_Abort(MPI_COMM_WORLD, 1);
-        }
-        /* the dynamic state, field by field (the struct's padding stays out) */
-        for (size_t k = 0; k < n; ++k) {
-            const sd_particle_state *p = &s[k];
-            double v[] = {p->position.x, p->position.y, p->position.z, p->velocity.x, p->velocity.y,
-                          p->velocity.z, p->angular_velocity.x, p->angular_velocity.y, p->angular_velocity.z,
-                          p->quat[0], p->quat[1], p->quat[2], p->quat[3]};
-            fwrite(&p->id, sizeof p->id, 1, f);
-            fwrite(v, sizeof v, 1, f);
-        }
-        fclose(f);
+        mpi_test_write_states(argv[2], s, n);
         printf("%s: %d rank%s%s: %zu of %llu particles gathered, %ld steps, at most %ld particle and %ld "
                "wall contacts; %llu migrations carrying %llu history entries (%llu overlap hints, %llu wall pairs'); steps with a wrong count "
                "or id set: %ld\n",

@@ -19,6 +19,7 @@
 #include "core/alloc.h"
 #include "core/rng.h"
 #include "mpi/mpi.h"
+#include "mpi/states.h"
 
 enum { N = 600, STEPS = 500 };
 
@@ -111,25 +112,11 @@ int main(int argc, char **argv)
         want[2] += id * id;
     }
     long bad_steps = 0;
+    int reported = 0;
     for (int step = 0; step < STEPS; ++step) {
         if ((st = sd_world_step(w, 1, &err)) != SD_OK)
             sd_mpi_fail(m, "step", st, &err);
-        unsigned long long mine[3] = {0, 0, 0}, all[3];
-        size_t n = sd_world_particle_count(w);
-        for (size_t k = 0; k < n; ++k) {
-            sd_particle_state p;
-            sd_world_get_particle(w, k, &p);
-            mine[0]++;
-            mine[1] += p.id;
-            mine[2] += (unsigned long long)p.id * p.id;
-        }
-        MPI_Allreduce(mine, all, 3, MPI_UNSIGNED_LONG_LONG, MPI_SUM, MPI_COMM_WORLD);
-        if (all[0] != want[0] || all[1] != want[1] || all[2] != want[2]) {
-            if (rank == 0 && bad_steps == 0)
-                fprintf(stderr, "step %d: %llu particles (want %llu), id sums %llu %llu (want %llu %llu)\n", step,
-                        all[0], want[0], all[1], all[2], want[1], want[2]);
-            ++bad_steps;
-        }
+        bad_steps += mpi_test_check_ids(w, want, step, rank, &reported);
     }
     unsigned long long moved[2] = {m ? sd_mpi_migrated(m) : 0, m ? sd_mpi_carried(m) : 0}, moved_all[2] = {0, 0};
     MPI_Reduce(moved, moved_all, 2, MPI_UNSIGNED_LONG_LONG, MPI_SUM, 0, MPI_COMM_WORLD);
@@ -148,23 +135,10 @@ int main(int argc, char **argv)
     }
     int fail = 0;
     if (rank == 0) {
-        FILE *f = fopen(argv[1], "wb");
-        if (!f) {
-            fprintf(stderr, "cannot write %s\n", argv[1]);
-            MPI_Abort(MPI_COMM_WORLD, 1);
-        }
-        /* the dynamic state, field by field (the struct's padding stays out) */
         size_t ids_in_order = 1;
-        for (size_t k = 0; k < n; ++k) {
-            const sd_particle_state *p = &s[k];
-            ids_in_order &= p->id == k;
-            double v[] = {p->position.x, p->position.y, p->position.z, p->velocity.x, p->velocity.y,
-                          p->velocity.z, p->angular_velocity.x, p->angular_velocity.y, p->angular_velocity.z,
-                          p->quat[0], p->quat[1], p->quat[2], p->quat[3]};
-            fwrite(&p->id, sizeof p->id, 1, f);
-            fwrite(v, sizeof v, 1, f);
-        }
-        fclose(f);
+        for (size_t k = 0; k < n; ++k)
+            ids_in_order &= s[k].id == k;
+        mpi_test_write_states(argv[1], s, n);
         printf("%d rank%s%s%s: %zu particles gathered (ids 0..%d in order: %s), %llu migrations carrying %llu "
                "springs, rank 0: %ld rebuilds, %ld contacts; steps with a wrong count or id set: %ld\n",
                size, size > 1 ? "s" : "", serial ? " (serial world)" : "", periodic ? " periodic x, y" : "", n, N - 1, ids_in_order ? "yes" : "no",
