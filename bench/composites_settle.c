@@ -15,8 +15,9 @@
  * ratio to the sphere case (with one thread per CPU second of the process,
  * with more per wall second). The element-pair tests are the element pairs
  * that went through GJK (the world's narrow-phase counters, exact; pairs
- * whose element bounding spheres are apart are culled before it and not
- * counted) plus, for the clumps, the sphere-element pairs, each tested by
+ * whose element bounding spheres are apart, and pairs answered by the
+ * separating-axis test on their warm direction, are culled before it and
+ * not counted) plus, for the clumps, the sphere-element pairs, each tested by
  * the analytic sphere law (the element pairs in the list, read after every
  * 50-step chunk). element_pairs_per_s is all element pairs in the list,
  * read the same way. state_hash (FNV-1a of every particle's position,

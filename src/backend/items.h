@@ -402,7 +402,11 @@ SD_HD static SD_INLINE sd_pair_result sd_item_apply_at(const sd_pair_params *prm
  * and at the last evaluation (nothing to write: the sphere loop's
  * shortcut, so a clump is as cheap as its spheres). Any other pair is the
  * convex narrow phase on the posed elements (shrink / GJK / swell, EPA
- * when the cores overlap; seed 004 §2.5), after their bounding spheres. */
+ * when the cores overlap; seed 004 §2.5), after their bounding spheres and
+ * a separating-axis test on the pair's warm direction
+ * (sd_convex_apart_warm: the pairs it answers are exactly pairs that GJK
+ * would find apart at its first support point, with the same warm
+ * direction afterwards, so the same bits). */
 SD_HD static SD_INLINE int sd_item_element_geom(const sd_step_view *v, sd_pair_out *o, size_t e, sd_item_poses *Pi,
                                                 sd_item_poses *Pj, sd_contact_geom *g, sd_real *r_star,
                                                 sd_narrow_count *ns)
@@ -424,7 +428,12 @@ SD_HD static SD_INLINE int sd_item_element_geom(const sd_step_view *v, sd_pair_o
     if (sd_v3_norm2(sd_v3_sub(ci->x, cj->x)) >= reach * reach)
         return 0;
     sd_real ri = pi->req, rj = pj->req;
-    sd_convex_contact c = sd_convex_collide_bodies(sd_item_pose_body(pi), sd_item_pose_body(pj), &o->warm[e], 0);
+    const sd_gjk_body *A = sd_item_pose_body(pi), *B = sd_item_pose_body(pj);
+    /* apart along GJK's start direction (the pair's warm direction): GJK's
+     * own first-step answer, warm direction included, without the query */
+    if (sd_convex_apart_warm(A, B, &o->warm[e]))
+        return 0;
+    sd_convex_contact c = sd_convex_collide_bodies(A, B, &o->warm[e], 0);
     ns->iterations = c.iterations;
     ns->supports = c.support_calls;
     if (!c.touching)

@@ -25,6 +25,7 @@
 
 #include "geom/cylinder_contact.h"
 #include "geom/epa.h"
+#include "shape/support.h" /* sd_shape_support_height */
 
 typedef struct sd_convex_contact {
     int touching;                  /* 1 when the swept bodies overlap (delta > 0) */
@@ -38,6 +39,83 @@ typedef struct sd_convex_contact {
     int status;                    /* sd_gjk_status of the core distance */
     int epa_status;                /* sd_epa_status when used_epa, else -1 */
 } sd_convex_contact;
+
+/* Rounding allowance of sd_convex_apart_along, relative to |d|_1 times the
+ * pair's magnitudes (m). */
+#define SD_CONVEX_APART_TOL SD_R(1e-11)
+
+/* 1 when direction d proves the swept bodies A->c and B->c apart in the way
+ * GJK's own first step on d (rule 0 of gjk.h) proves it, so that a caller
+ * may skip GJK and keep GJK's answer (sd_convex_apart_warm).
+ *
+ * The test, a separating axis on the support functions (shape/support.h):
+ *     u = d . (xa - xb) + h_a(Ra^T d) + h_b(Rb^T (-d))
+ * is the largest value of d . (p - q) over points p of A's core and q of
+ * B's (h: sd_shape_support_height, the core's height along a direction in
+ * its principal frame). If u < -(ra + rb) |d|, every p and q lie more than
+ * ra + rb apart along d/|d|, so the swept bodies (cores swept by ra, rb)
+ * cannot touch: the test never rejects a touching pair, nor one within the
+ * margin -u/|d| - (ra + rb) of touching.
+ *
+ * Why GJK's answer is the same, bit for bit: GJK's first support point
+ * w = s_a(d) - s_b(-d), with stop_beyond = ra + rb (sd_convex_collide_bodies),
+ * gives d . w <= u (the support points are points of the cores), and GJK
+ * stops at once, SEPARATED and bounded, its direction d unchanged, when
+ * d . w < 0 and (d . w)^2 > (ra + rb)^2 |d|^2. Both sides are computed in
+ * floating point from the same d, positions and rotation matrices (entries
+ * <= 1: unit quaternions, renormalised every step). Each rounds by a few
+ * tens of ulp of |d|_1 (|xa|_1 + |xb|_1 + bound_a + bound_b) at most
+ * (three-term dots and sums of those magnitudes; the support points are
+ * core points up to a few ulp of the bound), so the allowance tol, 1e-11
+ * of that (about 90,000 ulp), makes u + tol < -(ra + rb) |d| imply GJK's
+ * rule 0 in floating point. The range checks keep GJK's squares normal and
+ * every value finite (a non-finite pose is left to GJK, which reports it).
+ * tests/unit/composite_cull.c checks both claims on random poses of every
+ * kind. */
+SD_HD static SD_HOT int sd_convex_apart_along(const sd_gjk_body *A, const sd_gjk_body *B, sd_vec3 d)
+{
+    const sd_convex *a = A->c, *b = B->c;
+    const sd_real(*ma)[3] = A->R.m;
+    const sd_real(*mb)[3] = B->R.m;
+    sd_real d1 = sd_fabs(d.x) + sd_fabs(d.y) + sd_fabs(d.z);
+    sd_real s = A->scale + B->scale;
+    /* |d| in [1e-100, 1e100] and magnitudes below 1e100: u, tol and GJK's
+     * squares stay finite and normal (false for NaN) */
+    if (!(d1 >= SD_R(1e-100) && d1 <= SD_R(1e100) && s <= SD_R(1e100)))
+        return 0;
+    /* d in each principal frame, as sd_convex_support_core_m turns it */
+    sd_vec3 da = sd_v3(ma[0][0] * d.x + ma[1][0] * d.y + ma[2][0] * d.z,
+                       ma[0][1] * d.x + ma[1][1] * d.y + ma[2][1] * d.z,
+                       ma[0][2] * d.x + ma[1][2] * d.y + ma[2][2] * d.z);
+    sd_vec3 nd = sd_v3_neg(d);
+    sd_vec3 db = sd_v3(mb[0][0] * nd.x + mb[1][0] * nd.y + mb[2][0] * nd.z,
+                       mb[0][1] * nd.x + mb[1][1] * nd.y + mb[2][1] * nd.z,
+                       mb[0][2] * nd.x + mb[1][2] * nd.y + mb[2][2] * nd.z);
+    sd_real u = sd_v3_dot(d, sd_v3_sub(a->x, b->x)) + sd_shape_support_height(a->shape, a->verts, da) +
+                sd_shape_support_height(b->shape, b->verts, db);
+    sd_real tol = SD_CONVEX_APART_TOL * d1 * s;
+    sd_real r = a->shape->radius + b->shape->radius;
+    sd_real reach = r > SD_R(0.0) ? r * sd_v3_norm(d) : SD_R(0.0);
+    /* tol >= 1e-150: -d . w > tol / 2 keeps GJK's (d . w)^2 > 0; u finite */
+    return tol >= SD_R(1e-150) && u > -SD_R(1e300) && u + tol < -reach;
+}
+
+/* For a caller that needs only the touching pairs, before
+ * sd_convex_collide_bodies(A, B, warm_dir, 0): 1 when GJK's start
+ * direction (sd_gjk_start_dir of *warm_dir) proves the pair apart
+ * (sd_convex_apart_along); *warm_dir is then set to that direction, as
+ * GJK's rule 0 would leave it, and the pair is apart with every result of
+ * sd_convex_collide_bodies's early answer (touching 0) but no GJK query.
+ * Most element pairs of a composite bed that pass their bounding spheres
+ * are answered here (backend/items.h). */
+SD_HD static SD_HOT int sd_convex_apart_warm(const sd_gjk_body *A, const sd_gjk_body *B, sd_vec3 *warm_dir)
+{
+    sd_vec3 d = sd_gjk_start_dir(A->c, B->c, *warm_dir);
+    if (!sd_convex_apart_along(A, B, d))
+        return 0;
+    *warm_dir = d;
+    return 1;
+}
 
 /* Contact of the swept bodies A->c and B->c, their rotation matrices
  * given (sd_gjk_body_of; built once by a caller that queries one body many

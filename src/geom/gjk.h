@@ -394,7 +394,9 @@ SD_HD static SD_INLINE void sd_gjk_witnesses(const sd_gjk_simplex *s, sd_vec3 *p
  * two quaternion rotations (shape/support.h, sd_convex_support_core_m). */
 typedef struct sd_gjk_body {
     const sd_convex *c;
-    sd_mat3 R; /* principal frame to world, from c->q */
+    sd_mat3 R;     /* principal frame to world, from c->q */
+    sd_real scale; /* m, |x|_1 + bound: the size of the body's coordinates, which
+                      sets their rounding (geom/convex_contact.h, sd_convex_apart_along) */
 } sd_gjk_body;
 
 SD_HD static SD_INLINE sd_gjk_body sd_gjk_body_of(const sd_convex *c)
@@ -402,6 +404,7 @@ SD_HD static SD_INLINE sd_gjk_body sd_gjk_body_of(const sd_convex *c)
     sd_gjk_body b;
     b.c = c;
     b.R = sd_quat_to_mat3(c->q);
+    b.scale = sd_fabs(c->x.x) + sd_fabs(c->x.y) + sd_fabs(c->x.z) + c->shape->bound;
     return b;
 }
 
@@ -416,6 +419,20 @@ SD_HD static SD_INLINE void sd_gjk_support_body(const sd_gjk_body *a, const sd_g
     v->b = SD_GJK_SUPPORT_CORE(b->c, sd_v3_neg(d));
 #endif
     v->w = sd_v3_sub(v->a, v->b);
+}
+
+/* GJK's first search direction: warm_dir, the pair's cached direction,
+ * when it is finite and not zero; else xb − xa (K's near side faces the
+ * origin along it); else +x. sd_convex_apart_along tests the same
+ * direction before GJK (geom/convex_contact.h). */
+SD_HD static SD_INLINE sd_vec3 sd_gjk_start_dir(const sd_convex *a, const sd_convex *b, sd_vec3 warm_dir)
+{
+    sd_vec3 d = warm_dir;
+    if (!(sd_v3_norm2(d) > SD_R(0.0)) || !sd_gjk_finite(d))
+        d = sd_v3_sub(b->x, a->x);
+    if (!(sd_v3_norm2(d) > SD_R(0.0)))
+        d = sd_v3(SD_R(1.0), SD_R(0.0), SD_R(0.0));
+    return d;
 }
 
 /* GJK distance between the cores of a and b. warm_dir: a search direction
@@ -446,11 +463,7 @@ SD_HD static SD_HOT sd_gjk_result sd_gjk_distance_bodies(const sd_gjk_body *pA, 
     const int bound_on = stop_beyond >= SD_R(0.0);
     const sd_real stop2 = bound_on ? stop_beyond * stop_beyond : SD_R(0.0);
 
-    sd_vec3 d = warm_dir;
-    if (!(sd_v3_norm2(d) > SD_R(0.0)) || !sd_gjk_finite(d))
-        d = sd_v3_sub(b->x, a->x); /* K's near side faces the origin along xb − xa */
-    if (!(sd_v3_norm2(d) > SD_R(0.0)))
-        d = sd_v3(SD_R(1.0), SD_R(0.0), SD_R(0.0));
+    sd_vec3 d = sd_gjk_start_dir(a, b, warm_dir);
 
     /* the simplex lives in four fixed slots y[]; act[0..na−1] are the slots
      * in use with weights lam[]; a new point takes a free slot, so neither

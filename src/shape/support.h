@@ -132,6 +132,53 @@ SD_HD static SD_INLINE sd_vec3 sd_shape_support_core(const sd_shape *s, const sd
     return sd_v3_add(p, s->offset);
 }
 
+/* The support function of the core, principal frame: h(d) = max over the
+ * core of d . x (m times |d|), the height of the core along d, in closed
+ * form where the kind has one (no support point built, d not rescaled):
+ *   box        sum_k a_k |d_k|
+ *   cylinder   a_z |d_z| + a_x |(d_x, d_y)|     (the rim of the cap facing d)
+ *   cone       max(a_z d_z, a_x |(d_x, d_y)|)   (apex or base rim, core frame)
+ *   ellipsoid  |A d|, A = diag(a)
+ *   polyhedron max_k d . v_k
+ *   sphere     0 (a point core)
+ * plus d . offset. Equal to d . sd_shape_support_core(s, verts, d) up to
+ * rounding (the support point is a maximiser). A caller that compares it
+ * with GJK's answers must allow for that rounding and keep |d| in the
+ * normal range of its squares (geom/convex_contact.h, sd_convex_apart_along). */
+SD_HD static SD_INLINE sd_real sd_shape_support_height(const sd_shape *s, const sd_vec3 *verts, sd_vec3 d)
+{
+    sd_real h;
+    switch (s->kind) {
+    case SD_SHAPE_BOX:
+        h = s->a.x * sd_fabs(d.x) + s->a.y * sd_fabs(d.y) + s->a.z * sd_fabs(d.z);
+        break;
+    case SD_SHAPE_CYLINDER:
+        h = s->a.z * sd_fabs(d.z) + s->a.x * sd_sqrt(d.x * d.x + d.y * d.y);
+        break;
+    case SD_SHAPE_CONE:
+        h = sd_max(s->a.z * d.z, s->a.x * sd_sqrt(d.x * d.x + d.y * d.y));
+        break;
+    case SD_SHAPE_ELLIPSOID:
+        h = sd_v3_norm(sd_v3(s->a.x * d.x, s->a.y * d.y, s->a.z * d.z));
+        break;
+    case SD_SHAPE_POLYHEDRON:
+        h = SD_R(0.0); /* no vertices: the point answer of sd_shape_support_core */
+        if (verts && s->vcount > 0) {
+            const sd_vec3 *v = verts + s->vstart;
+            h = sd_v3_dot(d, v[0]);
+            for (uint32_t k = 1; k < s->vcount; ++k)
+                h = sd_max(h, sd_v3_dot(d, v[k]));
+        }
+        break;
+    case SD_SHAPE_COMPOSITE: /* never reached (no support function); a point */
+    case SD_SHAPE_SPHERE:
+    default:
+        h = SD_R(0.0);
+        break;
+    }
+    return h + sd_v3_dot(d, s->offset);
+}
+
 /* Support point of the swept shape: core support plus radius along d. */
 SD_HD static SD_INLINE sd_vec3 sd_shape_support(const sd_shape *s, const sd_vec3 *verts, sd_vec3 d)
 {
