@@ -385,7 +385,7 @@ static int sd_cmd_run(const sd_cli *c)
     memset(&cerr, 0, sizeof cerr);
     char stop_note[256]; /* the run is freed by sd_run_close */
     snprintf(stop_note, sizeof stop_note, "%s", sd_run_stop_note(run));
-    char ranks_note[1024] = ""; /* under mpirun: the ranks' lines of summary.txt */
+    char ranks_note[4096] = ""; /* under mpirun: the ranks' lines of summary.txt */
 #ifdef SHAPEDEM_CLI_MPI
     sd_cli_mpi_end(mp, run, ranks_note, sizeof ranks_note);
 #endif

@@ -79,6 +79,8 @@ int sd_cli_mpi_begin(const void *cli, sd_cli_load_fn load, const char *restart, 
     }
     if (rc == 0) {
         sd_status st = restart ? sd_mpi_attach_restored(w, &m, &err) : sd_mpi_attach_built(w, &m, &err);
+        if (st != SD_OK && !err.file[0]) /* a refusal names the scene's key: say which scene */
+            snprintf(err.file, sizeof err.file, "%.*s", (int)sizeof err.file - 1, (*scene)->path);
         if (st != SD_OK)
             sd_error_format(&err, msg, sizeof msg);
         rc = sd_cli_mpi_agree(sd_cli_mpi_status(st), msg, rank, size);
@@ -109,6 +111,7 @@ int sd_cli_mpi_begin(const void *cli, sd_cli_load_fn load, const char *restart, 
         return rc;
     }
     sd_mpi_set_rebalance(m, (*scene)->mpi_rebalance_every, 0); /* simulation.mpi_rebalance_every */
+    sd_mpi_drive_time(w);
     mp->m = m;
     mp->rank = rank;
     mp->size = size;
@@ -151,7 +154,7 @@ void sd_cli_mpi_run(sd_cli_mpi *mp, sd_run *run)
 
 void sd_cli_mpi_end(sd_cli_mpi *mp, sd_run *run, char *note, size_t size)
 {
-    char buf[1024];
+    char buf[4096];
     sd_mpi_drive_end(&mp->d, buf, sizeof buf);
     if (run)
         sd_run_set_note(run, buf);

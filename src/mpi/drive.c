@@ -21,6 +21,73 @@
 
 enum { SD_DRIVE_STEP = 1, SD_DRIVE_VIEW = 2, SD_DRIVE_END = 3, SD_DRIVE_CHECKPOINT = 4 };
 
+/* ---- where the time goes (summary.txt's mpi_ lines; bench/mpi) ---------------- */
+
+/* This process's seconds inside its steps, and inside the exchanges among
+ * them: the world's comm hooks (mpi/comm.c) timed by a copy of their table
+ * whose known entries wrap the originals (an entry added later is kept,
+ * untimed). The exchanges' time includes waiting for the slowest rank. */
+static struct {
+    sd_world_comm table;
+    const sd_world_comm *orig;
+    double exchange, step; /* s */
+} sd_drive_time;
+
+static double sd_drive_now(void) { return MPI_Wtime(); }
+
+static int sd_timed_any(void *ctx, int flag)
+{
+    double t = sd_drive_now();
+    int r = sd_drive_time.orig->any(ctx, flag);
+    sd_drive_time.exchange += sd_drive_now() - t;
+    return r;
+}
+
+static double sd_timed_min(void *ctx, double v)
+{
+    double t = sd_drive_now();
+    double r = sd_drive_time.orig->min(ctx, v);
+    sd_drive_time.exchange += sd_drive_now() - t;
+    return r;
+}
+
+static sd_status sd_timed_migrate(void *ctx, sd_world *w, sd_error *err)
+{
+    double t = sd_drive_now();
+    sd_status r = sd_drive_time.orig->migrate(ctx, w, err);
+    sd_drive_time.exchange += sd_drive_now() - t;
+    return r;
+}
+
+static sd_status sd_timed_ghosts(void *ctx, sd_world *w, sd_error *err)
+{
+    double t = sd_drive_now();
+    sd_status r = sd_drive_time.orig->ghosts(ctx, w, err);
+    sd_drive_time.exchange += sd_drive_now() - t;
+    return r;
+}
+
+static void sd_timed_exchange(void *ctx, sd_world *w)
+{
+    double t = sd_drive_now();
+    sd_drive_time.orig->exchange(ctx, w);
+    sd_drive_time.exchange += sd_drive_now() - t;
+}
+
+void sd_mpi_drive_time(sd_world *w)
+{
+    if (!w->comm || w->comm == &sd_drive_time.table)
+        return;
+    sd_drive_time.orig = w->comm;
+    sd_drive_time.table = *w->comm;
+    sd_drive_time.table.any = sd_timed_any;
+    sd_drive_time.table.min = sd_timed_min;
+    sd_drive_time.table.migrate = sd_timed_migrate;
+    sd_drive_time.table.ghosts = sd_timed_ghosts;
+    sd_drive_time.table.exchange = sd_timed_exchange;
+    w->comm = &sd_drive_time.table;
+}
+
 /* One command: what, and how many steps. */
 static void sd_drive_bcast(long long *cmd)
 {
@@ -42,7 +109,9 @@ static sd_status sd_drive_do(sd_mpi *m, sd_world *w, sd_world *g, const long lon
         return SD_OK;
     }
     if (cmd[0] == SD_DRIVE_STEP || !w->prepared) { /* a VIEW first prepares (collective: the rebuild's hooks) */
+        double t = sd_drive_now();
         sd_status st = sd_world_step(w, cmd[0] == SD_DRIVE_STEP ? (long)cmd[1] : 0, err);
+        sd_drive_time.step += sd_drive_now() - t;
         if (st != SD_OK)
             sd_mpi_fail(m, "step", st, err);
     }
@@ -71,6 +140,8 @@ static void sd_drive_note(sd_mpi *m, const sd_world *w, char *note, size_t size)
     int ranks = sd_mpi_size(m);
     unsigned long long mine[2] = {w->p.n, sd_mpi_migrated(m)}, all[128];
     MPI_Gather(mine, 2, MPI_UNSIGNED_LONG_LONG, all, 2, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
+    double secs[2] = {sd_drive_time.step, sd_drive_time.exchange}, all_secs[128];
+    MPI_Gather(secs, 2, MPI_DOUBLE, all_secs, 2, MPI_DOUBLE, 0, MPI_COMM_WORLD);
     if (!note)
         return;
     size_t used = 0;
@@ -94,6 +165,18 @@ static void sd_drive_note(sd_mpi *m, const sd_world *w, char *note, size_t size)
         moved += all[2 * r + 1];
     }
     SD_NOTE("\nmpi_migrations: %llu\nmpi_rebalances: %ld\n", moved, sd_mpi_rebalances(m));
+    /* wall seconds per rank inside its steps, and of those inside the
+     * exchanges (ghosts, migration, the rebuild vote: waiting included) */
+    double share = 0;
+    SD_NOTE("mpi_step_seconds:");
+    for (int r = 0; r < ranks; ++r)
+        SD_NOTE(" %.4g", all_secs[2 * r]);
+    SD_NOTE("\nmpi_exchange_seconds:");
+    for (int r = 0; r < ranks; ++r) {
+        SD_NOTE(" %.4g", all_secs[2 * r + 1]);
+        share += all_secs[2 * r] > 0 ? all_secs[2 * r + 1] / all_secs[2 * r] / ranks : 0;
+    }
+    SD_NOTE("\nmpi_exchange_share: %.4f\n", share);
 #undef SD_NOTE
 }
 

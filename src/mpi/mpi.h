@@ -166,6 +166,10 @@ sd_status sd_mpi_attach_restored(sd_world *w, sd_mpi **out, sd_error *err);
 /* Rank 0, before each checkpoint (io/run.h's hook): every rank's world,
  * and the view, marked for a rebuild at the next step. */
 void sd_mpi_drive_checkpoint(void *drive);
+/* Every rank, after the attach: the time of this rank's steps and of its
+ * exchanges is kept, for sd_mpi_drive_end's lines (mpi_step_seconds,
+ * mpi_exchange_seconds, mpi_exchange_share). */
+void sd_mpi_drive_time(sd_world *w);
 /* Ranks other than 0: follow rank 0's commands until it ends the run. */
 void sd_mpi_follow(sd_mpi *m, sd_world *w);
 
