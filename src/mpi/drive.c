@@ -266,6 +266,11 @@ sd_status sd_mpi_attach_restored(sd_world *w, sd_mpi **out, sd_error *err)
             l->kind_start[k] = n;
         w->dirty = 1;
         w->prepared = 1;
+        /* the wall pairs left after the split: the walls' drift reads them
+         * in gather order before the first rebuild (as in a dirty restore,
+         * world/snapshot.c: the list's order) */
+        for (size_t g = 0; g < w->wpairs.n; ++g)
+            w->wpairs.gidx[g] = (uint32_t)g;
         if (sd_world_views(w) != SD_OK)
             st = sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory for the views");
     }

@@ -22,6 +22,7 @@
 #include "core/alloc.h"
 #include "core/error.h"
 #include "mpi/mpi.h"
+#include "world/mesh.h"
 #include "world/world.h"
 
 /* ---- rows of pairs ------------------------------------------------------------ */
@@ -365,8 +366,21 @@ sd_status sd_mpi_view(const sd_mpi *m, const sd_world *w, sd_world *g, sd_error 
         g->rebuilds = w->rebuilds;
         g->next_id = w->next_id;
         g->skin = w->skin;
-        for (size_t k = 0; k < g->wall_count && k < w->wall_count; ++k)
+        for (size_t k = 0; k < g->wall_count && k < w->wall_count; ++k) {
             g->walls[k] = w->walls[k];
+            /* the servo's sum of contact stiffness is each rank's own
+             * (servo walls are refused under mpirun) and is summed again
+             * before each use: not gathered, so that no file carries a
+             * partial sum that depends on the split */
+            g->walls[k].stiffness = SD_R(0.0);
+        }
+        /* a mesh's pose at the last rebuild and its bins' cell (a
+         * checkpoint lists them: world/snapshot.c's SD_MESH_STATE) */
+        for (size_t k = 0; k < g->mesh_count && k < w->mesh_count; ++k) {
+            g->meshes[k].trans_ref = w->meshes[k].trans_ref;
+            g->meshes[k].q_ref = w->meshes[k].q_ref;
+            g->meshes[k].h = w->meshes[k].h;
+        }
         st = sd_view_fill(g, all, displ, size, err);
     }
     sd_free(all);

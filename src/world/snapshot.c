@@ -434,6 +434,15 @@ sd_status sd_cells_resumed(sd_world *w, sd_error *err)
             if (l->gidx[e] >= 2 * l->n)
                 return sd_error_set(err, SD_ERR_INPUT, "", 0, "pairs/gidx", "gather entry out of range");
     }
+    /* a world saved dirty (changed since its last rebuild: an insertion, an
+     * outlet, a checkpoint under mpirun) brings no gather lists, and the
+     * arrays hold whatever the scene's build left there; the next step
+     * rebuilds them, but the walls' drift before it reads the wall pairs in
+     * gather order (servo.c's contact stiffness): the list's own order,
+     * never indices that mean nothing */
+    if (w->dirty)
+        for (size_t g = 0; g < wl->n; ++g)
+            wl->gidx[g] = (uint32_t)g;
     if (wl->gstart && n > 0 && !w->dirty) {
         for (size_t k = 0; k < n; ++k)
             if (wl->gstart[k] > wl->gstart[k + 1])

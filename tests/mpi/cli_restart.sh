@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # cli_restart.sh — checkpoints under mpirun (issue 18; docs/mpi.md): a
 # checkpoint written by 2 ranks, restarted on 3, continues with the bits of
-# the uninterrupted 3-rank run (the last frame, the stats and walls rows,
-# every dataset of the last checkpoint), in a box and periodic along x and
-# y; the serial program continues the same checkpoint within a tolerance;
+# the uninterrupted 3-rank run (the last frames, the stats and walls rows,
+# every dataset of the last checkpoint), in a box, periodic along x and y,
+# with moving walls and in a turning mesh drum; the serial program continues the same checkpoint within a tolerance;
 # checkpoint_minutes and a bad checkpoint are refused (exit 2, one message).
 #   cli_restart.sh SHAPEDEM MPIEXEC SOURCE_DIR CKPT_DIFF
 set -euo pipefail
@@ -19,7 +19,15 @@ source "$src/tests/mpi/lib.sh"
 
 sed 's/^  stats_every: 50$/  stats_every: 50\n  checkpoint_every: 200/' "$src/tests/mpi/run_scene.yaml" >"$tmp/box.yaml"
 cp "$src/tests/mpi/run_periodic.yaml" "$tmp/periodic.yaml"
-for mode in box periodic; do
+# moving walls (a piston plane and a lid) and a turning mesh drum: the
+# scenes of mpi.kinds.walls and mpi.kinds.mesh, with output
+for mode in walls mesh; do
+  sed "s|file: .*/meshes/|file: $src/examples/meshes/|" "$src/tests/mpi/scenes/$mode.yaml" >"$tmp/$mode.yaml"
+  printf 'output:\n  every: 100\n  stats_every: 50\n  checkpoint_every: 200\n  formats: [vtk, csv]\n' >>"$tmp/$mode.yaml"
+done
+last() { ls "$1" | grep "^$2" | sort | tail -n 1; } # the last frame file of a kind
+after200() { awk -F, 'NR == 1 || $1 >= 200' "$1"; } # the header and the rows from step 200 on
+for mode in box periodic walls mesh; do
   scene=$tmp/$mode.yaml
   d=$tmp/$mode
   mpi -np 3 "$bin" run "$scene" -o "$d.whole" -q || bad "$mode: the uninterrupted 3-rank run failed"
@@ -28,15 +36,18 @@ for mode in box periodic; do
   [[ -f $ck ]] || bad "$mode: 2 ranks wrote no checkpoint at step 200"
   mpi -np 3 "$bin" run "$scene" --restart "$ck" -o "$d.rest" -q || bad "$mode: the 3-rank restart failed"
   same=1
-  cmp -s "$d.whole/particles_000004.vtu" "$d.rest/particles_000002.vtu" || { bad "$mode: the frame at step 400 differs"; same=0; }
-  for f in stats.csv walls.csv; do
-    [[ $(tail -n 5 "$d.whole/$f") == "$(tail -n 5 "$d.rest/$f")" ]] || { bad "$mode: $f rows 200..400 differ"; same=0; }
+  for kind in particles_ walls_; do
+    cmp -s "$d.whole/$(last "$d.whole" $kind)" "$d.rest/$(last "$d.rest" $kind)" || { bad "$mode: the last $kind frame differs"; same=0; }
   done
-  "$ckdiff" "$d.whole/checkpoint-000400.h5" "$d.rest/checkpoint-000400.h5" >"$tmp/diff.out" 2>&1 || { bad "$mode: checkpoints at 400 differ:"; cat "$tmp/diff.out"; same=0; }
-  [[ $same -eq 1 ]] && ok "$mode: written on 2 ranks at step 200, restarted on 3: the frame, stats and walls rows at 200..400 the same bytes as the uninterrupted 3-rank run; $(tail -n 1 "$tmp/diff.out")"
+  for f in stats.csv walls.csv; do
+    [[ $(after200 "$d.whole/$f") == "$(after200 "$d.rest/$f")" ]] || { bad "$mode: $f rows from step 200 differ"; same=0; }
+  done
+  ckl=$(last "$d.whole" checkpoint-)
+  "$ckdiff" "$d.whole/$ckl" "$d.rest/$ckl" >"$tmp/diff.out" 2>&1 || { bad "$mode: $ckl differs:"; cat "$tmp/diff.out"; same=0; }
+  [[ $same -eq 1 ]] && ok "$mode: written on 2 ranks at step 200, restarted on 3: the last frames and the stats and walls rows from step 200 the same bytes as the uninterrupted 3-rank run; $ckl: $(tail -n 1 "$tmp/diff.out")"
   # the serial program continues the same checkpoint (it rebuilds at its first step)
   "$bin" run "$scene" --restart "$ck" -o "$d.serial" -q || bad "$mode: the serial restart failed"
-  /usr/bin/python3 - "$src/scripts/frame_to_csv.py" "$d.whole/particles_000004.vtu" "$d.serial/particles_000002.vtu" "$mode" <<'PY' || fail=1
+  /usr/bin/python3 - "$src/scripts/frame_to_csv.py" "$d.whole/$(last "$d.whole" particles_)" "$d.serial/$(last "$d.serial" particles_)" "$mode" <<'PY' || fail=1
 import csv, io, subprocess, sys
 conv, a, b, mode = sys.argv[1:]
 def rows(f):
@@ -44,9 +55,9 @@ def rows(f):
     return [r for r in csv.reader(io.StringIO(out)) if r and not r[0].startswith('#') and r[0] != 'x']
 ra, rb = rows(a), rows(b)
 dx = max(abs(float(p[c]) - float(q[c])) for p, q in zip(ra, rb) for c in range(3))
-print(f"{mode}: the serial program from the 2-rank checkpoint vs 3 ranks at step 400: {len(rb)} particles, "
+print(f"{mode}: the serial program from the 2-rank checkpoint vs 3 ranks at the end: {len(rb)} particles, "
       f"max |dx| = {dx:.3e} m (tolerance 1e-9 m)")
-sys.exit(0 if len(ra) == len(rb) == 720 and dx <= 1e-9 else 1)
+sys.exit(0 if len(ra) == len(rb) > 0 and dx <= 1e-9 else 1)
 PY
 done
 
