@@ -229,8 +229,9 @@ def packing(top, also):
         print("| %s | %.3f s | %.3f | %.2f | %.2f (%.2f-%.2f) | %.0f s | %s |"
               % (s, float(sm["simulated_time_s"]), float(por["porosity"]), float(co[-1]["mean"]),
                  sum(late) / len(late), min(late), max(late), float(sm["wall_seconds"]), sm["threads"]))
-        ax[0].semilogy([float(r["time"]) for r in st],
-                       [float(r["kinetic_translational"]) + float(r["kinetic_rotational"]) for r in st], label=s)
+        ke = [(float(r["time"]), float(r["kinetic_translational"]) + float(r["kinetic_rotational"])) for r in st]
+        ke = [x for x in ke if x[1] > 0]  # step 0 is before the insertion
+        ax[0].semilogy([x[0] for x in ke], [x[1] for x in ke], label=s)
         ax[1].plot([float(r["time"]) for r in co], [float(r["mean"]) for r in co], label=s)
         name = "packing-%s.png" % s
         subprocess.run([exe, "render", os.path.join(out, "frames.pvd"), "-o", os.path.join(out, name),
