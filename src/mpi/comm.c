@@ -581,8 +581,156 @@ static void sd_hook_exchange(void *ctx, sd_world *w)
     sd_ghost_unpack(m, &w->p);
 }
 
-static const sd_world_comm sd_mpi_hooks = {sd_hook_any, sd_hook_min, sd_hook_migrate, sd_hook_ghosts,
-                                           sd_hook_exchange};
+/* ---- insertions and outlets (world/process.c) --------------------------------- */
+
+static unsigned long long sd_hook_sum(void *ctx, unsigned long long v)
+{
+    sd_mpi *m = ctx;
+    unsigned long long out = v;
+    MPI_Allreduce(&v, &out, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, m->comm);
+    return out;
+}
+
+/* Gathers count doubles per rank (each rank's block in rank order) into
+ * *out on every rank; *total gets the count. -1 without memory on some
+ * rank (every rank then frees and fails alike). */
+static int sd_allgather_doubles(sd_mpi *m, const double *mine, int count, double **out, size_t *total)
+{
+    int *cnt = sd_malloc((size_t)m->size * 2 * sizeof *cnt);
+    int ok = cnt != NULL, all = 0;
+    MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_LAND, m->comm);
+    if (!all) {
+        sd_free(cnt);
+        return -1;
+    }
+    int *displ = cnt + m->size;
+    MPI_Allgather(&count, 1, MPI_INT, cnt, 1, MPI_INT, m->comm);
+    size_t t = 0;
+    for (int r = 0; r < m->size; ++r) {
+        displ[r] = (int)t;
+        t += (size_t)cnt[r];
+    }
+    double *buf = sd_malloc((t ? t : 1) * sizeof *buf);
+    ok = buf != NULL;
+    MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_LAND, m->comm);
+    if (!all) {
+        sd_free(cnt);
+        sd_free(buf);
+        return -1;
+    }
+    MPI_Allgatherv(mine, count, MPI_DOUBLE, buf, cnt, displ, MPI_DOUBLE, m->comm);
+    sd_free(cnt);
+    *out = buf;
+    *total = t;
+    return 0;
+}
+
+/* What an insertion must not overlap (world.h): every rank's owned
+ * particles, centre and bounding radius, as world/process.c reads them
+ * (the same double conversions), so every rank checks against the same
+ * spheres as a serial run holding them all. */
+static sd_status sd_hook_all_spheres(void *ctx, const sd_world *w, double **xr, size_t *n, sd_error *err)
+{
+    sd_mpi *m = ctx;
+    const sd_particles *p = &w->p;
+    double *mine = sd_malloc((p->n ? p->n : 1) * 4 * sizeof *mine);
+    for (size_t k = 0; mine && k < p->n; ++k) {
+        mine[4 * k] = (double)p->x[k].x;
+        mine[4 * k + 1] = (double)p->x[k].y;
+        mine[4 * k + 2] = (double)p->x[k].z;
+        mine[4 * k + 3] = (double)p->radius[k];
+    }
+    size_t t = 0;
+    int bad = sd_allgather_doubles(m, mine, mine ? (int)(4 * p->n) : 0, xr, &t);
+    sd_free(mine);
+    if (bad || !mine) {
+        sd_free(bad ? NULL : *xr);
+        *xr = NULL;
+        return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "insertion: out of memory gathering the particles");
+    }
+    *n = t / 4;
+    return SD_OK;
+}
+
+/* Inserted particles first .. n - 1 (every rank added them alike) stay on
+ * the rank that owns them by the split's rule, as a migration would put
+ * them: the others' rows are dropped, in place. They are the last rows and
+ * touch nothing yet: no pair or ghost names them, and the add made the
+ * world due for a rebuild on every rank, which makes the lists and the
+ * ghosts again (until then the lists' indices stay as a serial insertion
+ * leaves them: sd_world_remove_particles would drop the pairs whose ghost
+ * slot the add wrote over, and their springs with them). */
+static sd_status sd_hook_keep_owned(void *ctx, sd_world *w, size_t first, sd_error *err)
+{
+    sd_mpi *m = ctx;
+    sd_particles *p = &w->p;
+    (void)err;
+    size_t keep = first;
+    for (size_t k = first; k < p->n; ++k) {
+        if (sd_mpi_rank_of(m->cuts, m->size, (double)p->x[k].x, p->id[k]) != m->rank)
+            continue;
+        if (keep != k) {
+#define SD_X_MOVE(type, name, ...) p->name[keep] = p->name[k];
+            SD_PARTICLE_FIELDS(SD_X_MOVE)
+#undef SD_X_MOVE
+        }
+        ++keep;
+    }
+    p->n = keep;
+    return SD_OK;
+}
+
+typedef struct sd_id_mass {
+    double id, mass; /* the id as a double: exact below 2^53 */
+} sd_id_mass;
+
+static int sd_id_mass_cmp(const void *a, const void *b)
+{
+    double p = ((const sd_id_mass *)a)->id, q = ((const sd_id_mass *)b)->id;
+    return p < q ? -1 : (p > q ? 1 : 0);
+}
+
+/* The outlets' accounts (world.h): every rank's (id, mass), sorted by id,
+ * summed in that order. */
+static sd_status sd_hook_removed_sum(void *ctx, size_t n, const uint64_t *id, const double *mass, size_t *count,
+                                     double *total, sd_error *err)
+{
+    sd_mpi *m = ctx;
+    double *mine = sd_malloc((n ? n : 1) * 2 * sizeof *mine);
+    for (size_t k = 0; mine && k < n; ++k) {
+        mine[2 * k] = (double)id[k];
+        mine[2 * k + 1] = mass[k];
+    }
+    double *all = NULL;
+    size_t t = 0;
+    int bad = sd_allgather_doubles(m, mine, mine ? (int)(2 * n) : 0, &all, &t);
+    sd_free(mine);
+    *count = 0;
+    *total = 0;
+    if (bad || !mine) {
+        sd_free(bad ? NULL : all);
+        return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "outlet: out of memory gathering the removed particles");
+    }
+    sd_id_mass *v = (sd_id_mass *)all;
+    qsort(v, t / 2, sizeof *v, sd_id_mass_cmp);
+    for (size_t k = 0; k < t / 2; ++k)
+        *total += v[k].mass;
+    *count = t / 2;
+    sd_free(all);
+    return SD_OK;
+}
+
+static const sd_world_comm sd_mpi_hooks = {
+    .any = sd_hook_any,
+    .min = sd_hook_min,
+    .migrate = sd_hook_migrate,
+    .ghosts = sd_hook_ghosts,
+    .exchange = sd_hook_exchange,
+    .sum = sd_hook_sum,
+    .all_spheres = sd_hook_all_spheres,
+    .keep_owned = sd_hook_keep_owned,
+    .removed_sum = sd_hook_removed_sum,
+};
 
 /* ---- attach, gather, fail --------------------------------------------------- */
 
@@ -617,10 +765,10 @@ static sd_status sd_mpi_refuse(const sd_world *w, sd_error *err)
                                 "wall '%s': MPI ranks do not take servo walls in this version (the servo reads "
                                 "the wall force, summed over the particles of every rank); prescribed motions, "
                                 "drums and moving meshes are decomposed", w->walls[k].name);
-    if (w->process)
-        return sd_error_set(err, SD_ERR_INPUT, "", 0, "insert",
-                            "MPI ranks take no insertions or outlets in this version (an inserted particle must "
-                            "be placed against the particles of every rank)");
+    /* insertions and outlets: every rank runs each event at the same step;
+     * an insertion draws, checks against every rank's particles and adds
+     * alike everywhere, then each rank keeps its own; an outlet's accounts
+     * are summed in stable-id order (world.h's hooks, world/process.c) */
     if (w->prepared)
         return sd_error_set(err, SD_ERR_INTERNAL, "", 0, "", "sd_mpi_attach: the world has already stepped");
     return SD_OK;

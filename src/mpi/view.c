@@ -23,6 +23,7 @@
 #include "core/error.h"
 #include "mpi/mpi.h"
 #include "world/mesh.h"
+#include "world/process.h"
 #include "world/world.h"
 
 /* ---- rows of pairs ------------------------------------------------------------ */
@@ -381,6 +382,11 @@ sd_status sd_mpi_view(const sd_mpi *m, const sd_world *w, sd_world *g, sd_error 
             g->meshes[k].q_ref = w->meshes[k].q_ref;
             g->meshes[k].h = w->meshes[k].h;
         }
+        /* the insertions' and outlets' state (plain bytes: streams, counts,
+         * next steps): the same on every rank, the counts and masses those
+         * of all ranks (world/process.c, the comm's sums) */
+        if (g->process && w->process)
+            *g->process = *w->process;
         st = sd_view_fill(g, all, displ, size, err);
     }
     sd_free(all);

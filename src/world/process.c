@@ -993,6 +993,44 @@ static int sd_outlet_pred(const sd_world *w, size_t k, void *ctx)
     return sd_region_contains(c->region, x);
 }
 
+/* An outlet of a decomposed run (w->comm): each rank takes its own
+ * particles in the region, and the count and mass every rank gets back
+ * are those of all of them, the mass summed in stable-id order (the
+ * world's comm), so the accounts are the same on every rank and rank
+ * count. */
+static sd_status sd_outlet_remove_ranks(sd_world *w, sd_outlet_ctx *ctx, sd_remove_result *res, sd_error *err)
+{
+    size_t n = w->p.n, m = 0;
+    uint8_t *mark = sd_malloc(n ? n : 1);
+    uint64_t *id = sd_malloc((n ? n : 1) * sizeof *id);
+    double *mass = sd_malloc((n ? n : 1) * sizeof *mass);
+    sd_status st = SD_OK;
+    if (!mark || !id || !mass)
+        st = sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory marking %zu particles", n);
+    for (size_t k = 0; st == SD_OK && k < n; ++k) {
+        mark[k] = (uint8_t)(sd_outlet_pred(w, k, ctx) != 0);
+        if (mark[k]) {
+            id[m] = w->p.id[k];
+            mass[m] = w->p.inv_mass[k] > 0 ? 1.0 / (double)w->p.inv_mass[k] : 0.0;
+            ++m;
+        }
+    }
+    /* collective: every rank takes part, even one that failed above */
+    size_t count = 0;
+    double total = 0;
+    sd_status cst = w->comm->removed_sum(w->comm_ctx, st == SD_OK ? m : 0, id, mass, &count, &total, err);
+    if (st == SD_OK)
+        st = cst;
+    if (st == SD_OK && m > 0)
+        st = sd_world_remove_particles(w, mark, NULL, err);
+    sd_free(mark);
+    sd_free(id);
+    sd_free(mass);
+    res->count = count;
+    res->mass = total;
+    return st;
+}
+
 static sd_status sd_outlets_run(sd_world *w, sd_error *err)
 {
     sd_process *pr = w->process;
@@ -1004,7 +1042,8 @@ static sd_status sd_outlets_run(sd_world *w, sd_error *err)
         if (w->step >= open_step) {
             sd_outlet_ctx ctx = {&o->def.region};
             sd_remove_result res;
-            sd_status st = sd_world_remove_if(w, sd_outlet_pred, &ctx, &res, err);
+            sd_status st = w->comm ? sd_outlet_remove_ranks(w, &ctx, &res, err)
+                                   : sd_world_remove_if(w, sd_outlet_pred, &ctx, &res, err);
             if (st != SD_OK)
                 return st;
             o->removed += res.count;
@@ -1115,9 +1154,17 @@ static sd_status sd_place_grid_build(const sd_world *w, const sd_region_def *reg
 {
     memset(g, 0, sizeof *g);
     const sd_particles *p = &w->p;
+    /* a decomposed run: every rank's particles (xr, 4 doubles each) */
+    double *xr = NULL;
+    size_t np = p->n;
+    if (w->comm) {
+        sd_error e;
+        if (w->comm->all_spheres(w->comm_ctx, w, &xr, &np, &e) != SD_OK)
+            return SD_ERR_MEMORY;
+    }
     double rmax = rnew;
-    for (size_t k = 0; k < p->n; ++k)
-        rmax = fmax(rmax, (double)p->radius[k]);
+    for (size_t k = 0; k < np; ++k)
+        rmax = fmax(rmax, xr ? xr[4 * k + 3] : (double)p->radius[k]);
     double lo[3], hi[3];
     sd_region_bbox(reg, lo, hi);
     if (w->def.dimension == 2)
@@ -1137,16 +1184,22 @@ static sd_status sd_place_grid_build(const sd_world *w, const sd_region_def *reg
         g->cell *= 2.0; /* coarser cells for a large region of small grains: still correct */
     }
     g->head = sd_malloc(cells * sizeof *g->head);
-    if (!g->head)
+    if (!g->head) {
+        sd_free(xr);
         return SD_ERR_MEMORY;
+    }
     for (size_t c = 0; c < cells; ++c)
         g->head[c] = SD_PLACE_NONE;
     unsigned per = w->def.periodic;
     const double dl[3] = {w->def.domain_lo.x, w->def.domain_lo.y, w->def.domain_lo.z};
     const double dh[3] = {w->def.domain_hi.x, w->def.domain_hi.y, w->def.domain_hi.z};
-    for (size_t k = 0; k < p->n; ++k) {
+    for (size_t k = 0; k < np; ++k) {
         sd_v3d x = {(double)p->x[k].x, (double)p->x[k].y, (double)p->x[k].z};
         double r = (double)p->radius[k];
+        if (xr) {
+            x = (sd_v3d){xr[4 * k], xr[4 * k + 1], xr[4 * k + 2]};
+            r = xr[4 * k + 3];
+        }
         /* the particle and its images one period away on each periodic axis */
         int lim[3];
         for (int a = 0; a < 3; ++a)
@@ -1155,10 +1208,13 @@ static sd_status sd_place_grid_build(const sd_world *w, const sd_region_def *reg
             for (int iy = -lim[1]; iy <= lim[1]; ++iy)
                 for (int iz = -lim[2]; iz <= lim[2]; ++iz) {
                     sd_v3d y = {x.x + ix * (dh[0] - dl[0]), x.y + iy * (dh[1] - dl[1]), x.z + iz * (dh[2] - dl[2])};
-                    if (!sd_place_push(g, y, r))
+                    if (!sd_place_push(g, y, r)) {
+                        sd_free(xr);
                         return SD_ERR_MEMORY;
+                    }
                 }
     }
+    sd_free(xr);
     return SD_OK;
 }
 
@@ -1263,6 +1319,7 @@ static sd_status sd_insert_run(sd_world *w, sd_insertion *ins, sd_error *err)
         return sd_error_set(err, st, "", 0, "", "out of memory for the insertion check");
     }
     int was_prepared = w->prepared;
+    size_t n_before = w->p.n; /* a decomposed run: the new ones go to their ranks below */
     double rmin_new = HUGE_VAL;
     size_t failed = 0, before = ins->inserted;
     for (;;) {
@@ -1355,6 +1412,11 @@ static sd_status sd_insert_run(sd_world *w, sd_insertion *ins, sd_error *err)
             break;
     }
     sd_place_grid_free(&g);
+    /* a decomposed run: every rank drew, checked and added the same
+     * particles, with the same ids; each keeps its own (collective: every
+     * rank runs the same insertion at the same step) */
+    if (w->comm && (st = w->comm->keep_owned(w->comm_ctx, w, n_before, err)) != SD_OK)
+        return st;
     ins->asked = ins->inserted + failed;
     if (d->count > 0 && ins->asked < ins->inserted)
         ins->asked = ins->inserted;
@@ -1506,7 +1568,7 @@ sd_status sd_cells_process_step(sd_world *w, long nsteps, sd_error *err)
         return sd_cells_step(w, nsteps, err);
     if (!pr->started) {
         pr->started = 1;
-        pr->initial = w->p.n;
+        pr->initial = w->comm ? (size_t)w->comm->sum(w->comm_ctx, w->p.n) : w->p.n;
     }
     long done = 0;
     sd_status st = SD_OK;

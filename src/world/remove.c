@@ -112,8 +112,10 @@ sd_status sd_world_remove_particles(sd_world *w, const uint8_t *mark, sd_remove_
     for (size_t k = 0; k < n; ++k)
         map[k] = mark[k] ? SD_GONE : next++;
     size_t n_new = next;
+    /* a ghost goes with its owner; another rank's (src/mpi/, ghost_owner
+     * SD_GHOST_REMOTE*) stays until the next rebuild remakes the ghosts */
     for (size_t g = 0; g < ng; ++g)
-        map[n + g] = map[w->ghost_owner[g]] == SD_GONE ? SD_GONE : next++;
+        map[n + g] = (w->ghost_owner[g] < SD_GHOST_REMOTE_IMAGE && map[w->ghost_owner[g]] == SD_GONE) ? SD_GONE : next++;
     size_t ng_new = next - n_new;
     /* in place, forwards: map[k] <= k and increasing */
     for (size_t k = 0; k < total; ++k) {
@@ -129,7 +131,7 @@ sd_status sd_world_remove_particles(sd_world *w, const uint8_t *mark, sd_remove_
         if (d == SD_GONE)
             continue;
         size_t gn = d - n_new;
-        w->ghost_owner[gn] = map[w->ghost_owner[g]];
+        w->ghost_owner[gn] = w->ghost_owner[g] < SD_GHOST_REMOTE_IMAGE ? map[w->ghost_owner[g]] : w->ghost_owner[g];
         w->ghost_shift[gn] = w->ghost_shift[g];
     }
     p->n = n_new;

@@ -217,6 +217,22 @@ typedef struct sd_world_comm {
     sd_status (*ghosts)(void *ctx, sd_world *w, sd_error *err);
     /* each step, after the drift: the ghosts take their owners' state */
     void (*exchange)(void *ctx, sd_world *w);
+    /* insertions and outlets (world/process.c), between steps: */
+    /* the sum of v over the ranks (the particles at the first step) */
+    unsigned long long (*sum)(void *ctx, unsigned long long v);
+    /* every rank's owned particles as (x, y, z, bounding radius), in *xr
+     * (4 *n doubles, the caller frees it): what an insertion must not
+     * overlap, the same on every rank */
+    sd_status (*all_spheres)(void *ctx, const sd_world *w, double **xr, size_t *n, sd_error *err);
+    /* particles first .. n - 1, which every rank has just inserted alike
+     * (the same draws, ids and checks), stay only on the rank that owns
+     * them (the split's rule) */
+    sd_status (*keep_owned)(void *ctx, sd_world *w, size_t first, sd_error *err);
+    /* the count and mass (kg) of what the ranks' outlets take, each rank's
+     * n particles given by id and mass: summed in stable-id order, the same
+     * on every rank */
+    sd_status (*removed_sum)(void *ctx, size_t n, const uint64_t *id, const double *mass, size_t *count,
+                             double *total, sd_error *err);
 } sd_world_comm;
 
 /* Grows the particle arrays to hold at least cap particles. */

@@ -26,10 +26,16 @@ run() { # ranks out [args]
 }
 fail=0
 for np in 1 2 3 4; do
-  run "$np" "$tmp/$np.bin" "$@" || { echo "FAIL: $name, $np ranks: the run failed"; fail=1; }
+  run "$np" "$tmp/$np.bin" "$@" >"$tmp/$np.out" || { echo "FAIL: $name, $np ranks: the run failed"; fail=1; }
+  cat "$tmp/$np.out"
 done
 run 1 "$tmp/serial.bin" --serial || { echo "FAIL: $name: the serial run failed"; fail=1; }
 for np in 2 3 4; do
+  # insertions and outlets: the same accounts (counts, masses to the bit)
+  if grep -q '^accounts:' "$tmp/1.out" && [[ $(grep '^accounts:' "$tmp/1.out") != $(grep '^accounts:' "$tmp/$np.out") ]]; then
+    echo "FAIL: $name, $np ranks: the process accounts differ from 1 rank's"
+    fail=1
+  fi
   if [[ -f $tmp/$np.bin && -f $tmp/1.bin ]] && cmp -s "$tmp/1.bin" "$tmp/$np.bin"; then
     echo "ok: $name, $np ranks: the same $(stat -c %s "$tmp/$np.bin") bytes of state as 1 rank"
   else

@@ -22,11 +22,65 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <shapedem/process.h>
 #include <shapedem/scene.h>
 
 #include "core/alloc.h"
 #include "mpi/mpi.h"
 #include "mpi/states.h"
+
+static int cmp_u64(const void *a, const void *b)
+{
+    uint64_t p = *(const uint64_t *)a, q = *(const uint64_t *)b;
+    return p < q ? -1 : (p > q ? 1 : 0);
+}
+
+/* With insertions and outlets the set changes: every id once over the
+ * ranks (gathered on rank 0), as many as initial + inserted - removed,
+ * and every rank holding the same accounts. Returns 1 when not. */
+static int check_process(const sd_world *w, long step, int rank, int size, int *reported)
+{
+    sd_process_info pi;
+    sd_world_get_process(w, &pi);
+    unsigned long long acc[3] = {pi.initial, pi.inserted, pi.removed}, lo[3], hi[3];
+    MPI_Allreduce(acc, lo, 3, MPI_UNSIGNED_LONG_LONG, MPI_MIN, MPI_COMM_WORLD);
+    MPI_Allreduce(acc, hi, 3, MPI_UNSIGNED_LONG_LONG, MPI_MAX, MPI_COMM_WORLD);
+    int n = (int)sd_world_particle_count(w);
+    uint64_t *ids = sd_malloc((size_t)(n ? n : 1) * sizeof *ids);
+    for (int k = 0; k < n; ++k) {
+        sd_particle_state p;
+        sd_world_get_particle(w, (size_t)k, &p);
+        ids[k] = p.id;
+    }
+    int *cnt = sd_malloc((size_t)size * 2 * sizeof *cnt), total = 0;
+    MPI_Gather(&n, 1, MPI_INT, cnt, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    for (int r = 0; rank == 0 && r < size; ++r) {
+        cnt[size + r] = total;
+        total += cnt[r];
+    }
+    uint64_t *all = rank == 0 ? sd_malloc((size_t)(total ? total : 1) * sizeof *all) : NULL;
+    MPI_Gatherv(ids, n, MPI_UINT64_T, all, cnt, cnt + size, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+    int bad = 0;
+    if (rank == 0) {
+        qsort(all, (size_t)total, sizeof *all, cmp_u64);
+        size_t dup = 0;
+        for (int k = 1; k < total; ++k)
+            dup += all[k] == all[k - 1];
+        unsigned long long want = pi.initial + pi.inserted - pi.removed;
+        bad = dup != 0 || (unsigned long long)total != want || memcmp(lo, hi, sizeof lo) != 0;
+        if (bad && !*reported)
+            fprintf(stderr, "step %ld: %d particles over the ranks (want %llu = %zu initial + %zu inserted - %zu "
+                            "removed), %zu ids twice, accounts %s over the ranks\n",
+                    step, total, want, pi.initial, pi.inserted, pi.removed, dup,
+                    memcmp(lo, hi, sizeof lo) ? "differ" : "agree");
+        *reported |= bad;
+    }
+    sd_free(all);
+    sd_free(cnt);
+    sd_free(ids);
+    MPI_Bcast(&bad, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    return bad;
+}
 
 int main(int argc, char **argv)
 {
@@ -61,6 +115,8 @@ int main(int argc, char **argv)
     if ((st = sd_scene_build(sc, &w, &err)) != SD_OK)
         sd_mpi_fail(NULL, "scene", st, &err);
     long steps = sd_scene_steps(sc);
+    /* insertions or outlets: the set of ids changes (check_process) */
+    int process = sd_world_insertion_count(w) + sd_world_outlet_count(w) > 0;
     unsigned long long want[3];
     mpi_test_id_sums(w, want);
     sd_mpi *m = NULL;
@@ -71,7 +127,8 @@ int main(int argc, char **argv)
     for (long step = 0; step < steps; ++step) {
         if ((st = sd_world_step(w, 1, &err)) != SD_OK)
             sd_mpi_fail(m, "step", st, &err);
-        bad_steps += mpi_test_check_ids(w, want, step, rank, &reported);
+        bad_steps += process ? check_process(w, step, rank, size, &reported)
+                             : mpi_test_check_ids(w, want, step, rank, &reported);
         sd_stats stats;
         sd_world_stats(w, &stats);
         long c[2] = {stats.contacts, stats.wall_contacts}, call[2] = {0, 0};
@@ -102,6 +159,20 @@ int main(int argc, char **argv)
             }
     }
     int fail = 0;
+    if (process) {
+        /* the set the process leaves, and its accounts (every rank holds
+         * them whole; kinds.sh compares this line across rank counts) */
+        sd_process_info pi;
+        sd_world_get_process(w, &pi);
+        want[0] = pi.initial + pi.inserted - pi.removed;
+        if (rank == 0)
+            printf("accounts: %zu initial, %zu inserted (%.17g kg), %zu removed (%.17g kg)\n", pi.initial,
+                   pi.inserted, pi.inserted_mass, pi.removed, pi.removed_mass);
+        if (rank == 0 && (pi.inserted == 0 || pi.removed == 0)) {
+            printf("  FAIL: the scene inserted or removed nothing\n");
+            fail = 1;
+        }
+    }
     if (rank == 0) {
         mpi_test_write_states(argv[2], s, n);
         printf("%s: %d rank%s%s: %zu of %llu particles gathered, %ld steps, at most %ld particle and %ld "
@@ -109,7 +180,7 @@ int main(int argc, char **argv)
                "or id set: %ld\n",
                argv[1], size, size > 1 ? "s" : "", serial ? " (serial world)" : "", n, want[0], steps,
                contacts_max, wall_contacts_max, moved_all[0], moved_all[1], moved_all[2], moved_all[3], bad_steps);
-        fail = n != want[0] || bad_steps != 0 || contacts_max == 0 || wall_contacts_max == 0;
+        fail |= n != want[0] || bad_steps != 0 || contacts_max == 0 || wall_contacts_max == 0;
         /* on more than one rank, particles must cross, some in contact */
         if (size > 1 && !serial &&
             (moved_all[0] == 0 || moved_all[1] == 0 || (hints && moved_all[2] == 0) || (walls && moved_all[3] == 0))) {
