@@ -141,8 +141,9 @@ static double sd_hook_min(void *ctx, double v)
 /* A history entry in transit: a pair's key or a wall pair's, and every
  * HISTORY field of its list (broad/pairs.h): the spring, and for a
  * particle pair the volume law's overlap hint (the interior point x0 of
- * the last overlap, seed 000 eqs. 12-22), from which the next overlap is
- * computed, so its bits follow the hint. */
+ * the last overlap, seed 000 eqs. 12-22). The hint only lets the next
+ * overlap skip its GJK gate (geom/overlap.h: the hull is built without
+ * it), so it saves time on the receiving rank, not bits. */
 typedef struct sd_hist_row {
     sd_pair_key key;
     sd_wall_pair_key wkey;
