@@ -151,14 +151,16 @@ static void sd_drive_note(sd_mpi *m, const sd_world *w, char *note, size_t size)
             used += (size_t)snprintf(note + used, size - used, __VA_ARGS__); \
     } while (0)
     SD_NOTE("mpi_ranks: %d\n", ranks);
-    SD_NOTE("mpi_split: along x by (x, stable id) into equal particle counts at the start%s; cuts now at x =",
+    SD_NOTE("mpi_split: along x by (x, stable id) into equal particle counts at the start%s; ",
             sd_mpi_rebalances(m) > 0 ? " and at each re-cut" : "");
     const sd_mpi_cut *cuts = sd_mpi_cuts(m);
+    if (ranks == 1)
+        SD_NOTE("one rank, no cut");
+    else
+        SD_NOTE("cuts now at x =");
     for (int r = 0; r + 1 < ranks; ++r)
         SD_NOTE(" %.10g", cuts[r].x);
-    if (ranks == 1)
-        SD_NOTE(" (none)");
-    SD_NOTE(" m\nmpi_particles_per_rank:");
+    SD_NOTE("%s\nmpi_particles_per_rank:", ranks > 1 ? " m" : "");
     unsigned long long moved = 0;
     for (int r = 0; r < ranks; ++r) {
         SD_NOTE(" %llu", all[2 * r]);
