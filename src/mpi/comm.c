@@ -721,6 +721,60 @@ static sd_status sd_hook_removed_sum(void *ctx, size_t n, const uint64_t *id, co
     return SD_OK;
 }
 
+/* A servo wall's pair in transit: its key (as doubles: ids exact below
+ * 2^53) and its four values. */
+typedef struct sd_wall_rec {
+    double wall, id, sub, elem, v[4];
+} sd_wall_rec;
+
+static int sd_wall_rec_cmp(const void *a, const void *b)
+{
+    const sd_wall_rec *p = a, *q = b;
+    const double *x = &p->wall, *y = &q->wall;
+    for (int c = 0; c < 4; ++c)
+        if (x[c] != y[c])
+            return x[c] < y[c] ? -1 : 1;
+    return 0;
+}
+
+/* The servo walls' sums (world.h): every rank's wall pairs gathered,
+ * sorted by key, summed per wall in that order. */
+static sd_status sd_hook_wall_sums(void *ctx, size_t n, const sd_wall_pair_key *key, const double *v, size_t wall_count,
+                                   double *out, sd_error *err)
+{
+    sd_mpi *m = ctx;
+    sd_wall_rec *mine = sd_malloc((n ? n : 1) * sizeof *mine);
+    for (size_t k = 0; mine && k < n; ++k) {
+        mine[k].wall = (double)key[k].wall;
+        mine[k].id = (double)key[k].id;
+        mine[k].sub = (double)key[k].sub;
+        mine[k].elem = (double)key[k].elem;
+        memcpy(mine[k].v, v + 4 * k, sizeof mine[k].v);
+    }
+    enum { PER = (int)(sizeof(sd_wall_rec) / sizeof(double)) };
+    double *all = NULL;
+    size_t t = 0;
+    int bad = sd_allgather_doubles(m, (const double *)mine, mine ? (int)(PER * n) : 0, &all, &t);
+    sd_free(mine);
+    for (size_t k = 0; out && k < 4 * wall_count; ++k)
+        out[k] = 0;
+    if (bad || !mine || !out) {
+        sd_free(bad ? NULL : all);
+        return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "servo walls: out of memory gathering the wall contacts");
+    }
+    sd_wall_rec *r = (sd_wall_rec *)all;
+    size_t nr = t / PER;
+    qsort(r, nr, sizeof *r, sd_wall_rec_cmp);
+    for (size_t k = 0; k < nr; ++k) {
+        size_t wk = (size_t)r[k].wall;
+        if (wk < wall_count)
+            for (int c = 0; c < 4; ++c)
+                out[4 * wk + (size_t)c] += r[k].v[c];
+    }
+    sd_free(all);
+    return SD_OK;
+}
+
 static const sd_world_comm sd_mpi_hooks = {
     .any = sd_hook_any,
     .min = sd_hook_min,
@@ -731,6 +785,7 @@ static const sd_world_comm sd_mpi_hooks = {
     .all_spheres = sd_hook_all_spheres,
     .keep_owned = sd_hook_keep_owned,
     .removed_sum = sd_hook_removed_sum,
+    .wall_sums = sd_hook_wall_sums,
 };
 
 /* ---- attach, gather, fail --------------------------------------------------- */
@@ -756,16 +811,11 @@ static sd_status sd_mpi_refuse(const sd_world *w, sd_error *err)
      * function of time (prescribed velocities, mesh motions, a drum's
      * spin-up), so they stay the same bits everywhere; a particle's wall
      * pairs are its own (owned particles only), and their springs travel
-     * by key. A servo wall reads its force, a sum over every rank's
-     * particles: not decomposed yet. Meshes: every rank has the whole
+     * by key. A servo wall reads its force and contact stiffness, sums
+     * over every rank's particles: world/servo.c takes them in the order
+     * of the wall pairs' keys (wall_sums). Meshes: every rank has the whole
      * mesh; the near facets of a particle come from a query by distance,
      * so they are the same whatever each rank's facet bins are. */
-    for (size_t k = 0; k < w->wall_count; ++k)
-        if (w->walls[k].moving && w->walls[k].motion.servo_stress > 0)
-            return sd_error_set(err, SD_ERR_INPUT, "", 0, "walls",
-                                "wall '%s': MPI ranks do not take servo walls in this version (the servo reads "
-                                "the wall force, summed over the particles of every rank); prescribed motions, "
-                                "drums and moving meshes are decomposed", w->walls[k].name);
     /* insertions and outlets: every rank runs each event at the same step;
      * an insertion draws, checks against every rank's particles and adds
      * alike everywhere, then each rank keeps its own; an outlet's accounts

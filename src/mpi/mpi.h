@@ -1,9 +1,9 @@
 /* mpi.h — domain decomposition over MPI ranks (built with SHAPEDEM_MPI;
  * the serial build has none of it): every particle kind (spheres, convex
  * shapes, sharp polyhedra under the volume law, composites, the planar
- * mode) with fixed and moving walls (prescribed motions, drums, triangle
- * meshes; not servo walls), insertions and outlets, on the cells solver
- * and the CPU backend, a split along x.
+ * mode) with fixed and moving walls (prescribed motions, servo walls,
+ * drums, triangle meshes), insertions and outlets, on the cells solver and
+ * the CPU backend, a split along x.
  *
  * Each rank builds the same world (the same scene: every particle on every
  * rank), then sd_mpi_attach keeps the particles of its own sub-domain and
@@ -37,6 +37,8 @@
  *          (against every rank's particles) and adds each inserted particle
  *          alike, then keeps those it owns; outlets' counts and masses are
  *          summed over the ranks in stable-id order
+ *   servo walls (world/servo.c): the force and contact stiffness a servo
+ *          reads are summed over every rank's wall pairs in key order
  *   order: the pair lists take the canonical order (sd_pairs_canonical),
  *          so each particle's force sum, and so the state, has the same
  *          bits on any rank count (a composite pair's run of element
@@ -78,8 +80,8 @@ typedef struct sd_mpi sd_mpi;
  * prepared: sd_mpi_attach_built takes a world sd_scene_build made) over
  * the ranks of MPI_COMM_WORLD: keeps this rank's particles and installs
  * the hooks. MPI must be initialised. Refuses what
- * is not decomposed yet (the grid solver, a device backend, servo walls)
- * with SD_ERR_INPUT. */
+ * is not decomposed yet (the grid solver, a device backend) with
+ * SD_ERR_INPUT. */
 sd_status sd_mpi_attach(sd_world *w, sd_mpi **out, sd_error *err);
 /* The hooks off and the memory freed (the world stays, holding its own
  * particles). */

@@ -369,9 +369,9 @@ sd_status sd_mpi_view(const sd_mpi *m, const sd_world *w, sd_world *g, sd_error 
         g->skin = w->skin;
         for (size_t k = 0; k < g->wall_count && k < w->wall_count; ++k) {
             g->walls[k] = w->walls[k];
-            /* the servo's sum of contact stiffness is each rank's own
-             * (servo walls are refused under mpirun) and is summed again
-             * before each use: not gathered, so that no file carries a
+            /* the sum of contact stiffness is made again before each use
+             * (world/servo.c: a servo wall's over every rank, the others'
+             * each rank's own): not gathered, so that no file carries a
              * partial sum that depends on the split */
             g->walls[k].stiffness = SD_R(0.0);
         }

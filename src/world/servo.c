@@ -13,6 +13,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "core/alloc.h"
 #include "core/error.h"
 #include "dynamics/servo.h"
 #include "world/mesh.h"
@@ -110,6 +111,55 @@ static sd_real sd_contact_stiffness(const sd_pair_params *prm, sd_real r, sd_rea
     return SD_R(2.0) * prm->y_star * sd_sqrt(r * delta);
 }
 
+/* A decomposed run (w->comm): each rank holds the wall pairs of its own
+ * particles, so a servo wall's force and contact stiffness are the sums
+ * of every rank's; they are taken over the ranks in the order of the wall
+ * pairs' keys (the comm's wall_sums), the same bits on any rank count,
+ * and every rank moves the wall alike. Other walls keep their own totals. */
+static sd_status sd_walls_servo_sums(sd_world *w, sd_error *err)
+{
+    int any = 0;
+    for (size_t k = 0; k < w->wall_count; ++k)
+        any |= w->walls[k].moving && w->walls[k].motion.servo_stress > 0;
+    if (!any)
+        return SD_OK;
+    const sd_wall_pair_list *l = &w->wpairs;
+    size_t nm = w->material_count, n = 0;
+    sd_wall_pair_key *key = sd_malloc((l->n ? l->n : 1) * sizeof *key);
+    double *v = sd_malloc((l->n ? l->n : 1) * 4 * sizeof *v);
+    double *out = sd_malloc((w->wall_count ? w->wall_count : 1) * 4 * sizeof *out);
+    sd_status st = key && v && out ? SD_OK : SD_ERR_MEMORY;
+    for (size_t e = 0; st == SD_OK && e < l->n; ++e) {
+        const sd_wall *wl = &w->walls[l->wall[e]];
+        if (l->delta[e] <= 0 || !(wl->moving && wl->motion.servo_stress > 0))
+            continue;
+        uint32_t i = l->i[e];
+        const sd_pair_params *prm = &w->mix[(size_t)w->p.material[i] * nm + (size_t)wl->material];
+        key[n] = l->key[e];
+        v[4 * n] = -(double)l->f[e].x; /* the wall feels the opposite of the particle's force */
+        v[4 * n + 1] = -(double)l->f[e].y;
+        v[4 * n + 2] = -(double)l->f[e].z;
+        v[4 * n + 3] = (double)sd_contact_stiffness(prm, w->p.radius[i], l->delta[e]);
+        ++n;
+    }
+    /* collective: every rank takes part, even one without memory */
+    sd_status cst = w->comm->wall_sums(w->comm_ctx, st == SD_OK ? n : 0, key, v, w->wall_count, out, err);
+    if (st == SD_OK && cst == SD_OK)
+        for (size_t k = 0; k < w->wall_count; ++k) {
+            sd_wall *wl = &w->walls[k];
+            if (!(wl->moving && wl->motion.servo_stress > 0))
+                continue;
+            wl->force = sd_v3((sd_real)out[4 * k], (sd_real)out[4 * k + 1], (sd_real)out[4 * k + 2]);
+            wl->stiffness = (sd_real)out[4 * k + 3];
+        }
+    sd_free(key);
+    sd_free(v);
+    sd_free(out);
+    if (st != SD_OK)
+        return sd_error_set(err, st, "", 0, "", "out of memory summing the servo walls' forces over the ranks");
+    return cst;
+}
+
 sd_status sd_world_walls_drift(sd_world *w, double t, sd_error *err)
 {
     if (!w->walls_moving)
@@ -131,6 +181,11 @@ sd_status sd_world_walls_drift(sd_world *w, double t, sd_error *err)
         uint32_t i = l->i[e];
         const sd_pair_params *prm = &w->mix[(size_t)w->p.material[i] * nm + (size_t)wl->material];
         wl->stiffness += sd_contact_stiffness(prm, w->p.radius[i], l->delta[e]);
+    }
+    if (w->comm) {
+        sd_status sst = sd_walls_servo_sums(w, err);
+        if (sst != SD_OK)
+            return sst;
     }
     sd_real dt = w->dt;
     for (size_t k = 0; k < w->wall_count; ++k) {

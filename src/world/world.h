@@ -233,6 +233,12 @@ typedef struct sd_world_comm {
      * on every rank */
     sd_status (*removed_sum)(void *ctx, size_t n, const uint64_t *id, const double *mass, size_t *count,
                              double *total, sd_error *err);
+    /* servo walls (world/servo.c), each step: per wall, the sums of the
+     * ranks' wall-pair values (4 doubles per pair: force on the wall,
+     * contact stiffness) in the order of the wall-pair keys, into out (4
+     * per wall), the same on every rank */
+    sd_status (*wall_sums)(void *ctx, size_t n, const sd_wall_pair_key *key, const double *v, size_t wall_count,
+                           double *out, sd_error *err);
 } sd_world_comm;
 
 /* Grows the particle arrays to hold at least cap particles. */

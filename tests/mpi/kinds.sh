@@ -31,11 +31,14 @@ for np in 1 2 3 4; do
 done
 run 1 "$tmp/serial.bin" --serial || { echo "FAIL: $name: the serial run failed"; fail=1; }
 for np in 2 3 4; do
-  # insertions and outlets: the same accounts (counts, masses to the bit)
-  if grep -q '^accounts:' "$tmp/1.out" && [[ $(grep '^accounts:' "$tmp/1.out") != $(grep '^accounts:' "$tmp/$np.out") ]]; then
-    echo "FAIL: $name, $np ranks: the process accounts differ from 1 rank's"
-    fail=1
-  fi
+  # the walls where they ended, and the accounts of insertions and outlets
+  # (counts, masses): to the bit
+  for what in walls accounts; do
+    if [[ -f $tmp/$np.out ]] && [[ $(grep "^$what:" "$tmp/1.out") != $(grep "^$what:" "$tmp/$np.out") ]]; then
+      echo "FAIL: $name, $np ranks: the $what line differs from 1 rank's"
+      fail=1
+    fi
+  done
   if [[ -f $tmp/$np.bin && -f $tmp/1.bin ]] && cmp -s "$tmp/1.bin" "$tmp/$np.bin"; then
     echo "ok: $name, $np ranks: the same $(stat -c %s "$tmp/$np.bin") bytes of state as 1 rank"
   else

@@ -1,8 +1,7 @@
 #!/usr/bin/env bash
 # refuse.sh — what the decomposition does not take yet is refused at
 # attach, on every rank, with one clear reason and exit status 2, never a
-# hang (issue 18): servo walls (examples/biaxial-2d.yaml) and the grid
-# solver (examples/hopper-grid.yaml), on 2 ranks.
+# hang (issue 18): the grid solver (examples/hopper-grid.yaml), on 2 ranks.
 #   refuse.sh MPI_SCENE_BINARY MPIEXEC SOURCE_DIR
 set -euo pipefail
 bin=$1
@@ -25,6 +24,5 @@ check() { # scene what-the-message-names
     fail=1
   fi
 }
-check examples/biaxial-2d.yaml "do not take servo walls"
 check examples/hopper-grid.yaml "cells solver only"
 exit $fail

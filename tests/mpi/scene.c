@@ -173,6 +173,17 @@ int main(int argc, char **argv)
             fail = 1;
         }
     }
+    /* the walls where they ended (moving and servo walls: every rank
+     * moves them alike; kinds.sh compares this line across rank counts) */
+    if (rank == 0) {
+        printf("walls:");
+        for (size_t k = 0; k < sd_world_wall_count(w); ++k) {
+            sd_wall_info wi;
+            sd_world_get_wall(w, k, &wi);
+            printf(" %s (%.17g %.17g %.17g)", wi.name, wi.point.x, wi.point.y, wi.point.z);
+        }
+        printf("\n");
+    }
     if (rank == 0) {
         mpi_test_write_states(argv[2], s, n);
         printf("%s: %d rank%s%s: %zu of %llu particles gathered, %ld steps, at most %ld particle and %ld "
