@@ -88,6 +88,25 @@ static const unsigned char *sd_row_unpack(sd_particles *p, size_t k, const unsig
     return b;
 }
 
+/* Keeps, of rows first .. n - 1, those whose dest[k - first] is rank, in
+ * order, and drops the others (p->n shrinks); returns the new count. */
+static size_t sd_rows_keep(sd_particles *p, size_t first, const int *dest, int rank)
+{
+    size_t keep = first;
+    for (size_t k = first; k < p->n; ++k) {
+        if (dest[k - first] != rank)
+            continue;
+        if (keep != k) {
+#define SD_X_MOVE(type, name, ...) p->name[keep] = p->name[k];
+            SD_PARTICLE_FIELDS(SD_X_MOVE)
+#undef SD_X_MOVE
+        }
+        ++keep;
+    }
+    p->n = keep;
+    return keep;
+}
+
 static int sd_grow(unsigned char **buf, size_t *cap, size_t need)
 {
     if (need <= *cap)
@@ -342,18 +361,7 @@ static sd_status sd_hook_migrate(void *ctx, sd_world *w, sd_error *err)
     }
     size_t rn = sd_alltoall(m);
     /* compaction of the staying particles, in order */
-    size_t keep = 0;
-    for (size_t k = 0; k < n; ++k) {
-        if (dest[k] != m->rank)
-            continue;
-        if (keep != k) {
-#define SD_X_MOVE(type, name, ...) p->name[keep] = p->name[k];
-            SD_PARTICLE_FIELDS(SD_X_MOVE)
-#undef SD_X_MOVE
-        }
-        ++keep;
-    }
-    p->n = keep;
+    size_t keep = sd_rows_keep(p, 0, dest, m->rank);
     sd_free(dest);
     sd_free(ids);
     sd_free(nrow);
@@ -665,19 +673,15 @@ static sd_status sd_hook_keep_owned(void *ctx, sd_world *w, size_t first, sd_err
 {
     sd_mpi *m = ctx;
     sd_particles *p = &w->p;
-    (void)err;
-    size_t keep = first;
-    for (size_t k = first; k < p->n; ++k) {
-        if (sd_mpi_rank_of(m->cuts, m->size, (double)p->x[k].x, p->id[k]) != m->rank)
-            continue;
-        if (keep != k) {
-#define SD_X_MOVE(type, name, ...) p->name[keep] = p->name[k];
-            SD_PARTICLE_FIELDS(SD_X_MOVE)
-#undef SD_X_MOVE
-        }
-        ++keep;
-    }
-    p->n = keep;
+    if (first >= p->n)
+        return SD_OK; /* nothing inserted (on any rank: they all drew alike) */
+    int *dest = sd_malloc((p->n - first) * sizeof *dest);
+    if (!dest)
+        return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "insertion: out of memory (%zu particles)", p->n - first);
+    for (size_t k = first; k < p->n; ++k)
+        dest[k - first] = sd_mpi_rank_of(m->cuts, m->size, (double)p->x[k].x, p->id[k]);
+    sd_rows_keep(p, first, dest, m->rank);
+    sd_free(dest);
     return SD_OK;
 }
 

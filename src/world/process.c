@@ -1194,11 +1194,14 @@ static sd_status sd_place_grid_build(const sd_world *w, const sd_region_def *reg
     const double dl[3] = {w->def.domain_lo.x, w->def.domain_lo.y, w->def.domain_lo.z};
     const double dh[3] = {w->def.domain_hi.x, w->def.domain_hi.y, w->def.domain_hi.z};
     for (size_t k = 0; k < np; ++k) {
-        sd_v3d x = {(double)p->x[k].x, (double)p->x[k].y, (double)p->x[k].z};
-        double r = (double)p->radius[k];
+        sd_v3d x;
+        double r;
         if (xr) {
             x = (sd_v3d){xr[4 * k], xr[4 * k + 1], xr[4 * k + 2]};
             r = xr[4 * k + 3];
+        } else {
+            x = (sd_v3d){(double)p->x[k].x, (double)p->x[k].y, (double)p->x[k].z};
+            r = (double)p->radius[k];
         }
         /* the particle and its images one period away on each periodic axis */
         int lim[3];
