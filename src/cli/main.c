@@ -364,13 +364,7 @@ static int sd_cmd_run(const sd_cli *c)
      * stops between chunks, so the world is between steps) */
     char ckpt[1100] = "";
     sd_status ckpt_st = SD_OK;
-#ifdef SHAPEDEM_CLI_MPI
-    /* under mpirun a run with insertions writes no checkpoint (cli/mpi_run.c) */
-    int final_checkpoint = sd_world_insertion_count(w) == 0;
-#else
-    int final_checkpoint = 1;
-#endif
-    if (sd_interrupted && !failed && !c->bench && final_checkpoint) {
+    if (sd_interrupted && !failed && !c->bench) {
         sd_error cerr0;
         memset(&cerr0, 0, sizeof cerr0);
         ckpt_st = sd_run_checkpoint(run, &cerr0);

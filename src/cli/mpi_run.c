@@ -16,8 +16,6 @@
 #include <stdio.h>
 #include <string.h>
 
-#include <shapedem/process.h>
-
 #include "cli/mpi_run.h"
 #include "core/alloc.h"
 #include "io/run.h"
@@ -70,16 +68,6 @@ int sd_cli_mpi_begin(const void *cli, sd_cli_load_fn load, const char *restart, 
          * step count, the bits do not depend on the wall clock */
         snprintf(msg, sizeof msg, "%.1000s: output.checkpoint_minutes: checkpoints by wall time would make the results "
                  "depend on it under mpirun: use output.checkpoint_every (docs/mpi.md)", (*scene)->path);
-        rc = sd_cli_mpi_agree(2, msg, rank, size);
-    }
-    /* a checkpoint of a run with insertions, restarted, does not continue
-     * its bits yet (positions differ by up to 0.5 mm within 100 steps, on
-     * any rank count, and in the serial program too): refused, not left
-     * to surprise (docs/mpi.md) */
-    if (rc == 0 && (restart || (*scene)->output.checkpoint_every > 0) && sd_world_insertion_count(w) > 0) {
-        snprintf(msg, sizeof msg, "%.1000s: insert: checkpoints and --restart under mpirun are not supported with "
-                 "insertions yet (a restart would not continue the run's bits): leave output.checkpoint_every "
-                 "out, or run the serial program (docs/mpi.md)", (*scene)->path);
         rc = sd_cli_mpi_agree(2, msg, rank, size);
     }
     /* --restart: the checkpoint's whole world on every rank, then split */

@@ -367,6 +367,11 @@ sd_status sd_mpi_view(const sd_mpi *m, const sd_world *w, sd_world *g, sd_error 
         g->rebuilds = w->rebuilds;
         g->next_id = w->next_id;
         g->skin = w->skin;
+        /* what a run may change at the world level (world/snapshot.c's
+         * SD_WORLD_STATE): an insertion of shapes into a world of spheres
+         * sets has_shapes, which the broad phase reads after a restore */
+        g->has_shapes = w->has_shapes;
+        g->biaxial_ref = w->biaxial_ref;
         for (size_t k = 0; k < g->wall_count && k < w->wall_count; ++k) {
             g->walls[k] = w->walls[k];
             /* the sum of contact stiffness is made again before each use
