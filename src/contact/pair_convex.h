@@ -26,7 +26,15 @@ SD_HD static SD_INLINE sd_pair_result sd_pair_convex(const sd_pair_params *prm, 
         ns->supports = 0;
         return sd_pair_none(ds);
     }
-    sd_convex_contact c = sd_convex_collide(ca, cb, warm);
+    const sd_gjk_body A = sd_gjk_body_of(ca), B = sd_gjk_body_of(cb);
+    /* apart along GJK's start direction: GJK's own first-step answer, warm
+     * direction included, without the query (sd_convex_apart_warm) */
+    if (warm && sd_convex_apart_warm(&A, &B, warm)) {
+        ns->iterations = 0;
+        ns->supports = 0;
+        return sd_pair_none(ds);
+    }
+    sd_convex_contact c = sd_convex_collide_bodies(&A, &B, warm, 0); /* only touching pairs matter */
     ns->iterations = c.iterations;
     ns->supports = c.support_calls;
     if (!c.touching)
