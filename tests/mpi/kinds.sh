@@ -16,6 +16,10 @@ mpiexec=${2:-mpirun}
 scene=$3
 shift 3
 tmp=$(mktemp -d)
+# Open MPI's session directory in this test's own $tmp: jobs that other
+# tests (ctest -j) start and end at the same time cannot remove it under
+# this one (tests/mpi/lib.sh does the same for the CLI tests)
+export OMPI_MCA_orte_tmpdir_base=$tmp
 trap 'rm -rf "$tmp"' EXIT
 export OMP_NUM_THREADS=1
 name=$(basename "$scene" .yaml)

@@ -10,6 +10,10 @@ set -euo pipefail
 bin=$1
 mpiexec=${2:-mpirun}
 tmp=$(mktemp -d)
+# Open MPI's session directory in this test's own $tmp: jobs that other
+# tests (ctest -j) start and end at the same time cannot remove it under
+# this one (tests/mpi/lib.sh does the same for the CLI tests)
+export OMPI_MCA_orte_tmpdir_base=$tmp
 trap 'rm -rf "$tmp"' EXIT
 export OMP_NUM_THREADS=1
 run() { # ranks out [args]
