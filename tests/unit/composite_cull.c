@@ -26,6 +26,7 @@
 
 #include "core/quat.h"
 #include "core/rng.h"
+#include "random_pose.h"
 #include "geom/convex_contact.h"
 #include "world/world.h"
 
@@ -33,23 +34,6 @@ typedef struct tally {
     long pairs, touching, culled, rule0, culled_not_rule0, culled_touching, warm_differs, culled_near;
     double min_gap; /* smallest (d - ra - rb) / L over the culled pairs */
 } tally;
-
-static sd_quat random_quat(sd_rng *rng)
-{
-    /* Shoemake: uniform on SO(3) */
-    double u1 = sd_rng_uniform(rng), u2 = 2 * SD_PI_D * sd_rng_uniform(rng), u3 = 2 * SD_PI_D * sd_rng_uniform(rng);
-    double s1 = sqrt(1 - u1), s2 = sqrt(u1);
-    return sd_quat_make(s2 * cos(u3), s1 * sin(u2), s1 * cos(u2), s2 * sin(u3));
-}
-
-static sd_vec3 random_unit(sd_rng *rng)
-{
-    sd_vec3 p;
-    do {
-        p = sd_v3(sd_rng_range(rng, -1, 1), sd_rng_range(rng, -1, 1), sd_rng_range(rng, -1, 1));
-    } while (sd_v3_norm2(p) > 1 || sd_v3_norm2(p) < 1e-4);
-    return sd_v3_normalize(p);
-}
 
 /* One pair with one start direction: the test against GJK. Returns 1 when
  * the test rejected the pair. */
@@ -90,11 +74,11 @@ static int check_pair(const sd_convex *a, const sd_convex *b, sd_vec3 warm, tall
 static void check_pair_dirs(sd_rng *rng, const sd_convex *a, const sd_convex *b, tally *t)
 {
     check_pair(a, b, sd_v3_zero(), t);
-    check_pair(a, b, sd_v3_scale(random_unit(rng), pow(10.0, sd_rng_range(rng, -6, 2))), t);
+    check_pair(a, b, sd_v3_scale(rand_unit(rng), pow(10.0, sd_rng_range(rng, -6, 2))), t);
     sd_convex ea = *a, eb = *b;
     double L = a->shape->bound + b->shape->bound;
-    ea.x = sd_v3_add(a->x, sd_v3_scale(random_unit(rng), 0.02 * L));
-    ea.q = sd_quat_normalize(sd_quat_mul(sd_quat_from_rotvec(sd_v3_scale(random_unit(rng), 0.05)), a->q));
+    ea.x = sd_v3_add(a->x, sd_v3_scale(rand_unit(rng), 0.02 * L));
+    ea.q = sd_quat_normalize(sd_quat_mul(sd_quat_from_rotvec(sd_v3_scale(rand_unit(rng), 0.05)), a->q));
     sd_gjk_result g = sd_gjk_distance(&ea, &eb, sd_v3_zero());
     check_pair(a, b, g.dir, t);
     sd_gjk_result now = sd_gjk_distance(a, b, sd_v3_zero());
@@ -106,7 +90,7 @@ static void check_pair_dirs(sd_rng *rng, const sd_convex *a, const sd_convex *b,
 static sd_vec3 near_contact(sd_rng *rng, const sd_convex *a, const sd_shape *sb)
 {
     double reach = a->shape->bound + sb->bound;
-    return sd_v3_add(a->x, sd_v3_scale(random_unit(rng), reach * sd_rng_range(rng, 0.3, 1.05)));
+    return sd_v3_add(a->x, sd_v3_scale(rand_unit(rng), reach * sd_rng_range(rng, 0.3, 1.05)));
 }
 
 static void report(const char *what, const tally *t)
@@ -193,8 +177,8 @@ int main(void)
     const sd_shape *cs = &shapes[cross];
     for (int trial = 0; trial < 4000; ++trial) {
         sd_vec3 xi = sd_v3(sd_rng_range(&rng, 0, 0.05), sd_rng_range(&rng, 0, 0.05), sd_rng_range(&rng, 0, 0.05));
-        sd_quat qi = random_quat(&rng), qj = random_quat(&rng);
-        sd_vec3 xj = sd_v3_add(xi, sd_v3_scale(random_unit(&rng), 2 * cs->bound * sd_rng_range(&rng, 0.2, 1.0)));
+        sd_quat qi = rand_quat(&rng), qj = rand_quat(&rng);
+        sd_vec3 xj = sd_v3_add(xi, sd_v3_scale(rand_unit(&rng), 2 * cs->bound * sd_rng_range(&rng, 0.2, 1.0)));
         for (uint32_t ei = 0; ei < cs->ecount; ++ei)
             for (uint32_t ej = 0; ej < cs->ecount; ++ej) {
                 const sd_element *a = &w->elements[cs->estart + ei], *b = &w->elements[cs->estart + ej];
@@ -226,9 +210,9 @@ int main(void)
                 ca.planes = cb.planes = w->planes;
                 ca.dtris = cb.dtris = w->dtris;
                 ca.x = sd_v3(sd_rng_range(&rng, -1, 1), sd_rng_range(&rng, -1, 1), sd_rng_range(&rng, -1, 1));
-                ca.q = random_quat(&rng);
+                ca.q = rand_quat(&rng);
                 cb.x = near_contact(&rng, &ca, cb.shape);
-                cb.q = random_quat(&rng);
+                cb.q = rand_quat(&rng);
                 check_pair_dirs(&rng, &ca, &cb, &tk);
             }
     report("convex kinds, all pairs", &tk);

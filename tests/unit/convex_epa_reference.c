@@ -16,6 +16,7 @@
 #include "test.h"
 
 #include "core/rng.h"
+#include "random_pose.h"
 #include "geom/convex_contact.h"
 
 #include "convex_epa_ref.h"
@@ -23,22 +24,6 @@
 #define POOL 64
 static sd_vec3 pool[POOL];
 static uint32_t pool_n;
-
-static sd_vec3 rand_unit(sd_rng *r)
-{
-    sd_vec3 p;
-    do {
-        p = sd_v3(sd_rng_range(r, -1, 1), sd_rng_range(r, -1, 1), sd_rng_range(r, -1, 1));
-    } while (sd_v3_norm2(p) > 1 || sd_v3_norm2(p) < 1e-4);
-    return sd_v3_normalize(p);
-}
-
-static sd_quat rand_quat(sd_rng *r)
-{
-    double u1 = sd_rng_uniform(r), u2 = 2 * SD_PI_D * sd_rng_uniform(r), u3 = 2 * SD_PI_D * sd_rng_uniform(r);
-    double s1 = sqrt(1 - u1), s2 = sqrt(u1);
-    return sd_quat_make(s2 * cos(u3), s1 * sin(u2), s1 * cos(u2), s2 * sin(u3));
-}
 
 /* A random sharp core of a kind (sizes 0.18–0.5). */
 static sd_shape make_shape(sd_rng *r, int kind)

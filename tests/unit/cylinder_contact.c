@@ -41,24 +41,9 @@
 #include "test.h"
 
 #include "core/rng.h"
+#include "random_pose.h"
 #include "geom/convex_contact.h"
 #include "geom/cylinder_contact.h"
-
-static sd_vec3 rand_unit(sd_rng *r)
-{
-    sd_vec3 p;
-    do {
-        p = sd_v3(sd_rng_range(r, -1, 1), sd_rng_range(r, -1, 1), sd_rng_range(r, -1, 1));
-    } while (sd_v3_norm2(p) > 1 || sd_v3_norm2(p) < 1e-4);
-    return sd_v3_normalize(p);
-}
-
-static sd_quat rand_quat(sd_rng *r)
-{
-    double u1 = sd_rng_uniform(r), u2 = 2 * SD_PI_D * sd_rng_uniform(r), u3 = 2 * SD_PI_D * sd_rng_uniform(r);
-    double s1 = sqrt(1 - u1), s2 = sqrt(u1);
-    return sd_quat_make(s2 * cos(u3), s1 * sin(u2), s1 * cos(u2), s2 * sin(u3));
-}
 
 /* the quaternion turning +z to unit v */
 static sd_quat quat_z_to(sd_vec3 v)

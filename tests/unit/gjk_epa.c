@@ -21,6 +21,7 @@
 
 #include "core/quat.h"
 #include "core/rng.h"
+#include "random_pose.h"
 #include "shape/shape.h"
 
 /* ---------------------------------------------------------------------- */
@@ -170,22 +171,6 @@ static sd_shape shape_polytope(sd_rng *rng, int n, double size)
     g_pool_n += (uint32_t)n;
     s.bound = b;
     return s;
-}
-
-static sd_quat random_quat(sd_rng *rng)
-{
-    /* Shoemake: uniform on SO(3) */
-    double u1 = sd_rng_uniform(rng), u2 = 2 * SD_PI_D * sd_rng_uniform(rng), u3 = 2 * SD_PI_D * sd_rng_uniform(rng);
-    double s1 = sqrt(1 - u1), s2 = sqrt(u1);
-    return sd_quat_make(s2 * cos(u3), s1 * sin(u2), s1 * cos(u2), s2 * sin(u3));
-}
-static sd_vec3 random_unit(sd_rng *rng)
-{
-    sd_vec3 p;
-    do {
-        p = sd_v3(sd_rng_range(rng, -1, 1), sd_rng_range(rng, -1, 1), sd_rng_range(rng, -1, 1));
-    } while (sd_v3_norm2(p) > 1 || sd_v3_norm2(p) < 1e-4);
-    return sd_v3_normalize(p);
 }
 
 static sd_convex body(const sd_shape *s, sd_vec3 x, sd_quat q)
@@ -362,9 +347,9 @@ static void random_pair(sd_rng *rng, int mode)
     }
     uint32_t pool_mark = g_pool_n;
     sd_shape sa = random_shape(rng, ka), sb = random_shape(rng, kb);
-    sd_quat qa = random_quat(rng), qb = random_quat(rng);
+    sd_quat qa = rand_quat(rng), qb = rand_quat(rng);
     sd_vec3 xa = sd_v3(sd_rng_range(rng, -1, 1), sd_rng_range(rng, -1, 1), sd_rng_range(rng, -1, 1));
-    sd_vec3 dir = random_unit(rng);
+    sd_vec3 dir = rand_unit(rng);
     double L = sa.bound + sb.bound;
     double sep = sd_rng_range(rng, 0.1, 1.1) * L;
     if (mode == 1) {
@@ -388,7 +373,7 @@ static void random_pair(sd_rng *rng, int mode)
     sd_convex A = body(&sa, xa, qa), B = body(&sb, xb, qb);
     for (int k = 0; k < 2; ++k) {
         /* engine vs reference support: the same support value h(u) */
-        sd_vec3 u = random_unit(rng);
+        sd_vec3 u = rand_unit(rng);
         const sd_convex *c = k ? &B : &A;
         double h1 = sd_v3_dot(u, sd_convex_support_core(c, u)), h2 = sd_v3_dot(u, sd_ref_support_core(c, u));
         g_support_err = sd_max(g_support_err, fabs(h1 - h2) / L);
@@ -560,12 +545,12 @@ static void regressions(void)
     /* 4: smooth shapes (spheres as ellipsoid cores) */
     sd_shape ball = shape_ellipsoid(1, 1, 1, 0);
     sd_rng r4 = sd_rng_seed(4);
-    sd_convex S1 = body(&ball, z0, I), S2 = body(&ball, sd_v3(3, 0, 0), random_quat(&r4));
+    sd_convex S1 = body(&ball, z0, I), S2 = body(&ball, sd_v3(3, 0, 0), rand_quat(&r4));
     int worst_it = 0;
     double worst_err = 0;
     for (int k = 0; k < 100; ++k) {
-        S2.x = sd_v3_scale(random_unit(&r4), 3);
-        g = sd_gjk_distance(&S1, &S2, random_unit(&r4));
+        S2.x = sd_v3_scale(rand_unit(&r4), 3);
+        g = sd_gjk_distance(&S1, &S2, rand_unit(&r4));
         worst_it = g.iterations > worst_it ? g.iterations : worst_it;
         worst_err = sd_max(worst_err, fabs(g.distance - 1));
     }
@@ -599,7 +584,7 @@ static void regressions(void)
     for (int k = 0; k < 100; ++k) {
         A = body(&cube2, z0, I);
         B = body(&cube2, sd_v3(0, 0, 1.9), I);
-        sd_vec3 w = k == 0 ? sd_v3(1, 0, 0) : random_unit(&r6);
+        sd_vec3 w = k == 0 ? sd_v3(1, 0, 0) : rand_unit(&r6);
         g = sd_gjk_distance(&A, &B, w);
         sd_epa_result e = sd_epa_penetration(&A, &B, &g);
         nan6 += !(finite3(e.normal) && isfinite(e.depth));
@@ -625,10 +610,10 @@ static void regressions(void)
     sd_rng r7 = sd_rng_seed(7);
     double worst7 = 0;
     for (int k = 0; k < 100; ++k) {
-        sd_quat q = random_quat(&r7);
+        sd_quat q = rand_quat(&r7);
         A = body(&cube, z0, q);
         B = body(&cube, sd_quat_rotate(q, sd_v3(0.3, 0, 0)), q);
-        g = sd_gjk_distance(&A, &B, random_unit(&r7));
+        g = sd_gjk_distance(&A, &B, rand_unit(&r7));
         e = sd_epa_penetration(&A, &B, &g);
         worst7 = sd_max(worst7, fabs(e.depth - 0.7));
     }
@@ -672,7 +657,7 @@ static void regressions(void)
     int sizes[5] = {0, 0, 0, 0, 0};
     for (int k = 0; k < 200; ++k) {
         sd_vec3 w = k < 6 ? sd_v3(k / 2 == 0 ? 1 - 2 * (k & 1) : 0, k / 2 == 1 ? 1 - 2 * (k & 1) : 0, k / 2 == 2 ? 1 - 2 * (k & 1) : 0)
-                          : random_unit(&r8);
+                          : rand_unit(&r8);
         g = sd_gjk_distance(&A, &B, w);
         sizes[g.simplex.n]++;
         e = sd_epa_penetration(&A, &B, &g);
@@ -766,9 +751,9 @@ static void bounded_stop(void)
         sd_shape sa = random_shape(&rng, ka), sb = random_shape(&rng, kb);
         double stop = sd_rng_range(&rng, 0, 0.3);
         double L = sa.bound + sb.bound;
-        sd_vec3 xb = sd_v3_scale(random_unit(&rng), sd_rng_range(&rng, 0.3, 1.4) * L);
-        sd_convex A = body(&sa, sd_v3_zero(), random_quat(&rng)), B = body(&sb, xb, random_quat(&rng));
-        sd_vec3 warm = (k & 1) ? random_unit(&rng) : sd_v3_zero();
+        sd_vec3 xb = sd_v3_scale(rand_unit(&rng), sd_rng_range(&rng, 0.3, 1.4) * L);
+        sd_convex A = body(&sa, sd_v3_zero(), rand_quat(&rng)), B = body(&sb, xb, rand_quat(&rng));
+        sd_vec3 warm = (k & 1) ? rand_unit(&rng) : sd_v3_zero();
         sd_gjk_result full = sd_gjk_distance(&A, &B, sd_v3_zero());
         sd_gjk_result g = sd_gjk_distance_bounded(&A, &B, warm, stop);
         int full_sep = full.status == SD_GJK_SEPARATED || full.status == SD_GJK_MAX_ITER;
