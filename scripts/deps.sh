@@ -23,9 +23,13 @@ set -euo pipefail
 # engine's own elementary functions (core/math.h) to 1 ulp.
 # libcairo2-dev: `shapedem render` (src/render/) draws frames headless into
 # PNG files with cairo's image surfaces (the build leaves render out without it).
+# openmpi-bin, libopenmpi-dev: the MPI decomposition (shapedem-mpi, docs/mpi.md);
+# libhdf5-openmpi-dev: HDF5 built with MPI-IO, with which shapedem-mpi writes
+# each checkpoint from every rank into one file (without it rank 0 writes it;
+# CMake takes the serial HDF5, pkg-config's hdf5-serial, for everything else).
 need_pkgs=(build-essential cmake pkg-config libyaml-dev libhdf5-dev libccd-dev libqhull-dev
   python3 python3-matplotlib git clang libclang-rt-dev valgrind libmpfr-dev
-  libcairo2-dev openmpi-bin libopenmpi-dev)
+  libcairo2-dev openmpi-bin libopenmpi-dev libhdf5-openmpi-dev)
 if [[ "${SHAPEDEM_WITH_BENCH:-0}" == 1 ]]; then
   need_pkgs+=(liggghts)
 fi

@@ -6,8 +6,11 @@
  *
  * Failures before the run (bad input, a refused scene) are agreed over
  * the ranks, so one message is printed and every rank returns the same
- * status: no rank waits in a collective for one that returned. Failures
- * inside a step end the job from the rank that met them (sd_mpi_fail).
+ * status: no rank waits in a collective for one that returned. A guard
+ * that trips inside a step stops every rank at that step (sd_mpi_drive_step):
+ * rank 0 writes failed-<step>.h5 and summary.txt as a serial run does;
+ * other failures inside a step end the job from the rank that met them
+ * (sd_mpi_fail).
  */
 #define _POSIX_C_SOURCE 200809L
 
@@ -149,7 +152,7 @@ int sd_cli_mpi_begin(const void *cli, sd_cli_load_fn load, const char *restart, 
 void sd_cli_mpi_run(sd_cli_mpi *mp, sd_run *run)
 {
     sd_run_set_stepper(run, sd_mpi_drive_step, &mp->d);
-    sd_run_set_checkpoint_hook(run, sd_mpi_drive_checkpoint, &mp->d);
+    sd_run_set_checkpoint_writer(run, sd_mpi_drive_write, &mp->d);
 }
 
 void sd_cli_mpi_end(sd_cli_mpi *mp, sd_run *run, char *note, size_t size)

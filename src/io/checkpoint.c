@@ -2,6 +2,14 @@
  * a snapshot (world/snapshot.h) to an in-memory HDF5 image and back, the
  * atomic file write, and the public calls of shapedem/scene.h.
  *
+ * One writer for every file: the items of a snapshot, each one dataset
+ * with its attributes, and the root's attributes. A serial write takes
+ * every item's rows whole; a collective one (mpi/ckpt.c) the runs of rows
+ * each MPI process holds. The build compiles this file twice where a
+ * parallel HDF5 is found (CMakeLists.txt): against the serial library for
+ * libshapedem and shapedem, and with SHAPEDEM_HDF5_MPIIO against the MPI
+ * one for shapedem-mpi, which then writes through MPI-IO.
+ *
  * Invariant: the reader never trusts a size it read: every dataset is
  * checked for its type, rank, and bytes no more than the image holds
  * before anything is allocated, and the checksum of the data read is
@@ -20,6 +28,9 @@
 #include <string.h>
 
 #include <hdf5.h>
+#ifdef SHAPEDEM_HDF5_MPIIO
+#include <mpi.h>
+#endif
 
 #include <shapedem/scene.h>
 
@@ -179,8 +190,11 @@ static hid_t sd_h5_core_fapl(void)
     return fapl;
 }
 
-/* One dataset /group/name for an item: (rows,) or (rows, values). */
-static int sd_h5_write_item(hid_t file, const sd_snap_item *it)
+/* One dataset /group/name for an item: (rows,) or (rows, values). part
+ * NULL: the item's rows are the whole dataset; else this process writes
+ * part's runs of it (io/checkpoint.h), with the transfer list dxpl
+ * (collective: every process calls this for every item, in one order). */
+static int sd_h5_write_item(hid_t file, const sd_snap_item *it, const sd_ckpt_part *part, hid_t dxpl)
 {
     char group[64];
     const char *slash = strchr(it->name, '/');
@@ -193,16 +207,36 @@ static int sd_h5_write_item(hid_t file, const sd_snap_item *it)
                                                       : H5Gcreate2(file, group, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     if (g < 0)
         return 0;
-    hsize_t dims[2] = {(hsize_t)it->count, (hsize_t)it->comps};
-    hid_t sp = H5Screate_simple(it->comps == 1 ? 1 : 2, dims, NULL);
+    size_t rows = part ? part->rows : it->count;
+    int rank = it->comps == 1 ? 1 : 2;
+    hsize_t dims[2] = {(hsize_t)rows, (hsize_t)it->comps};
+    hid_t sp = H5Screate_simple(rank, dims, NULL);
     hid_t d = sp < 0 ? -1 : H5Dcreate2(g, slash + 1, sd_h5_type(it->type), sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     int ok = d >= 0;
-    if (ok && it->count > 0 && it->comps > 0)
-        ok = H5Dwrite(d, sd_h5_native(it->type), H5S_ALL, H5S_ALL, H5P_DEFAULT, it->data) >= 0;
+    if (ok && rows > 0 && it->comps > 0) {
+        if (!part)
+            ok = H5Dwrite(d, sd_h5_native(it->type), H5S_ALL, H5S_ALL, dxpl, it->data) >= 0;
+        else {
+            /* this process's runs of the file's rows, from its rows in turn
+             * (none selected on both sides when it writes nothing) */
+            hsize_t mdims[2] = {(hsize_t)(it->count ? it->count : 1), (hsize_t)it->comps};
+            hid_t ms = H5Screate_simple(rank, mdims, NULL);
+            ok = ms >= 0 && H5Sselect_none(sp) >= 0 && (it->count > 0 || H5Sselect_none(ms) >= 0);
+            for (size_t k = 0; ok && k < part->nseg; ++k) {
+                hsize_t start[2] = {(hsize_t)part->seg[2 * k], 0}, cnt[2] = {(hsize_t)part->seg[2 * k + 1],
+                                                                             (hsize_t)it->comps};
+                if (cnt[0] > 0)
+                    ok = H5Sselect_hyperslab(sp, H5S_SELECT_OR, start, NULL, cnt, NULL) >= 0;
+            }
+            ok = ok && H5Dwrite(d, sd_h5_native(it->type), ms, sp, dxpl, it->data) >= 0;
+            if (ms >= 0)
+                H5Sclose(ms);
+        }
+    }
     int type = (int)it->type;
-    if (ok)
+    if (d >= 0) /* the attributes whatever happened above: collective calls */
         ok = sd_h5_attr_write(d, "type", H5T_STD_I32LE, H5T_NATIVE_INT, &type) &&
-             sd_h5_attr_str_write(d, "type_name", sd_state_type_name(it->type));
+             sd_h5_attr_str_write(d, "type_name", sd_state_type_name(it->type)) && ok;
     if (d >= 0)
         H5Dclose(d);
     if (sp >= 0)
@@ -298,9 +332,12 @@ static sd_status sd_ckpt_check_header(const unsigned char *b, size_t size, sd_er
 }
 
 /* Writes the snapshot as an HDF5 file at path (truncated when there),
- * closed on return. HDF5 writes the file itself: an image taken from an
- * open in-memory file has a superblock whose checksum a reader refuses. */
-static sd_status sd_h5_write_path(const sd_snapshot *s, const char *path, sd_error *err)
+ * closed on return; sealed (sd_ckpt_seal) when parts is NULL. HDF5 writes
+ * the file itself: an image taken from an open in-memory file has a
+ * superblock whose checksum a reader refuses. With parts (a build with
+ * SHAPEDEM_HDF5_MPIIO), every MPI process writes its parts of each item
+ * through MPI-IO, collectively; the caller seals the file. */
+static sd_status sd_h5_write_path(const sd_snapshot *s, const sd_ckpt_part *parts, const char *path, sd_error *err)
 {
     sd_h5_quiet();
     hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
@@ -309,6 +346,19 @@ static sd_status sd_h5_write_path(const sd_snapshot *s, const char *path, sd_err
         H5Pclose(fapl);
         fapl = -1;
     }
+    hid_t dxpl = H5P_DEFAULT;
+#ifdef SHAPEDEM_HDF5_MPIIO
+    if (parts && fapl >= 0) {
+        /* one file for every process; the datasets' rows written in one
+         * collective MPI-IO call per dataset */
+        dxpl = H5Pcreate(H5P_DATASET_XFER);
+        if (H5Pset_fapl_mpio(fapl, MPI_COMM_WORLD, MPI_INFO_NULL) < 0 || dxpl < 0 ||
+            H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE) < 0) {
+            H5Pclose(fapl);
+            fapl = -1;
+        }
+    }
+#endif
     /* the first SD_CKPT_HEADER bytes are an HDF5 user block: our header
      * (sd_ckpt_seal), which h5py and HDF5 skip */
     hid_t fcpl = H5Pcreate(H5P_FILE_CREATE);
@@ -321,8 +371,11 @@ static sd_status sd_h5_write_path(const sd_snapshot *s, const char *path, sd_err
         H5Pclose(fapl);
     if (fcpl >= 0)
         H5Pclose(fcpl);
-    if (f < 0)
+    if (f < 0) {
+        if (dxpl != H5P_DEFAULT && dxpl >= 0)
+            H5Pclose(dxpl);
         return sd_error_set(err, SD_ERR_IO, path, 0, "", "HDF5 cannot create the checkpoint file");
+    }
     uint32_t version = s->version;
     int64_t step = s->step;
     int32_t dim = s->dimension;
@@ -335,17 +388,21 @@ static sd_status sd_h5_write_path(const sd_snapshot *s, const char *path, sd_err
              sd_h5_attr_write(f, "dimension", H5T_STD_I32LE, H5T_NATIVE_INT32, &dim) &&
              sd_h5_attr_str_write(f, "solver", s->solver) && sd_h5_attr_str_write(f, "writer", s->writer);
     const char *bad = NULL;
-    for (size_t k = 0; ok && k < s->n; ++k)
-        if (!sd_h5_write_item(f, &s->items[k])) {
+    /* collectively every item is visited whatever failed before (a
+     * process leaving the sequence would leave the others waiting) */
+    for (size_t k = 0; (ok || parts) && k < s->n; ++k)
+        if (!sd_h5_write_item(f, &s->items[k], parts ? &parts[k] : NULL, dxpl) && !bad) {
             ok = 0;
             bad = s->items[k].name;
         }
+    if (dxpl != H5P_DEFAULT)
+        H5Pclose(dxpl);
     if (H5Fclose(f) < 0)
         ok = 0;
     if (!ok)
         return sd_error_set(err, SD_ERR_IO, path, 0, bad ? bad : "", "HDF5 could not write the checkpoint%s%s "
                             "(disk full?)", bad ? ": dataset " : "", bad ? bad : "");
-    return sd_ckpt_seal(path, err);
+    return parts ? SD_OK : sd_ckpt_seal(path, err);
 }
 
 static sd_status sd_read_all(const char *path, void **buf, size_t *size, sd_error *err)
@@ -396,7 +453,7 @@ sd_status sd_checkpoint_encode(const sd_snapshot *s, void **buf, size_t *size, s
     if (fd < 0)
         return sd_error_set(err, SD_ERR_IO, path, 0, "", "cannot make a temporary file: %s", strerror(errno));
     close(fd);
-    sd_status st = sd_h5_write_path(s, path, err);
+    sd_status st = sd_h5_write_path(s, NULL, path, err);
     if (st == SD_OK)
         st = sd_read_all(path, buf, size, err);
     remove(path);
@@ -632,46 +689,113 @@ static int sd_fsync_path(const char *path)
     return r;
 }
 
-sd_status sd_checkpoint_write_file(const sd_snapshot *s, const char *path, sd_error *err)
+/* The temporary beside path (rename stays on one file system):
+ * dir/.name.tmp, sd_malloc'd; NULL out of memory. */
+static char *sd_ckpt_tmp_name(const char *path)
 {
-    /* the temporary beside the file (rename stays on one file system):
-     * dir/.name.tmp */
     size_t len = strlen(path);
     const char *slash = strrchr(path, '/');
     size_t dl = slash ? (size_t)(slash - path) + 1 : 0;
     char *tmp = sd_malloc(len + 6);
     if (!tmp)
-        return sd_error_set(err, SD_ERR_MEMORY, path, 0, "", "out of memory");
+        return NULL;
     memcpy(tmp, path, dl);
     tmp[dl] = '.';
     memcpy(tmp + dl + 1, path + dl, len - dl);
     memcpy(tmp + len + 1, ".tmp", 5);
-    const char *what = sd_fs_not_regular(tmp);
-    sd_status st = what ? sd_error_set(err, SD_ERR_IO, tmp, 0, "", "cannot write the checkpoint: %s is in the way",
-                                       what)
-                        : sd_h5_write_path(s, tmp, err);
+    return tmp;
+}
+
+/* A written temporary made durable and renamed to path (st: how its
+ * writing went); removed on any failure. */
+static sd_status sd_ckpt_finish(sd_status st, const char *tmp, const char *path, sd_error *err)
+{
     if (st == SD_OK && sd_fsync_path(tmp) != 0)
         st = sd_error_set(err, SD_ERR_IO, tmp, 0, "", "cannot flush the checkpoint to disk: %s", strerror(errno));
     if (st == SD_OK && rename(tmp, path) != 0)
         st = sd_error_set(err, SD_ERR_IO, path, 0, "", "cannot rename the finished checkpoint into place: %s",
                           strerror(errno));
     if (st != SD_OK) {
-        if (!what)
-            remove(tmp);
-    } else {
-        char *dir = sd_malloc(dl + 2);
-        if (dir) {
-            if (dl)
-                memcpy(dir, path, dl);
-            else
-                dir[dl++] = '.';
-            dir[dl] = '\0';
-            (void)sd_fsync_path(dir);
-            sd_free(dir);
+        remove(tmp);
+        return st;
+    }
+    const char *slash = strrchr(path, '/');
+    size_t dl = slash ? (size_t)(slash - path) + 1 : 0;
+    char *dir = sd_malloc(dl + 2);
+    if (dir) {
+        if (dl)
+            memcpy(dir, path, dl);
+        else
+            dir[dl++] = '.';
+        dir[dl] = '\0';
+        (void)sd_fsync_path(dir);
+        sd_free(dir);
+    }
+    return SD_OK;
+}
+
+sd_status sd_checkpoint_write_file(const sd_snapshot *s, const char *path, sd_error *err)
+{
+    char *tmp = sd_ckpt_tmp_name(path);
+    if (!tmp)
+        return sd_error_set(err, SD_ERR_MEMORY, path, 0, "", "out of memory");
+    const char *what = sd_fs_not_regular(tmp);
+    sd_status st = what ? sd_error_set(err, SD_ERR_IO, tmp, 0, "", "cannot write the checkpoint: %s is in the way",
+                                       what)
+                        : sd_ckpt_finish(sd_h5_write_path(s, NULL, tmp, err), tmp, path, err);
+    sd_free(tmp);
+    return st;
+}
+
+int sd_checkpoint_collective(void)
+{
+#ifdef SHAPEDEM_HDF5_MPIIO
+    return 1;
+#else
+    return 0;
+#endif
+}
+
+sd_status sd_checkpoint_write_collective(const sd_snapshot *s, const sd_ckpt_part *parts, const char *path,
+                                         sd_error *err)
+{
+#ifdef SHAPEDEM_HDF5_MPIIO
+    int rank = 0;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    char *tmp = sd_ckpt_tmp_name(path);
+    const char *what = tmp ? sd_fs_not_regular(tmp) : NULL;
+    /* every process takes the same way: rank 0's look at the temporary */
+    int go = tmp && !what;
+    MPI_Bcast(&go, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    sd_status st = SD_OK;
+    if (!go)
+        st = !tmp ? sd_error_set(err, SD_ERR_MEMORY, path, 0, "", "out of memory")
+                  : sd_error_set(err, SD_ERR_IO, tmp, 0, "", "cannot write the checkpoint: %s is in the way",
+                                 what ? what : "something");
+    else {
+        st = sd_h5_write_path(s, parts, tmp, err); /* collective; closed on every process on return */
+        int ok = st == SD_OK, all = 0;
+        MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_LAND, MPI_COMM_WORLD); /* every process has closed it */
+        if (rank == 0) {
+            if (all && st == SD_OK)
+                st = sd_ckpt_seal(tmp, err);
+            else if (st == SD_OK)
+                st = sd_error_set(err, SD_ERR_IO, path, 0, "", "HDF5 could not write the checkpoint on another "
+                                  "process (disk full?)");
+            st = sd_ckpt_finish(st, tmp, path, err);
         }
+        int code = (int)st;
+        MPI_Bcast(&code, 1, MPI_INT, 0, MPI_COMM_WORLD);
+        st = (sd_status)code;
     }
     sd_free(tmp);
     return st;
+#else
+    (void)s;
+    (void)parts;
+    return sd_error_set(err, SD_ERR_INTERNAL, path, 0, "", "this build writes checkpoints from one process (its "
+                        "HDF5 has no MPI-IO)");
+#endif
 }
 
 /* ---- the public calls (shapedem/scene.h) -------------------------------------- */

@@ -43,4 +43,32 @@ int sd_checkpoint_is_file(const char *path);
 /* Writes a snapshot to path atomically (temporary name, fsync, rename). */
 sd_status sd_checkpoint_write_file(const sd_snapshot *s, const char *path, sd_error *err);
 
+/* ---- one file written by every MPI process together (mpi/ckpt.c) ---------- */
+
+/* What this process writes of one dataset: the dataset has `rows` rows in
+ * the file; this process writes nseg runs of them, run k being rows
+ * seg[2k] .. seg[2k] + seg[2k + 1] - 1, whose values are the snapshot
+ * item's rows in turn (the item's count is the sum of the runs). */
+typedef struct sd_ckpt_part {
+    size_t rows;
+    size_t nseg;
+    const size_t *seg;
+} sd_ckpt_part;
+
+/* 1 when this build writes checkpoints collectively through MPI-IO (the
+ * library compiled against a parallel HDF5, SHAPEDEM_HDF5_MPIIO: the
+ * shapedem-mpi program), 0 otherwise (rank 0 then writes alone). */
+int sd_checkpoint_collective(void);
+
+/* Collective over MPI_COMM_WORLD: every process passes the same list of
+ * items (names, types, values per row, in the same order), the same
+ * header (step, time, checksum of the whole data, ...) and its parts[k]
+ * of each item; the file is written under a temporary name through
+ * MPI-IO, then rank 0 seals it (the header's size and checksum), flushes
+ * it and renames it into place after every process has closed it. The
+ * status is the same on every process; err is filled on rank 0. Returns
+ * SD_ERR_INTERNAL where sd_checkpoint_collective() is 0. */
+sd_status sd_checkpoint_write_collective(const sd_snapshot *s, const sd_ckpt_part *parts, const char *path,
+                                         sd_error *err);
+
 #endif

@@ -55,8 +55,8 @@ struct sd_run {
     int stopped;                 /* it was met: steps == done */
     sd_run_stepper stepper;      /* NULL: sd_world_step (io/run.h) */
     void *stepper_ctx;
-    void (*before_ckpt)(void *ctx); /* NULL: none (io/run.h) */
-    void *before_ckpt_ctx;
+    sd_run_ckpt_writer write_ckpt; /* NULL: sd_checkpoint_write (io/run.h) */
+    void *write_ckpt_ctx;
     char *note;                  /* summary.txt's extra lines, NULL none */
 };
 
@@ -190,15 +190,20 @@ long sd_run_steps_to_output(const sd_run *r)
     return next - r->done;
 }
 
+/* The world's state as a checkpoint file at path: the run's writer (a
+ * decomposed run's: every rank, io/run.h) or sd_checkpoint_write. */
+static sd_status sd_run_write_state(sd_run *r, const char *path, sd_error *err)
+{
+    return r->write_ckpt ? r->write_ckpt(r->write_ckpt_ctx, path, err) : sd_checkpoint_write(r->w, path, err);
+}
+
 sd_status sd_run_checkpoint(sd_run *r, sd_error *err)
 {
     if (!r->out)
         return SD_OK; /* a run without files writes no checkpoint either */
     char path[sizeof r->ckpt_last];
     snprintf(path, sizeof path, "%s/checkpoint-%06ld.h5", r->dir, sd_world_step_count(r->w));
-    if (r->before_ckpt)
-        r->before_ckpt(r->before_ckpt_ctx);
-    sd_status st = sd_checkpoint_write(r->w, path, err);
+    sd_status st = sd_run_write_state(r, path, err);
     if (st == SD_OK) {
         snprintf(r->ckpt_last, sizeof r->ckpt_last, "%s", path);
         r->ckpt_wall = sd_run_now();
@@ -227,7 +232,7 @@ static void sd_run_failed_state(sd_run *r, sd_error *err)
     snprintf(path, sizeof path, "%s/failed-%06ld.h5", r->dir, sd_world_step_count(r->w));
     sd_error e2;
     memset(&e2, 0, sizeof e2);
-    if (sd_checkpoint_write(r->w, path, &e2) == SD_OK) {
+    if (sd_run_write_state(r, path, &e2) == SD_OK) {
         size_t n = strlen(err->msg);
         snprintf(err->msg + n, sizeof err->msg - n, "; the state is in %s for inspection", path);
     }
@@ -314,10 +319,10 @@ void sd_run_set_stepper(sd_run *r, sd_run_stepper step, void *ctx)
     r->stepper_ctx = ctx;
 }
 
-void sd_run_set_checkpoint_hook(sd_run *r, void (*before)(void *ctx), void *ctx)
+void sd_run_set_checkpoint_writer(sd_run *r, sd_run_ckpt_writer write, void *ctx)
 {
-    r->before_ckpt = before;
-    r->before_ckpt_ctx = ctx;
+    r->write_ckpt = write;
+    r->write_ckpt_ctx = ctx;
 }
 
 void sd_run_set_note(sd_run *r, const char *lines)

@@ -14,9 +14,13 @@ typedef sd_status (*sd_run_stepper)(void *ctx, long steps, sd_error *err);
 
 /* The run calls step(ctx, n, err) where it would call sd_world_step(w, n). */
 void sd_run_set_stepper(sd_run *r, sd_run_stepper step, void *ctx);
-/* before(ctx) is called before each checkpoint the run writes (a
- * decomposed run marks its worlds for a rebuild there: docs/mpi.md). */
-void sd_run_set_checkpoint_hook(sd_run *r, void (*before)(void *ctx), void *ctx);
+/* Writes the state of the run's simulation as a checkpoint at path. */
+typedef sd_status (*sd_run_ckpt_writer)(void *ctx, const char *path, sd_error *err);
+/* The run calls write(ctx, path, err) for each checkpoint and for the
+ * failed-<step>.h5 of a step that failed on the state, where it would call
+ * sd_checkpoint_write(world, path, err) (a decomposed run writes from
+ * every rank, and marks its worlds for a rebuild there: docs/mpi.md). */
+void sd_run_set_checkpoint_writer(sd_run *r, sd_run_ckpt_writer write, void *ctx);
 /* Lines (each ended by '\n') added to summary.txt; copied. */
 void sd_run_set_note(sd_run *r, const char *lines);
 

@@ -10,16 +10,21 @@
  * the view.
  */
 #include <mpi.h>
+#include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+
+#include <shapedem/scene.h>
 
 #include "core/alloc.h"
 #include "core/error.h"
+#include "io/checkpoint.h"
 #include "mpi/mpi.h"
 #include "world/view.h"
 #include "world/world.h"
 
-enum { SD_DRIVE_STEP = 1, SD_DRIVE_VIEW = 2, SD_DRIVE_END = 3, SD_DRIVE_CHECKPOINT = 4 };
+enum { SD_DRIVE_STEP = 1, SD_DRIVE_VIEW = 2, SD_DRIVE_END = 3, SD_DRIVE_WRITE = 4 };
 
 /* ---- where the time goes (summary.txt's mpi_ lines; bench/mpi) ---------------- */
 
@@ -88,47 +93,104 @@ void sd_mpi_drive_time(sd_world *w)
     w->comm = &sd_drive_time.table;
 }
 
-/* One command: what, and how many steps. */
+/* One command: what, how many steps (a WRITE: the path's length), and a
+ * WRITE's way (1: every rank into the file, 0: rank 0 from the view). */
 static void sd_drive_bcast(long long *cmd)
 {
-    MPI_Bcast(cmd, 2, MPI_LONG_LONG, 0, MPI_COMM_WORLD);
+    MPI_Bcast(cmd, 3, MPI_LONG_LONG, 0, MPI_COMM_WORLD);
 }
 
-/* Every rank: the command's work. Step errors end the job from the rank
- * that met them (no other rank could go on without it). */
+/* Every rank: n steps, in runs that end where the world checks its state
+ * (world/step.c: the guards and the finite check, every 256 steps and at
+ * the end of each call), so a guard that trips on one rank stops every
+ * rank at the same step: after each run the ranks agree whether any
+ * failed, and every rank returns the lowest failing rank's error, its
+ * message naming that rank. Splitting a call into runs changes no bit of
+ * the state (io/run.c). Any other failure comes from inside a step, where
+ * the other ranks wait in an exchange: that rank ends the job
+ * (sd_mpi_fail). */
+static sd_status sd_drive_steps(sd_mpi *m, sd_world *w, long n, sd_error *err)
+{
+    int rank = sd_mpi_rank(m), size = sd_mpi_size(m);
+    while (n > 0) {
+        long run = 256 - (w->step & 255);
+        if (run > n)
+            run = n;
+        long end = w->step + run;
+        sd_status st = sd_world_step(w, run, err);
+        if (st != SD_OK && w->step != end)
+            sd_mpi_fail(m, "step", st, err);
+        int me = st != SD_OK ? rank : size, low = size;
+        MPI_Allreduce(&me, &low, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+        if (low == size) {
+            n -= run;
+            continue;
+        }
+        sd_error e;
+        memset(&e, 0, sizeof e);
+        if (rank == low && err)
+            e = *err;
+        int code = (int)st;
+        MPI_Bcast(&code, 1, MPI_INT, low, MPI_COMM_WORLD);
+        MPI_Bcast(&e, (int)sizeof e, MPI_BYTE, low, MPI_COMM_WORLD);
+        if (err) {
+            *err = e;
+            if (size > 1)
+                snprintf(err->msg, sizeof err->msg, "rank %d of %d: %.*s", low, size, (int)sizeof e.msg - 24, e.msg);
+        }
+        return (sd_status)code;
+    }
+    return SD_OK;
+}
+
+/* Every rank: the command's work, then the view gathered (also after a
+ * failed step: the failed state is written from it). */
 static sd_status sd_drive_do(sd_mpi *m, sd_world *w, sd_world *g, const long long *cmd, sd_error *err)
 {
-    if (cmd[0] == SD_DRIVE_CHECKPOINT) {
-        /* a checkpoint's state (the view) holds no pair lists for a step to
-         * use: every restart rebuilds them at its first step, from the
-         * springs by key; the run that wrote it does the same, on every
-         * rank, so a restart on any rank count continues with its bits */
-        w->dirty = 1;
-        if (g)
-            g->dirty = 1;
-        return SD_OK;
-    }
-    if (cmd[0] == SD_DRIVE_STEP || !w->prepared) { /* a VIEW first prepares (collective: the rebuild's hooks) */
-        double t = sd_drive_now();
-        sd_status st = sd_world_step(w, cmd[0] == SD_DRIVE_STEP ? (long)cmd[1] : 0, err);
-        sd_drive_time.step += sd_drive_now() - t;
+    double t = sd_drive_now();
+    sd_status st = SD_OK;
+    if (cmd[0] == SD_DRIVE_STEP)
+        st = sd_drive_steps(m, w, (long)cmd[1], err);
+    else if (!w->prepared) { /* a VIEW first prepares (collective: the rebuild's hooks) */
+        st = sd_world_step(w, 0, err);
         if (st != SD_OK)
             sd_mpi_fail(m, "step", st, err);
     }
-    return sd_mpi_view(m, w, g, err);
+    sd_drive_time.step += sd_drive_now() - t;
+    sd_error verr;
+    memset(&verr, 0, sizeof verr);
+    sd_status vs = sd_mpi_view(m, w, g, st == SD_OK ? err : &verr);
+    return st != SD_OK ? st : vs;
+}
+
+/* Every rank: the state as a checkpoint at path, from every rank into one
+ * file (mpi/ckpt.c: collective) or from the view on rank 0. A checkpoint's
+ * state (the view) holds no pair lists for a step to use: every restart
+ * rebuilds them at its first step, from the springs by key; the run that
+ * wrote it does the same, on every rank, so a restart on any rank count
+ * continues with its bits. */
+static sd_status sd_drive_write(sd_mpi *m, sd_world *w, sd_world *g, int collective, const char *path,
+                                sd_error *err)
+{
+    w->dirty = 1;
+    if (g)
+        g->dirty = 1;
+    if (collective)
+        return sd_mpi_checkpoint_write(m, w, g, path, err);
+    return g ? sd_checkpoint_write(g, path, err) : SD_OK;
 }
 
 sd_status sd_mpi_drive_step(void *drive, long n, sd_error *err)
 {
     sd_mpi_drive *d = drive;
-    long long cmd[2] = {SD_DRIVE_STEP, n};
+    long long cmd[3] = {SD_DRIVE_STEP, n, 0};
     sd_drive_bcast(cmd);
     return sd_drive_do(d->m, d->w, d->g, cmd, err);
 }
 
 sd_status sd_mpi_drive_view(sd_mpi_drive *d, sd_error *err)
 {
-    long long cmd[2] = {SD_DRIVE_VIEW, 0};
+    long long cmd[3] = {SD_DRIVE_VIEW, 0, 0};
     sd_drive_bcast(cmd);
     return sd_drive_do(d->m, d->w, d->g, cmd, err);
 }
@@ -182,17 +244,23 @@ static void sd_drive_note(sd_mpi *m, const sd_world *w, char *note, size_t size)
 #undef SD_NOTE
 }
 
-void sd_mpi_drive_checkpoint(void *drive)
+sd_status sd_mpi_drive_write(void *drive, const char *path, sd_error *err)
 {
     sd_mpi_drive *d = drive;
-    long long cmd[2] = {SD_DRIVE_CHECKPOINT, 0};
+    size_t len = strlen(path);
+    /* every rank into the one file where this build's HDF5 has MPI-IO,
+     * unless SHAPEDEM_MPI_CHECKPOINT=rank0 (docs/mpi.md): rank 0 decides */
+    const char *way = getenv("SHAPEDEM_MPI_CHECKPOINT");
+    int collective = sd_checkpoint_collective() && !(way && !strcmp(way, "rank0"));
+    long long cmd[3] = {SD_DRIVE_WRITE, (long long)len, collective};
     sd_drive_bcast(cmd);
-    (void)sd_drive_do(d->m, d->w, d->g, cmd, NULL);
+    MPI_Bcast((void *)(uintptr_t)path, (int)len + 1, MPI_CHAR, 0, MPI_COMM_WORLD);
+    return sd_drive_write(d->m, d->w, d->g, collective, path, err);
 }
 
 void sd_mpi_drive_end(sd_mpi_drive *d, char *note, size_t size)
 {
-    long long cmd[2] = {SD_DRIVE_END, 0};
+    long long cmd[3] = {SD_DRIVE_END, 0, 0};
     sd_drive_bcast(cmd);
     sd_drive_note(d->m, d->w, note, size);
 }
@@ -200,13 +268,23 @@ void sd_mpi_drive_end(sd_mpi_drive *d, char *note, size_t size)
 void sd_mpi_follow(sd_mpi *m, sd_world *w)
 {
     for (;;) {
-        long long cmd[2];
+        long long cmd[3];
         sd_drive_bcast(cmd);
         if (cmd[0] == SD_DRIVE_END)
             break;
         sd_error err;
         memset(&err, 0, sizeof err);
-        (void)sd_drive_do(m, w, NULL, cmd, &err); /* a failed gather is rank 0's to report */
+        if (cmd[0] == SD_DRIVE_WRITE) { /* the file's path, then every rank writes */
+            char *path = cmd[1] >= 0 && cmd[1] < (1 << 20) ? sd_malloc((size_t)cmd[1] + 1) : NULL;
+            if (!path)
+                sd_mpi_fail(m, "checkpoint", SD_ERR_MEMORY, NULL);
+            MPI_Bcast(path, (int)cmd[1] + 1, MPI_CHAR, 0, MPI_COMM_WORLD);
+            /* rank 0 reports the status, the same on every rank */
+            (void)sd_drive_write(m, w, NULL, (int)cmd[2], path, &err);
+            sd_free(path);
+            continue;
+        }
+        (void)sd_drive_do(m, w, NULL, cmd, &err); /* a failed step or gather is rank 0's to report */
     }
     sd_drive_note(m, w, NULL, 0);
 }

@@ -45,8 +45,10 @@
  *          pairs in the order of its keys' sub-indices)
  *
  * Errors: a failing MPI call aborts every rank (MPI_ERRORS_ARE_FATAL, the
- * default); an engine error on one rank is reported by that rank and ends
- * the job with sd_mpi_fail, never a hang of the others in a collective.
+ * default); a guard or the finite check failing on one rank stops every
+ * rank at that step (they run at the same steps everywhere: mpi/drive.c);
+ * another engine error on one rank is reported by that rank and ends the
+ * job with sd_mpi_fail, never a hang of the others in a collective.
  */
 #ifndef SD_MPI_MPI_H
 #define SD_MPI_MPI_H
@@ -138,6 +140,19 @@ const unsigned char *sd_mpi_row_unpack(struct sd_particles *p, size_t k, const u
  * in an order of stable ids, the same bits on any rank count. */
 sd_status sd_mpi_view(const sd_mpi *m, const sd_world *w, sd_world *g, sd_error *err);
 
+/* ---- checkpoints from every rank (mpi/ckpt.c) ------------------------------------ */
+
+/* Collective. Writes the decomposed world w as the checkpoint at path that
+ * rank 0 would write from the view g (sd_checkpoint_write(g, ...): the same
+ * datasets, rows and attributes), every rank writing its block of the
+ * rows into the one file through MPI-IO (io/checkpoint.h,
+ * sd_checkpoint_write_collective; where sd_checkpoint_collective() is 0 it
+ * returns SD_ERR_INTERNAL). g is rank 0's current view (its small datasets
+ * are written from it), NULL on the other ranks. The status is the same on
+ * every rank; err is filled on rank 0. */
+sd_status sd_mpi_checkpoint_write(const sd_mpi *m, const sd_world *w, const sd_world *g, const char *path,
+                                  sd_error *err);
+
 /* ---- `shapedem run` under mpirun (mpi/drive.c) ------------------------------------ */
 
 /* Rank 0 runs the scene's schedule (io/run.c) on the view g and tells the
@@ -150,8 +165,12 @@ typedef struct sd_mpi_drive {
 } sd_mpi_drive;
 
 /* Rank 0, the run's stepper (io/run.h): every rank steps n steps, then g
- * is gathered. An error of a rank's step ends the job from that rank
- * (sd_mpi_fail); a failed gather is returned. */
+ * is gathered. A guard or the finite check failing on some rank stops
+ * every rank at that step (the checks run at the same steps on every
+ * rank): the lowest such rank's error is returned, naming it, and g holds
+ * the state then (the run writes failed-<step>.h5 from it). Another error
+ * inside a rank's step ends the job from that rank (sd_mpi_fail); a failed
+ * gather is returned. */
 sd_status sd_mpi_drive_step(void *drive, long n, sd_error *err);
 /* Rank 0, collective with the followers: g gathered again (after a
  * restore or a change outside the steps). */
@@ -167,11 +186,13 @@ sd_status sd_mpi_attach_built(sd_world *w, sd_mpi **out, sd_error *err);
  * forces those saved): the pair lists keep only the springs, by key, of
  * every pair, and the world is marked for a rebuild at its next step
  * (the rebuild carries them), which the run that wrote the checkpoint
- * made too (sd_mpi_drive_checkpoint). */
+ * made too (sd_mpi_drive_write). */
 sd_status sd_mpi_attach_restored(sd_world *w, sd_mpi **out, sd_error *err);
-/* Rank 0, before each checkpoint (io/run.h's hook): every rank's world,
- * and the view, marked for a rebuild at the next step. */
-void sd_mpi_drive_checkpoint(void *drive);
+/* Rank 0, the run's checkpoint writer (io/run.h): every rank's world, and
+ * the view, marked for a rebuild at the next step; then the state written
+ * at path, from every rank into one file where the build writes through
+ * MPI-IO (sd_mpi_checkpoint_write), else by rank 0 from the view. */
+sd_status sd_mpi_drive_write(void *drive, const char *path, sd_error *err);
 /* Every rank, after the attach: the time of this rank's steps and of its
  * exchanges is kept, for sd_mpi_drive_end's lines (mpi_step_seconds,
  * mpi_exchange_seconds, mpi_exchange_share). */

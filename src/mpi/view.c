@@ -3,9 +3,9 @@
  * checkpoint writer) reads one world, as in a serial run, and rank 0 writes
  * every file.
  *
- * What each rank sends, all as byte rows of the field lists (a field added
- * to SD_PARTICLE_FIELDS, SD_PAIR_FIELDS or SD_WALL_PAIR_FIELDS travels
- * without a change here, as in comm.c):
+ * What each rank sends, all as byte rows of the field lists (mpi/rows.h:
+ * a field added to SD_PARTICLE_FIELDS, SD_PAIR_FIELDS or
+ * SD_WALL_PAIR_FIELDS travels without a change here, as in comm.c):
  *   - its owned particles;
  *   - the pairs whose body i (the lower stable id: sd_pairs_canonical) it
  *     owns: a pair another rank's ghost takes part in is held by both
@@ -22,79 +22,13 @@
 #include "core/alloc.h"
 #include "core/error.h"
 #include "mpi/mpi.h"
+#include "mpi/rows.h"
 #include "world/mesh.h"
 #include "world/process.h"
 #include "world/world.h"
 
-/* ---- rows of pairs ------------------------------------------------------------ */
-
-static size_t sd_view_pair_size(void)
-{
-    size_t s = 0;
-#define SD_X_SIZE(type, name, per, ...) s += (per) * sizeof(type);
-    SD_PAIR_FIELDS(SD_X_SIZE)
-#undef SD_X_SIZE
-    return s;
-}
-
-static size_t sd_view_wpair_size(void)
-{
-    size_t s = 0;
-#define SD_X_SIZE(type, name, per, ...) s += (per) * sizeof(type);
-    SD_WALL_PAIR_FIELDS(SD_X_SIZE)
-#undef SD_X_SIZE
-    return s;
-}
-
-static unsigned char *sd_view_pair_pack(const sd_pair_list *l, size_t e, unsigned char *b)
-{
-#define SD_X_PACK(type, name, per, ...)                          \
-    memcpy(b, &l->name[(per) * e], (per) * sizeof(type)); \
-    b += (per) * sizeof(type);
-    SD_PAIR_FIELDS(SD_X_PACK)
-#undef SD_X_PACK
-    return b;
-}
-
-static void sd_view_pair_unpack(sd_pair_list *l, size_t e, const unsigned char *b)
-{
-#define SD_X_UNPACK(type, name, per, ...)                        \
-    memcpy(&l->name[(per) * e], b, (per) * sizeof(type)); \
-    b += (per) * sizeof(type);
-    SD_PAIR_FIELDS(SD_X_UNPACK)
-#undef SD_X_UNPACK
-}
-
-static unsigned char *sd_view_wpair_pack(const sd_wall_pair_list *l, size_t e, unsigned char *b)
-{
-#define SD_X_PACK(type, name, per, ...)                          \
-    memcpy(b, &l->name[(per) * e], (per) * sizeof(type)); \
-    b += (per) * sizeof(type);
-    SD_WALL_PAIR_FIELDS(SD_X_PACK)
-#undef SD_X_PACK
-    return b;
-}
-
-static void sd_view_wpair_unpack(sd_wall_pair_list *l, size_t e, const unsigned char *b)
-{
-#define SD_X_UNPACK(type, name, per, ...)                        \
-    memcpy(&l->name[(per) * e], b, (per) * sizeof(type)); \
-    b += (per) * sizeof(type);
-    SD_WALL_PAIR_FIELDS(SD_X_UNPACK)
-#undef SD_X_UNPACK
-}
-
-/* The kind segment pair e lies in. */
-static int32_t sd_view_kind_of(const size_t *kind_start, int kinds, size_t e)
-{
-    int32_t k = 0;
-    while (k + 1 < kinds && e >= kind_start[k + 1])
-        ++k;
-    return k;
-}
-
-/* Byte offsets of the sort keys within a row: the particle's id, a pair's
- * and a wall pair's key (the field lists' order, as the rows are packed). */
+/* Byte offset of the particle's id within its row (the field list's order,
+ * as the rows are packed; the pairs' keys: mpi/rows.h). */
 static size_t sd_view_id_offset(void)
 {
     size_t s = 0, at = 0;
@@ -108,62 +42,7 @@ static size_t sd_view_id_offset(void)
     return at;
 }
 
-static size_t sd_view_pair_key_offset(void)
-{
-    size_t s = 0, at = 0;
-    sd_pair_list probe;
-#define SD_X_AT(type, name, per, ...)                              \
-    if ((const void *)&probe.name == (const void *)&probe.key) \
-        at = s;                                                \
-    s += (per) * sizeof(type);
-    SD_PAIR_FIELDS(SD_X_AT)
-#undef SD_X_AT
-    return at;
-}
-
-static size_t sd_view_wpair_key_offset(void)
-{
-    size_t s = 0, at = 0;
-    sd_wall_pair_list probe;
-#define SD_X_AT(type, name, per, ...)                              \
-    if ((const void *)&probe.name == (const void *)&probe.key) \
-        at = s;                                                \
-    s += (per) * sizeof(type);
-    SD_WALL_PAIR_FIELDS(SD_X_AT)
-#undef SD_X_AT
-    return at;
-}
-
 /* ---- sorting on rank 0 ------------------------------------------------------------ */
-
-/* A received record: its row, and what it sorts by, in turn. */
-typedef struct sd_view_rec {
-    uint64_t k[4];
-    const unsigned char *row;
-} sd_view_rec;
-
-static int sd_view_rec_cmp(const void *x, const void *y)
-{
-    const sd_view_rec *p = x, *q = y;
-    for (int t = 0; t < 4; ++t)
-        if (p->k[t] != q->k[t])
-            return p->k[t] < q->k[t] ? -1 : 1;
-    return 0;
-}
-
-static int sd_view_id_cmp(const void *x, const void *y)
-{
-    uint64_t p = *(const uint64_t *)x, q = *(const uint64_t *)y;
-    return p < q ? -1 : (p > q ? 1 : 0);
-}
-
-/* g's index of stable id `id` (g's ids sorted); every pair's bodies are
- * owned by some rank, so the id is there. */
-static uint32_t sd_view_index(const uint64_t *ids, size_t n, uint64_t id)
-{
-    const uint64_t *f = n ? bsearch(&id, ids, n, sizeof *ids, sd_view_id_cmp) : NULL;
-    return f ? (uint32_t)(f - ids) : 0;
-}
 
 /* ---- the gather ------------------------------------------------------------------- */
 
@@ -171,7 +50,7 @@ static uint32_t sd_view_index(const uint64_t *ids, size_t n, uint64_t id)
  * records (kind, row) and the wall pair records (kind, row). */
 static unsigned char *sd_view_pack(const sd_world *w, size_t *bytes)
 {
-    size_t rs = sd_mpi_row_size(), ps = sd_view_pair_size(), ws = sd_view_wpair_size();
+    size_t rs = sd_mpi_row_size(), ps = sd_rows_pair_size(), ws = sd_rows_wpair_size();
     const sd_pair_list *l = &w->pairs;
     const sd_wall_pair_list *wl = &w->wpairs;
     size_t n = w->p.n, np = 0;
@@ -189,14 +68,14 @@ static unsigned char *sd_view_pack(const sd_world *w, size_t *bytes)
     for (size_t e = 0; e < l->n; ++e) {
         if (l->i[e] >= n)
             continue; /* the lower id is another rank's ghost here: its owner sends the pair */
-        int32_t kind = sd_view_kind_of(l->kind_start, SD_PAIR_KIND_COUNT, e);
+        int32_t kind = sd_rows_kind_of(l->kind_start, SD_PAIR_KIND_COUNT, e);
         memcpy(b, &kind, sizeof kind);
-        b = sd_view_pair_pack(l, e, b + sizeof kind);
+        b = sd_rows_pair_pack(l, e, b + sizeof kind);
     }
     for (size_t e = 0; e < wl->n; ++e) {
-        int32_t kind = sd_view_kind_of(wl->kind_start, SD_WALL_PAIR_KIND_COUNT, e);
+        int32_t kind = sd_rows_kind_of(wl->kind_start, SD_WALL_PAIR_KIND_COUNT, e);
         memcpy(b, &kind, sizeof kind);
-        b = sd_view_wpair_pack(wl, e, b + sizeof kind);
+        b = sd_rows_wpair_pack(wl, e, b + sizeof kind);
     }
     *bytes = total;
     return buf;
@@ -226,8 +105,8 @@ static void sd_view_wall_totals(sd_world *g)
 /* Rank 0: the received blocks into g. */
 static sd_status sd_view_fill(sd_world *g, const unsigned char *all, const int *displ, int size, sd_error *err)
 {
-    size_t rs = sd_mpi_row_size(), ps = sd_view_pair_size() + sizeof(int32_t),
-           ws = sd_view_wpair_size() + sizeof(int32_t);
+    size_t rs = sd_mpi_row_size(), ps = sd_rows_pair_size() + sizeof(int32_t),
+           ws = sd_rows_wpair_size() + sizeof(int32_t);
     size_t n = 0, np = 0, nw = 0;
     for (int r = 0; r < size; ++r) {
         uint64_t c[3];
@@ -237,13 +116,13 @@ static sd_status sd_view_fill(sd_world *g, const unsigned char *all, const int *
         nw += c[2];
     }
     size_t nrec = n > np + nw ? n : np + nw;
-    sd_view_rec *rec = sd_malloc((nrec ? nrec : 1) * sizeof *rec);
+    sd_rows_rec *rec = sd_malloc((nrec ? nrec : 1) * sizeof *rec);
     if (!rec || sd_particles_reserve(&g->p, n) != SD_OK || sd_pairs_reserve(&g->pairs, np) != SD_OK ||
         sd_pairs_reserve_walls(&g->wpairs, nw) != SD_OK) {
         sd_free(rec);
         return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory gathering %zu particles on rank 0", n);
     }
-    size_t id_at = sd_view_id_offset(), key_at = sd_view_pair_key_offset(), wkey_at = sd_view_wpair_key_offset();
+    size_t id_at = sd_view_id_offset();
     /* the particles, by stable id */
     size_t t = 0;
     for (int r = 0; r < size; ++r) {
@@ -252,12 +131,12 @@ static sd_status sd_view_fill(sd_world *g, const unsigned char *all, const int *
         memcpy(c, b, sizeof c);
         b += sizeof c;
         for (uint64_t k = 0; k < c[0]; ++k, b += rs) {
-            rec[t] = (sd_view_rec){{0, 0, 0, 0}, b};
+            rec[t] = (sd_rows_rec){{0, 0, 0, 0}, b};
             memcpy(&rec[t].k[0], b + id_at, sizeof(uint64_t));
             ++t;
         }
     }
-    qsort(rec, n, sizeof *rec, sd_view_rec_cmp);
+    qsort(rec, n, sizeof *rec, sd_rows_rec_cmp);
     for (size_t k = 0; k < n; ++k)
         sd_mpi_row_unpack(&g->p, k, rec[k].row);
     g->p.n = n;
@@ -275,26 +154,15 @@ static sd_status sd_view_fill(sd_world *g, const unsigned char *all, const int *
             for (uint64_t e = 0; e < c[1 + pass]; ++e, b += pass ? ws : ps) {
                 int32_t kind;
                 memcpy(&kind, b, sizeof kind);
-                sd_view_rec *q = &rec[t++];
+                sd_rows_rec *q = &rec[t++];
                 q->row = b + sizeof kind;
-                if (pass == 0) {
-                    sd_pair_key key;
-                    memcpy(&key, q->row + key_at, sizeof key);
-                    q->k[0] = (uint64_t)kind;
-                    q->k[1] = key.id_lo;
-                    q->k[2] = key.id_hi;
-                    q->k[3] = (uint64_t)key.sub_lo << 32 | key.sub_hi;
-                } else {
-                    sd_wall_pair_key key;
-                    memcpy(&key, q->row + wkey_at, sizeof key);
-                    q->k[0] = (uint64_t)kind << 32 | key.wall;
-                    q->k[1] = key.id;
-                    q->k[2] = key.sub;
-                    q->k[3] = key.elem;
-                }
+                if (pass == 0)
+                    sd_rows_pair_order(kind, q->row, q->k);
+                else
+                    sd_rows_wpair_order(kind, q->row, q->k);
             }
         }
-        qsort(rec, t, sizeof *rec, sd_view_rec_cmp);
+        qsort(rec, t, sizeof *rec, sd_rows_rec_cmp);
         size_t *kind_start = pass ? g->wpairs.kind_start : g->pairs.kind_start;
         int kinds = pass ? SD_WALL_PAIR_KIND_COUNT : SD_PAIR_KIND_COUNT;
         for (int k = 0; k <= kinds; ++k)
@@ -303,14 +171,14 @@ static sd_status sd_view_fill(sd_world *g, const unsigned char *all, const int *
             int kind = (int)(pass ? rec[e].k[0] >> 32 : rec[e].k[0]);
             kind_start[kind + 1]++;
             if (pass == 0) {
-                sd_view_pair_unpack(&g->pairs, e, rec[e].row);
+                sd_rows_pair_unpack(&g->pairs, e, rec[e].row);
                 /* g's indices (a periodic image's partner is its owner: g has no ghosts) */
-                g->pairs.i[e] = sd_view_index(g->p.id, n, rec[e].k[1]);
-                g->pairs.j[e] = sd_view_index(g->p.id, n, rec[e].k[2]);
+                g->pairs.i[e] = (uint32_t)sd_rows_index(g->p.id, n, rec[e].k[1]);
+                g->pairs.j[e] = (uint32_t)sd_rows_index(g->p.id, n, rec[e].k[2]);
                 g->pairs.flip[e] = 0;
             } else {
-                sd_view_wpair_unpack(&g->wpairs, e, rec[e].row);
-                g->wpairs.i[e] = sd_view_index(g->p.id, n, rec[e].k[1]);
+                sd_rows_wpair_unpack(&g->wpairs, e, rec[e].row);
+                g->wpairs.i[e] = (uint32_t)sd_rows_index(g->p.id, n, rec[e].k[1]);
                 g->wpairs.tstart[e] = g->wpairs.tcount[e] = 0; /* the mesh triangles stay on their ranks */
             }
         }

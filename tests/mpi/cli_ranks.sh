@@ -8,8 +8,8 @@
 # in another order (docs/architecture.md, "MPI decomposition"), so it is
 # compared within a tolerance. Then the failures: bad input on every rank,
 # on some ranks only, and ranks that built different worlds end the job
-# with one message and exit 2, a guard tripped on one rank inside a step
-# with one message and exit 1, never a hang (each run under `timeout`).
+# with one message and exit 2, never a hang (each run under `timeout`; a
+# guard tripped on one rank inside a step: cli_fail.sh).
 #   cli_ranks.sh SHAPEDEM MPIEXEC SOURCE_DIR
 set -euo pipefail
 bin=$1
@@ -95,32 +95,6 @@ check_fail "bad input on ranks 1 and 2 only" $? "$tmp/f2.err" "^shapedem: rank 1
 sed 's/count: \[40, 6, 3\]/count: [40, 6, 2]/' "$scene" >"$tmp/other.yaml"
 mpi -np 1 "$bin" run "$scene" -o "$tmp/f3" : -np 1 "$bin" run "$tmp/other.yaml" -o "$tmp/f3" >/dev/null 2>"$tmp/f3.err"
 check_fail "ranks that built different worlds" $? "$tmp/f3.err" "different worlds"
-# a rank that fails inside a step: a soft sphere shot into the floor on
-# rank 1 trips the overlap guard at step 150 while rank 0's sphere rests;
-# rank 1 ends the job (exit 1, as a serial run stopped by a guard), one line
-cat >"$tmp/guard.yaml" <<'YAML'
-simulation: {dt: 1.0e-5, steps: 1500, gravity: [0, 0, 0], contact_law: linear}
-materials:
-  - {name: soft, density: 2500, stiffness: 10, restitution: 0.5}
-particles:
-  - generator: list
-    material: soft
-    spheres:
-      - {position: [-0.05, 0, 0.0015], radius: 0.001, velocity: [0, 0, 0]}
-      - {position: [0.05, 0, 0.0015], radius: 0.001, velocity: [0, 0, -0.8]}
-walls:
-  - {name: floor, type: plane, point: [0, 0, 0], normal: [0, 0, 1], material: soft}
-output: {every: 500, stats_every: 10}
-YAML
-mpi -np 2 "$bin" run "$tmp/guard.yaml" -o "$tmp/guard" >/dev/null 2>"$tmp/g.err"
-rc=$?
-msgs=$(grep -c '^shapedem:' "$tmp/g.err" || true)
-if [[ $rc -eq 1 && $msgs -eq 1 ]] && grep -q '^shapedem: rank 1 of 2: step failed .*overlaps wall .floor. .* at step 150' "$tmp/g.err"; then
-  ok "a guard on rank 1 alone ends the job: exit 1, one message: $(grep '^shapedem:' "$tmp/g.err")"
-else
-  bad "a guard on rank 1: exit $rc (124: a hang), $msgs messages from shapedem:"
-  cat "$tmp/g.err"
-fi
 set -e
 for d in f1 f2 f3; do
   [[ -e $tmp/$d ]] && bad "$d: the output directory was created by a run that failed on its input"
