@@ -2,12 +2,13 @@
 # cli_ckpt.sh — checkpoints written by every rank into one file through
 # MPI-IO (issue 18; docs/mpi.md, src/mpi/ckpt.c): the file holds the same
 # datasets, bit for bit, as the one rank 0 writes from the gathered view
-# (SHAPEDEM_MPI_CHECKPOINT=rank0), in a box with walls and periodic along x
-# and y; a 2-rank checkpoint equals a 3-rank one; a checkpoint written in
+# (SHAPEDEM_MPI_CHECKPOINT=rank0), in a box with walls, periodic along x
+# and y, with composites, in a mesh drum and with an insertion and an
+# outlet; a 2-rank checkpoint equals a 3-rank one; a checkpoint written in
 # parallel on 2 or 3 ranks restarts on 1, 2 and 3 ranks to the bits of the
 # uninterrupted run (its next checkpoint, every dataset), and in the serial
-# program.
-# A build without a parallel HDF5 writes from rank 0 both ways (CMake's
+# program. shapedem links the serial HDF5 and no MPI, shapedem-mpi only the
+# MPI HDF5. A build without a parallel HDF5 writes from rank 0 both ways (CMake's
 # SD_HDF5_MPIIO, the fifth argument, OFF): the test says so and checks the
 # restarts alone.
 #   cli_ckpt.sh SHAPEDEM MPIEXEC SOURCE_DIR CKPT_DIFF [MPIIO ON|OFF]
@@ -26,6 +27,16 @@ source "$src/tests/mpi/lib.sh"
 if [[ $mpiio != ON ]]; then
   echo "note: this build has no parallel HDF5: every file below is written by rank 0 (docs/mpi.md)"
 fi
+# one HDF5 per program: shapedem the serial one and no MPI, shapedem-mpi
+# (with MPI-IO) the MPI one only
+needed() { readelf -d "$1" 2>/dev/null | sed -n 's/.*(NEEDED).*\[\(.*\)\]/\1/p' | tr '\n' ' '; }
+serial=$(needed "$bin") par=$(needed "$(dirname "$bin")/shapedem-mpi")
+if [[ $serial == *libhdf5_serial* && $serial != *libmpi* && $serial != *hdf5_openmpi* ]] &&
+  [[ $mpiio != ON || ($par == *libhdf5_openmpi* && $par != *libhdf5_serial*) ]]; then
+  ok "shapedem needs $(grep -o 'libhdf5[^ ]*' <<<"$serial") and no libmpi; shapedem-mpi needs $(grep -o 'libhdf5[^ ]*' <<<"$par")"
+else
+  bad "the programs' HDF5 libraries: shapedem needs: $serial; shapedem-mpi needs: $par"
+fi
 same() { # name a.h5 b.h5: every dataset the same bits
   if "$ckdiff" "$2" "$3" >"$tmp/diff.out" 2>&1; then
     ok "$1: $(tail -n 1 "$tmp/diff.out")"
@@ -37,7 +48,13 @@ same() { # name a.h5 b.h5: every dataset the same bits
 
 sed 's/^  stats_every: 50$/  stats_every: 50\n  checkpoint_every: 200/' "$src/tests/mpi/run_scene.yaml" >"$tmp/box.yaml"
 cp "$src/tests/mpi/run_periodic.yaml" "$tmp/periodic.yaml"
-for mode in box periodic; do
+# every pair kind of composites (element pairs), a mesh wall's plane groups,
+# an insertion of spheres and bricks with an outlet (mpi.kinds' scenes)
+for mode in composites mesh process; do
+  sed "s|file: .*/meshes/|file: $src/examples/meshes/|" "$src/tests/mpi/scenes/$mode.yaml" >"$tmp/$mode.yaml"
+  printf 'output:\n  every: 100\n  stats_every: 50\n  checkpoint_every: 200\n  formats: [csv]\n' >>"$tmp/$mode.yaml"
+done
+for mode in box periodic composites mesh process; do
   scene=$tmp/$mode.yaml
   d=$tmp/$mode
   mpi -np 2 "$bin" run "$scene" --steps 200 -o "$d.p2" -q || bad "$mode: the 2-rank run failed"
