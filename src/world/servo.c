@@ -172,9 +172,14 @@ sd_status sd_world_walls_drift(sd_world *w, double t, sd_error *err)
     for (size_t k = 0; k < w->wall_count; ++k)
         w->walls[k].stiffness = SD_R(0.0);
     /* in gather order (particle by particle, wall by wall): the sums do
-     * not depend on the kind segments of the list */
+     * not depend on the kind segments of the list. A world changed since
+     * its last rebuild (dirty: particles inserted or removed) has stale
+     * gather lists (a removal compacts the wall pairs under them: entries
+     * past the list's end), which its next step rebuilds after this drift:
+     * then the list's own order, which a restore of that state reads too
+     * (world/snapshot.c saves no gather lists for a dirty world) */
     for (size_t g = 0; g < l->n; ++g) {
-        size_t e = l->gidx[g];
+        size_t e = w->dirty ? g : l->gidx[g];
         if (l->delta[e] <= 0)
             continue;
         sd_wall *wl = &w->walls[l->wall[e]];

@@ -12,8 +12,12 @@
  * periodic boundaries and moving walls, the cells solver's insertion and
  * outlets (a checkpoint with particles inserted and removed since the
  * last rebuild), a fixed and a rotating mesh wall (wall history keyed per
- * plane group, the mesh's pose at the last rebuild, its facet bins) and
- * composites (history per element pair).
+ * plane group, the mesh's pose at the last rebuild, its facet bins),
+ * composites (history per element pair) and a servo floor under a bed whose
+ * corner an outlet takes at the checkpoint's step (the drift of a servo
+ * wall in a world changed since its last rebuild: it once summed the
+ * contact stiffness through stale gather lists, entries past the compacted
+ * list among them, and the restart differed in 143 particles).
  */
 #include <stdlib.h>
 #include <string.h>
@@ -44,6 +48,7 @@ static const restart_case cases[] = {
     {"tests/unit/scenes/restart-mesh-hopper.yaml", 6000, 500},
     {"tests/unit/scenes/restart-mesh-drum.yaml", 6000, 500},
     {"tests/unit/scenes/restart-composites.yaml", 6000, 500},
+    {"tests/unit/scenes/restart-servo-outlet.yaml", 3000, 500},
 };
 
 static int same_bits(const void *a, const void *b, size_t n) { return memcmp(a, b, n) == 0; }
