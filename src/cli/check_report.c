@@ -559,51 +559,45 @@ int sd_check_print_dt(FILE *f, const sd_world *w)
     return n;
 }
 
-void sd_check_print_ranks(FILE *f, const sd_world *w, long ranks)
+void sd_check_print_ranks(FILE *f, const sd_scene *s, const sd_world *w, long ranks)
 {
-    size_t n = sd_world_particle_count(w);
+    const char *note =
+#ifdef SHAPEDEM_HAVE_MPI
+        "";
+#else
+        " [this build has no MPI: configure with -DSHAPEDEM_MPI=ON]";
+#endif
     int r = (int)ranks;
-    double *x = malloc((n ? n : 1) * sizeof *x);
-    uint64_t *id = malloc((n ? n : 1) * sizeof *id);
-    sd_mpi_cut *cuts = malloc((size_t)r * sizeof *cuts);
+    sd_mpi_split_req req = {{s->mpi_split[0], s->mpi_split[1], s->mpi_split[2]}, s->mpi_split_line};
+    sd_mpi_grid *g = malloc(sizeof *g);
     size_t *count = calloc((size_t)r, sizeof *count);
-    if (!x || !id || !cuts || !count) {
-        fprintf(f, "ranks        %d: out of memory for the split of %zu particles\n", r, n);
-        free(x);
-        free(id);
-        free(cuts);
+    sd_error err;
+    memset(&err, 0, sizeof err);
+    sd_status st = g && count ? sd_mpi_plan(w, &req, r, g, &err) : SD_ERR_MEMORY;
+    if (st != SD_OK) {
+        char msg[1024];
+        sd_error_format(&err, msg, sizeof msg);
+        fprintf(f, "warning      %ld MPI ranks: %s%s\n", ranks, st == SD_ERR_MEMORY && !msg[0] ? "out of memory" : msg,
+                note);
+        free(g);
         free(count);
         return;
     }
+    size_t n = sd_world_particle_count(w);
     for (size_t k = 0; k < n; ++k) {
         sd_particle_state p;
         sd_world_get_particle(w, k, &p);
-        x[k] = p.position.x;
-        id[k] = p.id;
+        double x[3] = {p.position.x, p.position.y, p.position.z};
+        count[sd_mpi_grid_rank(g, x, p.id)]++;
     }
-    if (sd_mpi_split(n, x, id, r, cuts) == SD_OK) {
-        for (size_t k = 0; k < n; ++k)
-            count[sd_mpi_rank_of(cuts, r, x[k], id[k])]++;
-        fprintf(f, "ranks        %d, split along x by particle count (particles at the start)%s:", r,
-#ifdef SHAPEDEM_HAVE_MPI
-                ""
-#else
-                " [this build has no MPI: configure with -DSHAPEDEM_MPI=ON]"
-#endif
-        );
-        if (r > 1) {
-            fprintf(f, " cuts at x =");
-            for (int c = 0; c < r - 1; ++c)
-                fprintf(f, "%s %.6g", c ? "," : "", cuts[c].x);
-            fprintf(f, " m;");
-        }
-        fprintf(f, " particles per rank");
-        for (int c = 0; c < r; ++c)
-            fprintf(f, " %zu", count[c]);
-        fprintf(f, "\n");
+    const char *ask = s->mpi_split_line ? "as simulation.mpi_split asks" : "simulation.mpi_split auto: least cut area";
+    fprintf(f, "ranks        %d: %d x %d x %d boxes along x, y, z (%s), %s (particles at the start)%s\n", r, g->n[0],
+            g->n[1], g->n[2], ask, sd_mpi_grid_how(g), note);
+    for (int c = 0; c < r; ++c) {
+        char box[200];
+        sd_mpi_grid_box_text(g, c, box, sizeof box);
+        fprintf(f, "  rank %-6d %s m: %zu particles\n", c, box, count[c]);
     }
-    free(x);
-    free(id);
-    free(cuts);
+    free(g);
     free(count);
 }

@@ -90,9 +90,10 @@ void sd_check_print_output(FILE *f, const sd_scene *s, const sd_world *w, size_t
 /* "1.23 MB", "4.5 GB" */
 void sd_check_format_bytes(double b, char *buf, size_t size);
 
-/* `check --ranks N`: how the static MPI split (mpi/mpi.h, along x by (x,
- * stable id), equal particle counts) would share the world's particles out
- * over N ranks: the cuts and the particles per rank. */
-void sd_check_print_ranks(FILE *f, const sd_world *w, long ranks);
+/* `check --ranks N`: how the static MPI split (mpi/mpi.h: the grid of
+ * boxes simulation.mpi_split asks for, cut by particle count) would share
+ * the world's particles out over N ranks: the grid, each rank's box and
+ * its particles; a warning line when the split does not fit N. */
+void sd_check_print_ranks(FILE *f, const sd_scene *s, const sd_world *w, long ranks);
 
 #endif

@@ -78,8 +78,8 @@ static void sd_usage(FILE *f)
             "  --quiet      no progress line and no summary on the terminal\n"
             "  --bench NAME write no files; print one JSON line of timings for case NAME\n"
             "  --profile    print the wall time of each stage of the step at the end\n"
-            "  --ranks N    check: how the MPI split along x would share the particles over N\n"
-            "               ranks (cuts, particles per rank)\n"
+            "  --ranks N    check: how the MPI split would share the particles over N ranks\n"
+            "               (the grid of boxes, each rank's box and particles)\n"
             "  --restart F  continue the run of checkpoint F (written by this scene) bit for bit;\n"
             "               SIGINT/SIGTERM write a final checkpoint (docs/checkpoints.md)\n"
             "  info F.h5    what a checkpoint holds (step, time, particles, datasets)\n");
@@ -500,8 +500,8 @@ static int sd_cmd_check(const sd_cli *c)
     printf("contact      shortest estimated contact duration %.4g s (%.1f steps)\n", tc, tc / dt);
     printf("time step    %.4g s recommended; stability limit %.4g s\n", rec, tc / 5);
     printf("threads      %d\n", sd_world_threads(w));
-    if (c->ranks > 0) /* the MPI split, along x by particle count (mpi/mpi.h) */
-        sd_check_print_ranks(stdout, w, c->ranks);
+    if (c->ranks > 0) /* the MPI split, the grid of boxes by particle count (mpi/mpi.h) */
+        sd_check_print_ranks(stdout, scene, w, c->ranks);
     printf("backend      %s (%s)\n", sd_world_backend(w), sd_world_backend_note(w));
     const char *unit2d = info.dimension == 2 ? " per 1 m of thickness" : "";
     printf("mass         %.6g kg%s", cnt.mass_now + cnt.mass_poured + ins.mass, unit2d);

@@ -81,7 +81,10 @@ int sd_cli_mpi_begin(const void *cli, sd_cli_load_fn load, const char *restart, 
         rc = sd_cli_mpi_agree(sd_cli_mpi_status(st), msg, rank, size);
     }
     if (rc == 0) {
-        sd_status st = restart ? sd_mpi_attach_restored(w, &m, &err) : sd_mpi_attach_built(w, &m, &err);
+        const sd_scene *sc = *scene; /* simulation.mpi_split */
+        sd_mpi_split_req split = {{sc->mpi_split[0], sc->mpi_split[1], sc->mpi_split[2]}, sc->mpi_split_line};
+        sd_status st =
+            restart ? sd_mpi_attach_restored(w, &split, &m, &err) : sd_mpi_attach_built(w, &split, &m, &err);
         if (st != SD_OK && !err.file[0]) /* a refusal names the scene's key: say which scene */
             snprintf(err.file, sizeof err.file, "%.*s", (int)sizeof err.file - 1, (*scene)->path);
         if (st != SD_OK)

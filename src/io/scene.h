@@ -187,6 +187,9 @@ struct sd_scene {
     int simulation_line;          /* line of the simulation: key, for errors */
     long steps;                   /* >= 0; from steps or duration/dt */
     long mpi_rebalance_every;     /* simulation.mpi_rebalance_every: steps between re-cuts under mpirun, 0 none */
+    int mpi_split[3];             /* simulation.mpi_split (mpi/mpi.h's sd_mpi_split_req): {0, 0, 0} auto; -1 on
+                                     one axis: slabs along it; else [px, py, pz] */
+    int mpi_split_line;           /* its line, 0 when absent */
     int dt_line;                  /* line of simulation.dt, for errors */
     /* simulation.stop_when (io/run.c): the run ends at the first stats row
      * at or after stop_after s whose kinetic energy is below stop_ke_below J */

@@ -162,8 +162,13 @@ const sd_scene_key sd_scene_keys[] = {
      "particle must start inside [min, max); frames show positions wrapped into it"},
     {SD_SEC_SIMULATION, "mpi_rebalance_every", SD_KT_INT, SD_KR_NONNEG, NULL, ALL, 0, "", "0",
      "under mpirun (docs/mpi.md): at the first pair-list rebuild after every this many steps, the "
-     "split along x is cut again into equal particle counts (0: the split of the start is kept); "
-     "the results do not change"},
+     "split is cut again into equal particle counts, the same grid of boxes (0: the split of the "
+     "start is kept); the results do not change"},
+    {SD_SEC_SIMULATION, "mpi_split", SD_KT_ENUM_OR_INT3, SD_KR_ONE, "auto|x|y|z", ALL, 0, "", "auto",
+     "under mpirun (docs/mpi.md): the grid of boxes, cut by particle count: auto (the rank count "
+     "factored into px py pz for the least cut area over the particles' extent), x, y or z (slabs "
+     "along that axis), or [px, py, pz] whose product must be the rank count; ignored in a serial "
+     "run; the results do not change"},
     {SD_SEC_SIMULATION, "stop_when", SD_KT_MAP, SD_KR_ANY, NULL, ALL, 0, "", "-",
      "end the run before its steps when the particles have come to rest (the keys of "
      "simulation.stop_when); summary.txt says when and why"},
@@ -843,6 +848,10 @@ const char *sd_scene_type_text(const sd_scene_key *k, char *buf, size_t size)
         break;
     case SD_KT_VEC3: snprintf(buf, size, "[x, y, z]%s%s", sp, r); break;
     case SD_KT_INT3: snprintf(buf, size, "[nx, ny, nz] integers%s%s", sp, r); break;
+    case SD_KT_ENUM_OR_INT3:
+        sd_choices_text(k->choices, ch, sizeof ch);
+        snprintf(buf, size, "one of: %s, or [nx, ny, nz] integers%s%s", ch, sp, r);
+        break;
     case SD_KT_NUM_OR_VEC3: snprintf(buf, size, "number or [x, y, z]%s%s", sp, r); break;
     case SD_KT_NUM_OR_RANGE: snprintf(buf, size, "number or {min, max}%s%s", sp, r); break;
     case SD_KT_BOX: snprintf(buf, size, "{min: [x, y, z], max: [x, y, z]}"); break;

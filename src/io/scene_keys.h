@@ -44,6 +44,7 @@ typedef enum sd_scene_type {
     SD_KT_ENUM_LIST,    /* a list of choices */
     SD_KT_VEC3,         /* [x, y, z] */
     SD_KT_INT3,         /* [nx, ny, nz] integers */
+    SD_KT_ENUM_OR_INT3, /* one of the choices, or [nx, ny, nz] integers */
     SD_KT_NUM_OR_VEC3,  /* a number for all three axes, or [x, y, z] */
     SD_KT_NUM_OR_RANGE, /* a number, or {min: a, max: b} with a <= b */
     SD_KT_BOX,          /* {min: [x, y, z], max: [x, y, z]} with max > min */

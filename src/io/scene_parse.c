@@ -38,6 +38,7 @@
 #include "io/scene_process.h"
 #include "io/scene_sections.h"
 #include "io/yaml_read.h"
+#include "mpi/mpi.h" /* SD_MPI_MAX_RANKS, for simulation.mpi_split */
 #include "shape/shape.h" /* SD_SHAPE_POLYHEDRON, for the volume-law check */
 #include "shape/surface.h" /* the range of output.shape_resolution */
 
@@ -165,6 +166,17 @@ static sd_status sd_parse_simulation(sd_parse *p, yaml_node_t *root)
     s->world.seed = (uint64_t)v.integer;
     sd_yaml_get(&p->y, sim, SD_SEC_SIMULATION, "mpi_rebalance_every", path, &v);
     s->mpi_rebalance_every = (long)v.integer;
+    /* simulation.mpi_split: auto, x, y, z (choices 0 .. 3) or [px, py, pz];
+     * checked against the rank count when a run splits (mpi/plan.c) */
+    if (sd_yaml_get(&p->y, sim, SD_SEC_SIMULATION, "mpi_split", path, &v)) {
+        s->mpi_split_line = v.line;
+        if (v.choice < 0 && v.iv[0] * v.iv[1] * v.iv[2] > SD_MPI_MAX_RANKS)
+            return sd_fail(p, v.line, "simulation.mpi_split",
+                           "[%lld, %lld, %lld] makes %lld boxes: at most %d MPI ranks in this version", v.iv[0],
+                           v.iv[1], v.iv[2], v.iv[0] * v.iv[1] * v.iv[2], SD_MPI_MAX_RANKS);
+        for (int a = 0; a < 3; ++a)
+            s->mpi_split[a] = v.choice < 0 ? (int)v.iv[a] : (v.choice == a + 1 ? -1 : (v.choice ? 1 : 0));
+    }
     sd_yaml_get(&p->y, sim, SD_SEC_SIMULATION, "threads", path, &v);
     if (v.integer > SD_SCENE_MAX_THREADS)
         return sd_fail(p, v.line, "simulation.threads",

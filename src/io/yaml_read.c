@@ -383,6 +383,13 @@ sd_status sd_yaml_read_value(const sd_yaml *y, const sd_scene_key *k, yaml_node_
         break;
     case SD_KT_VEC3: st = sd_yaml_read_vec3(y, k, n, key, v->v, NULL); break;
     case SD_KT_INT3: st = sd_yaml_read_vec3(y, k, n, key, v->v, v->iv); break;
+    case SD_KT_ENUM_OR_INT3:
+        v->choice = -1; /* the list */
+        if (n && n->type == YAML_SEQUENCE_NODE)
+            st = sd_yaml_read_vec3(y, k, n, key, v->v, v->iv);
+        else
+            st = sd_yaml_read_choice(y, k, n, key, &v->choice);
+        break;
     case SD_KT_NUM_OR_VEC3:
         if (n && n->type == YAML_SEQUENCE_NODE) {
             st = sd_yaml_read_vec3(y, k, n, key, v->v, NULL);

@@ -5,7 +5,7 @@
  * turn, copied byte for byte, so a ghost or a migrated particle is the
  * same bits as its owner's copy (the rows follow the list: a new field
  * travels without a change here). All traffic is one MPI_Alltoallv per
- * exchange: any rank may send to any other, so a slab thinner than the
+ * exchange: any rank may send to any other, so a box thinner than the
  * contact reach still gets every ghost it needs.
  */
 #include <mpi.h>
@@ -24,7 +24,7 @@
 struct sd_mpi {
     MPI_Comm comm;
     int rank, size;
-    sd_mpi_cut *cuts;          /* size - 1 */
+    sd_mpi_grid grid;          /* the split in use (mpi/decomp.c) */
     int *scount, *sdispl, *rcount, *rdispl; /* per rank, in bytes */
     /* the ghost rows this rank sends each step: owned storage indices,
      * grouped by destination rank; and where the received ones sit */
@@ -212,6 +212,13 @@ static int sd_dest_of(const sd_leaver *v, size_t n, uint64_t id)
     return f ? f->dest : -1;
 }
 
+/* The rank whose box holds particle k's (x, id) now. */
+static int sd_rank_at(const sd_mpi *m, const sd_particles *p, size_t k)
+{
+    double x[3] = {(double)p->x[k].x, (double)p->x[k].y, (double)p->x[k].z};
+    return sd_mpi_grid_rank(&m->grid, x, p->id[k]);
+}
+
 /* Migration (mpi.h): the particles and their history, then the arrays
  * compacted and the arrivals appended. The entries with a zero spring and
  * no overlap hint carry nothing (the bins keep only the others:
@@ -223,7 +230,7 @@ static sd_status sd_hook_migrate(void *ctx, sd_world *w, sd_error *err)
     sd_mpi *m = ctx;
     sd_particles *p = &w->p;
     if (m->rebalance_every > 0 && w->step >= m->rebalance_next) { /* the same step on every rank */
-        sd_status rst = sd_mpi_recut(w, m->size, m->cuts, err);
+        sd_status rst = sd_mpi_recut(w, &m->grid, err);
         if (rst != SD_OK)
             return rst;
         m->rebalances++;
@@ -234,7 +241,7 @@ static sd_status sd_hook_migrate(void *ctx, sd_world *w, sd_error *err)
     if (!dest)
         return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "migration: out of memory (%zu particles)", n);
     for (size_t k = 0; k < n; ++k) {
-        dest[k] = sd_mpi_rank_of(m->cuts, m->size, (double)p->x[k].x, p->id[k]);
+        dest[k] = sd_rank_at(m, p, k);
         leave += dest[k] != m->rank;
     }
     m->migrated += leave;
@@ -457,11 +464,40 @@ static int sd_send_add(sd_mpi *m, size_t k, sd_vec3 sh)
     return 0;
 }
 
+/* 1 when y (m) lies within band (m) of the box [lo, hi] on every axis: a
+ * particle there may touch, within the skin, one whose centre is in the
+ * box (an empty box, lo = hi = +inf, is near nothing). */
+static int sd_near_box(const double y[3], const double lo[3], const double hi[3], double band)
+{
+    for (int a = 0; a < 3; ++a)
+        if (!(y[a] >= lo[a] - band && y[a] <= hi[a] + band))
+            return 0;
+    return 1;
+}
+
+/* 1 when the particle at x (m), moved by a period on one or more periodic
+ * axes (period[a], m; 0 on the others), is near the box: an image of one
+ * of the box's particles may touch it there. */
+static int sd_near_box_period(const double x[3], const double period[3], const double lo[3], const double hi[3],
+                              double band)
+{
+    for (int s = 1; s < 27; ++s) { /* the 26 moves (-1, 0, +1)^3 but none */
+        int d[3] = {s % 3 - 1, (s / 3) % 3 - 1, s / 9 - 1};
+        if ((d[0] && !period[0]) || (d[1] && !period[1]) || (d[2] && !period[2]) || (!d[0] && !d[1] && !d[2]))
+            continue;
+        double y[3] = {x[0] + d[0] * period[0], x[1] + d[1] * period[1], x[2] + d[2] * period[2]};
+        if (sd_near_box(y, lo, hi, band))
+            return 1;
+    }
+    return 0;
+}
+
 /* Ghosts (mpi.h): each owned particle, as it is and as each of its
  * periodic images (world/rebuild.c's rule and arithmetic), goes to every
- * rank whose slab it is within reach of: to this rank's own ghosts as a
- * local image (ghost_owner k), to another rank as a row; those received are
- * appended after the local images. */
+ * rank whose box it is within reach of (on every axis: the corners' and
+ * edges' neighbours too): to this rank's own ghosts as a local image
+ * (ghost_owner k), to another rank as a row; those received are appended
+ * after the local images. */
 static sd_status sd_hook_ghosts(void *ctx, sd_world *w, sd_error *err)
 {
     sd_mpi *m = ctx;
@@ -473,20 +509,23 @@ static sd_status sd_hook_ghosts(void *ctx, sd_world *w, sd_error *err)
     double all = rmax;
     MPI_Allreduce(&rmax, &all, 1, MPI_DOUBLE, MPI_MAX, m->comm);
     /* the reach of a pair (world/rebuild.c's band, from the largest radius
-     * of all ranks): a particle within it of a slab may touch, within the
-     * skin, one of the slab's particles */
+     * of all ranks): a particle within it of a box may touch, within the
+     * skin, one of the box's particles */
     sd_real band = SD_R(2.0) * (sd_real)all + w->skin;
-    double lo[64], hi[64];
-    int oom = m->size > 64;
+    double lo[SD_MPI_MAX_RANKS][3], hi[SD_MPI_MAX_RANKS][3], period[3];
+    int oom = m->size > SD_MPI_MAX_RANKS;
     for (int r = 0; !oom && r < m->size; ++r)
-        sd_mpi_slab(m->cuts, m->size, r, &lo[r], &hi[r]);
-    double period_x = (w->def.periodic & SD_PERIODIC_X) ? w->def.domain_hi.x - w->def.domain_lo.x : 0.0;
+        sd_mpi_grid_box(&m->grid, r, lo[r], hi[r]);
+    double span[3] = {w->def.domain_hi.x - w->def.domain_lo.x, w->def.domain_hi.y - w->def.domain_lo.y,
+                      w->def.domain_hi.z - w->def.domain_lo.z};
+    for (int a = 0; a < 3; ++a) /* SD_PERIODIC_X, _Y, _Z: bits 0, 1, 2 */
+        period[a] = (w->def.periodic & (1u << a)) ? span[a] : 0.0;
+    int periodic = period[0] > 0 || period[1] > 0 || period[2] > 0;
     /* per rank in turn, so the rows come out grouped by destination */
     m->send_n = 0;
     size_t n_local = 0;
     for (int r = 0; !oom && r < m->size; ++r) {
         m->ghost_count[r] = 0;
-        double l0 = lo[r] - (double)band, l1 = hi[r] + (double)band;
         for (size_t k = 0; !oom && k < n; ++k) {
             sd_vec3 sh[8];
             sh[0] = sd_v3_zero();
@@ -498,14 +537,15 @@ static sd_status sd_hook_ghosts(void *ctx, sd_world *w, sd_error *err)
                     n_local += t > 0;
                     continue;
                 }
-                double x = (double)(t ? sd_v3_add(p->x[k], sh[t]).x : p->x[k].x);
+                sd_vec3 v = t ? sd_v3_add(p->x[k], sh[t]) : p->x[k];
+                double y[3] = {(double)v.x, (double)v.y, (double)v.z};
                 /* the particle as it is also goes where an image of one of
-                 * rank r's particles (one period away in x) may touch it:
-                 * a contact through an image is evaluated at the lower id's
+                 * rank r's particles (one period away) may touch it: a
+                 * contact through an image is evaluated at the lower id's
                  * true position (broad/bins.h), on both ranks */
-                int near = x >= l0 && x <= l1;
-                if (!near && t == 0 && period_x > 0)
-                    near = (x - period_x >= l0 && x - period_x <= l1) || (x + period_x >= l0 && x + period_x <= l1);
+                int near = sd_near_box(y, lo[r], hi[r], (double)band);
+                if (!near && t == 0 && periodic)
+                    near = sd_near_box_period(y, period, lo[r], hi[r], (double)band);
                 if (!near)
                     continue;
                 if (sd_send_add(m, k, sh[t])) {
@@ -679,7 +719,7 @@ static sd_status sd_hook_keep_owned(void *ctx, sd_world *w, size_t first, sd_err
     if (!dest)
         return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "insertion: out of memory (%zu particles)", p->n - first);
     for (size_t k = first; k < p->n; ++k)
-        dest[k - first] = sd_mpi_rank_of(m->cuts, m->size, (double)p->x[k].x, p->id[k]);
+        dest[k - first] = sd_rank_at(m, p, k);
     sd_rows_keep(p, first, dest, m->rank);
     sd_free(dest);
     return SD_OK;
@@ -804,8 +844,9 @@ static sd_status sd_mpi_refuse(const sd_world *w, sd_error *err)
                             "MPI ranks run the CPU backend only in this version");
     int size = 1;
     MPI_Comm_size(MPI_COMM_WORLD, &size);
-    if (size > 64)
-        return sd_error_set(err, SD_ERR_INPUT, "", 0, "", "at most 64 MPI ranks in this version, got %d", size);
+    if (size > SD_MPI_MAX_RANKS)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "", "at most %d MPI ranks in this version, got %d",
+                            SD_MPI_MAX_RANKS, size);
     /* every particle kind is decomposed: spheres, convex shapes, sharp
      * polyhedra (their overlap hints travel with the pair history),
      * composites (element runs in key order, broad/canonical.c) and the
@@ -829,7 +870,7 @@ static sd_status sd_mpi_refuse(const sd_world *w, sd_error *err)
     return SD_OK;
 }
 
-sd_status sd_mpi_attach(sd_world *w, sd_mpi **out, sd_error *err)
+sd_status sd_mpi_attach(sd_world *w, const sd_mpi_split_req *split, sd_mpi **out, sd_error *err)
 {
     *out = NULL;
     sd_status st = sd_mpi_refuse(w, err);
@@ -854,12 +895,13 @@ sd_status sd_mpi_attach(sd_world *w, sd_mpi **out, sd_error *err)
         m->comm = MPI_COMM_WORLD;
         m->rank = rank;
         m->size = size;
-        m->cuts = sd_malloc((size_t)(size > 1 ? size - 1 : 1) * sizeof *m->cuts);
         m->scount = sd_malloc((size_t)size * 6 * sizeof(int));
-        if (!m->cuts || !m->scount)
+        if (!m->scount)
             st = sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory for the decomposition");
     }
-    double *x = NULL;
+    /* the split: every rank computes the same from the same world */
+    if (st == SD_OK)
+        st = sd_mpi_plan(w, split, size, &m->grid, err);
     uint8_t *mark = NULL;
     if (st == SD_OK) {
         m->sdispl = m->scount + size;
@@ -867,27 +909,18 @@ sd_status sd_mpi_attach(sd_world *w, sd_mpi **out, sd_error *err)
         m->rdispl = m->scount + 3 * size;
         m->ghost_count = m->scount + 4 * size;
         m->ghost_recv = m->scount + 5 * size;
-        x = sd_malloc((p->n ? p->n : 1) * sizeof *x);
         mark = sd_malloc(p->n ? p->n : 1);
-        if (!x || !mark)
+        if (!mark)
             st = sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory splitting %zu particles", p->n);
     }
     if (st == SD_OK) {
         for (size_t k = 0; k < p->n; ++k)
-            x[k] = (double)p->x[k].x;
-        if (sd_mpi_split(p->n, x, p->id, size, m->cuts) != SD_OK)
-            st = sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory splitting %zu particles", p->n);
-    }
-    if (st == SD_OK) {
-        for (size_t k = 0; k < p->n; ++k)
-            mark[k] = (uint8_t)(sd_mpi_rank_of(m->cuts, size, x[k], p->id[k]) != rank);
+            mark[k] = (uint8_t)(sd_rank_at(m, p, k) != rank);
         st = sd_world_remove_particles(w, mark, NULL, err);
     }
-    sd_free(x);
     sd_free(mark);
     if (st != SD_OK) {
         if (m) {
-            sd_free(m->cuts);
             sd_free(m->scount);
             sd_free(m);
         }
@@ -907,7 +940,6 @@ void sd_mpi_detach(sd_world *w, sd_mpi *m)
         w->comm = NULL;
         w->comm_ctx = NULL;
     }
-    sd_free(m->cuts);
     sd_free(m->scount);
     sd_free(m->send_idx);
     sd_free(m->send_shift);
@@ -995,7 +1027,7 @@ const unsigned char *sd_mpi_row_unpack(sd_particles *p, size_t k, const unsigned
 {
     return sd_row_unpack(p, k, b);
 }
-const sd_mpi_cut *sd_mpi_cuts(const sd_mpi *m) { return m->cuts; }
+const sd_mpi_grid *sd_mpi_grid_of(const sd_mpi *m) { return &m->grid; }
 
 void sd_mpi_set_rebalance(sd_mpi *m, long every, long from_step)
 {

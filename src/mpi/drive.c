@@ -213,16 +213,9 @@ static void sd_drive_note(sd_mpi *m, const sd_world *w, char *note, size_t size)
             used += (size_t)snprintf(note + used, size - used, __VA_ARGS__); \
     } while (0)
     SD_NOTE("mpi_ranks: %d\n", ranks);
-    SD_NOTE("mpi_split: along x by (x, stable id) into equal particle counts at the start%s; ",
-            sd_mpi_rebalances(m) > 0 ? " and at each re-cut" : "");
-    const sd_mpi_cut *cuts = sd_mpi_cuts(m);
-    if (ranks == 1)
-        SD_NOTE("one rank, no cut");
-    else
-        SD_NOTE("cuts now at x =");
-    for (int r = 0; r + 1 < ranks; ++r)
-        SD_NOTE(" %.10g", cuts[r].x);
-    SD_NOTE("%s\nmpi_particles_per_rank:", ranks > 1 ? " m" : "");
+    const sd_mpi_grid *g = sd_mpi_grid_of(m);
+    SD_NOTE("mpi_split: %d x %d x %d boxes along x, y, z, %s at the start%s\nmpi_particles_per_rank:", g->n[0], g->n[1],
+            g->n[2], sd_mpi_grid_how(g), sd_mpi_rebalances(m) > 0 ? ", by count at each re-cut" : "");
     unsigned long long moved = 0;
     for (int r = 0; r < ranks; ++r) {
         SD_NOTE(" %llu", all[2 * r]);
@@ -241,6 +234,14 @@ static void sd_drive_note(sd_mpi *m, const sd_world *w, char *note, size_t size)
         share += all_secs[2 * r] > 0 ? all_secs[2 * r + 1] / all_secs[2 * r] / ranks : 0;
     }
     SD_NOTE("\nmpi_exchange_share: %.4f\n", share);
+    /* last: with many ranks a short buffer cuts this line only */
+    SD_NOTE("mpi_boxes:");
+    for (int r = 0; r < ranks; ++r) {
+        char box[200];
+        sd_mpi_grid_box_text(g, r, box, sizeof box);
+        SD_NOTE("%s %s", r ? ";" : "", box);
+    }
+    SD_NOTE(" m (now)\n");
 #undef SD_NOTE
 }
 
@@ -289,7 +290,7 @@ void sd_mpi_follow(sd_mpi *m, sd_world *w)
     sd_drive_note(m, w, NULL, 0);
 }
 
-sd_status sd_mpi_attach_built(sd_world *w, sd_mpi **out, sd_error *err)
+sd_status sd_mpi_attach_built(sd_world *w, const sd_mpi_split_req *split, sd_mpi **out, sd_error *err)
 {
     if (w->step != 0 || w->time != 0) {
         *out = NULL;
@@ -306,10 +307,10 @@ sd_status sd_mpi_attach_built(sd_world *w, sd_mpi **out, sd_error *err)
     w->rebuilds = 0;
     w->prepared = 0;
     w->dirty = 1;
-    return sd_mpi_attach(w, out, err);
+    return sd_mpi_attach(w, split, out, err);
 }
 
-sd_status sd_mpi_attach_restored(sd_world *w, sd_mpi **out, sd_error *err)
+sd_status sd_mpi_attach_restored(sd_world *w, const sd_mpi_split_req *split, sd_mpi **out, sd_error *err)
 {
     /* the springs by key (and the volume law's overlap points): every
      * entry, the other ranks' particles' too, so that the first rebuild
@@ -330,7 +331,7 @@ sd_status sd_mpi_attach_restored(sd_world *w, sd_mpi **out, sd_error *err)
     memset(l->kind_start, 0, sizeof l->kind_start);
     w->n_ghost = 0;  /* made again at the first rebuild */
     w->prepared = 0; /* for sd_mpi_attach (collective: every rank calls it); the forces came with the state */
-    sd_status st = sd_mpi_attach(w, out, err);
+    sd_status st = sd_mpi_attach(w, split, out, err);
     if (st == SD_OK && (!kept || sd_pairs_reserve(l, n) != SD_OK))
         st = sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory keeping %zu springs", n);
     if (st == SD_OK) {

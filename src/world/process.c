@@ -375,6 +375,20 @@ static void sd_region_bbox(const sd_region_def *r, double lo[3], double hi[3])
     }
 }
 
+size_t sd_world_insertion_bounds(const sd_world *w, double lo[3], double hi[3])
+{
+    for (int a = 0; a < 3; ++a)
+        lo[a] = (double)INFINITY, hi[a] = -(double)INFINITY;
+    size_t n = w->process ? w->process->insertion_count : 0;
+    for (size_t k = 0; k < n; ++k) {
+        double l[3], h[3];
+        sd_region_bbox(&w->process->insertions[k].def.region, l, h);
+        for (int a = 0; a < 3; ++a)
+            lo[a] = fmin(lo[a], l[a]), hi[a] = fmax(hi[a], h[a]);
+    }
+    return n;
+}
+
 /* 1 when the point x lies in the region (outlets: the particle's centre). */
 static int sd_region_contains(const sd_region_def *r, sd_v3d x)
 {

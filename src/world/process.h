@@ -72,6 +72,12 @@ typedef struct sd_region_meshes {
  * by number). */
 double sd_size_moment(const sd_size_def *s, int d);
 
+/* The union of the insertion regions' bounding boxes into lo, hi (m: where
+ * inserted particles' centres go; lo > hi on every axis when there is
+ * none), for an MPI split made before the particles are in (mpi/plan.c).
+ * Returns the number of insertions. */
+size_t sd_world_insertion_bounds(const sd_world *w, double lo[3], double hi[3]);
+
 /* The cells solver's step with the process events between steps (the
  * solver table's step entry, world.c). */
 sd_status sd_cells_process_step(sd_world *w, long nsteps, sd_error *err);

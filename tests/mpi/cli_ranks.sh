@@ -4,7 +4,9 @@
 # CI has two cores; Open MPI as root needs --allow-run-as-root) must write
 # the same frames, frames.pvd, stats.csv and walls.csv, byte for byte;
 # summary.txt names the ranks and the split; a run rebalanced every 50
-# steps writes the same bytes. The plain serial program sums
+# steps, and one split 2 x 2 x 1 by simulation.mpi_split, write the same
+# bytes; a split whose product is not the rank count is refused (exit 2,
+# nothing written); `check --ranks 4` prints the grid and each rank's box. The plain serial program sums
 # in another order (docs/architecture.md, "MPI decomposition"), so it is
 # compared within a tolerance. Then the failures: bad input on every rank,
 # on some ranks only, and ranks that built different worlds end the job
@@ -38,21 +40,27 @@ for np in 2 3 4; do
   s=$tmp/r$np/summary.txt
   per=$(sed -n 's/^mpi_particles_per_rank: //p' "$s")
   if grep -q "^mpi_ranks: $np$" "$s" && [[ $(echo "$per" | wc -w) -eq $np ]] &&
-    [[ $((${per// /+})) -eq 720 ]] && grep -q '^mpi_split: along x' "$s" &&
+    [[ $((${per// /+})) -eq 720 ]] && grep -q "^mpi_split: $np x 1 x 1 boxes" "$s" &&
     [[ $(sed -n 's/^mpi_migrations: //p' "$s") -gt 0 ]]; then
     ok "$np ranks: summary.txt: $(grep '^mpi_' "$s" | tr '\n' ';')"
   else
     bad "$np ranks: summary.txt lacks the ranks' lines:"; grep '^mpi_' "$s" || true
   fi
 done
+# The scene with one line added to simulation (LINE) run on NP ranks into
+# $tmp/DIR (the scene: $tmp/DIR.yaml): every file the same bytes as 1
+# rank's, else same=0.
+variant() { # NAME LINE NP DIR
+  sed "s/^  threads: 1\$/  threads: 1\n  $2/" "$scene" >"$tmp/$4.yaml"
+  mpi -np "$3" "$bin" run "$tmp/$4.yaml" -o "$tmp/$4" -q || bad "$1: the run failed"
+  same=1
+  for f in $files; do
+    cmp -s "$tmp/r1/$f" "$tmp/$4/$f" || { bad "$1: $f differs from 1 rank's"; same=0; }
+  done
+}
 # simulation.mpi_rebalance_every: the split cut again every 50 steps (at
 # the next rebuild) changes no byte of the output, and evens the counts
-sed 's/^  threads: 1$/  threads: 1\n  mpi_rebalance_every: 50/' "$scene" >"$tmp/rebalance.yaml"
-mpi -np 3 "$bin" run "$tmp/rebalance.yaml" -o "$tmp/b3" -q || bad "3 ranks, rebalanced: the run failed"
-same=1
-for f in $files; do
-  cmp -s "$tmp/r1/$f" "$tmp/b3/$f" || { bad "3 ranks, rebalanced: $f differs from 1 rank's"; same=0; }
-done
+variant "3 ranks, rebalanced" "mpi_rebalance_every: 50" 3 b3
 spread() { sed -n 's/^mpi_particles_per_rank: //p' "$1" | tr ' ' '\n' | sort -n | sed -n '1p;$p' | paste -sd' ' | awk '{print $2 - $1}'; }
 cuts=$(sed -n 's/^mpi_rebalances: //p' "$tmp/b3/summary.txt")
 if [[ $same -eq 1 && ${cuts:-0} -gt 0 && $(spread "$tmp/b3/summary.txt") -le $(spread "$tmp/r3/summary.txt") ]]; then
@@ -61,6 +69,36 @@ if [[ $same -eq 1 && ${cuts:-0} -gt 0 && $(spread "$tmp/b3/summary.txt") -le $(s
 else
   bad "3 ranks, rebalanced: $cuts re-cuts, spread $(spread "$tmp/b3/summary.txt") vs $(spread "$tmp/r3/summary.txt")"
 fi
+
+# simulation.mpi_split: [2, 2, 1] on 4 ranks writes the same bytes (and
+# summary.txt says so); on 3 ranks it is refused before anything is written
+variant "4 ranks, split [2, 2, 1]" "mpi_split: [2, 2, 1]" 4 g4
+if [[ $same -eq 1 ]] && grep -q '^mpi_split: 2 x 2 x 1 boxes' "$tmp/g4/summary.txt"; then
+  ok "4 ranks split [2, 2, 1]: the same bytes as 1 rank's; $(grep -E '^mpi_(split|particles_per_rank|migrations)' "$tmp/g4/summary.txt" | tr '\n' ';')"
+else
+  bad "4 ranks split [2, 2, 1]: summary.txt: $(grep '^mpi_split' "$tmp/g4/summary.txt" || true)"
+fi
+set +e
+mpi -np 3 "$bin" run "$tmp/g4.yaml" -o "$tmp/f4" >/dev/null 2>"$tmp/f4.err"
+check_fail "split [2, 2, 1] on 3 ranks" $? "$tmp/f4.err" "^shapedem: $tmp/g4.yaml:[0-9]*: simulation.mpi_split: \[2, 2, 1\] makes 4 boxes, but the run has 3 MPI ranks"
+set -e
+[[ -e $tmp/f4 ]] && bad "split [2, 2, 1] on 3 ranks: the output directory was created"
+# the serial program ignores the key (the results are the same)
+"$bin" run "$tmp/g4.yaml" -o "$tmp/gs" -q --steps 10 || bad "the serial program refused simulation.mpi_split"
+# check --ranks: the grid, each rank's box and its particles (720 in all)
+"$bin" check "$tmp/g4.yaml" --ranks 4 >"$tmp/check.txt" || bad "check --ranks 4 failed"
+boxes=$(grep -c '^  rank [0-3] .* m: [0-9]* particles$' "$tmp/check.txt" || true)
+total=$(sed -n 's/^  rank .* m: \([0-9]*\) particles$/\1/p' "$tmp/check.txt" | paste -sd+)
+total=$((${total:-0}))
+if grep -q '^ranks        4: 2 x 2 x 1 boxes along x, y, z (as simulation.mpi_split asks)' "$tmp/check.txt" &&
+  [[ $boxes -eq 4 && $total -eq 720 ]]; then
+  ok "check --ranks 4: $(grep -A4 '^ranks ' "$tmp/check.txt" | tr -s ' ' | tr '\n' ';')"
+else
+  bad "check --ranks 4: $boxes boxes, $total particles:"; grep -A4 '^ranks ' "$tmp/check.txt" || true
+fi
+"$bin" check "$tmp/g4.yaml" --ranks 3 >"$tmp/check3.txt" || true
+grep -q '^warning      3 MPI ranks: .*simulation.mpi_split: \[2, 2, 1\] makes 4 boxes' "$tmp/check3.txt" ||
+  bad "check --ranks 3 with a split for 4: no warning"
 
 # the serial program against 1 rank, particle by particle in id order
 /usr/bin/python3 - "$src/scripts/frame_to_csv.py" "$tmp/serial" "$tmp/r1" <<'PY' || fail=1

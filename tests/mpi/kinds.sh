@@ -9,12 +9,21 @@
 # The serial world (no decomposition) is compared with 1 rank within a
 # tolerance only: it sums in the search's order (docs/architecture.md,
 # "MPI decomposition").
-#   kinds.sh MPI_SCENE_BINARY MPIEXEC SCENE [--hints | --walls]
+# --splits "NP:SPEC ...": instead of 2, 3 and 4 ranks with the scene's
+# split, NP ranks split as SPEC (mpi_scene --split: x, y, z, auto or
+# PxPyPz such as 2x2x1), each against 1 rank's state: the bits do not
+# depend on the split either.
+#   kinds.sh MPI_SCENE_BINARY MPIEXEC SCENE [--splits "NP:SPEC ..."] [--hints | --walls]
 set -euo pipefail
 bin=$1
 mpiexec=${2:-mpirun}
 scene=$3
 shift 3
+runs=("2:" "3:" "4:") # NP:SPEC, SPEC empty: the scene's own split
+if [[ ${1:-} == --splits ]]; then
+  read -r -a runs <<<"$2"
+  shift 2
+fi
 tmp=$(mktemp -d)
 # Open MPI's session directory in this test's own $tmp: jobs that other
 # tests (ctest -j) start and end at the same time cannot remove it under
@@ -29,24 +38,35 @@ run() { # ranks out [args]
   timeout 300 "$mpiexec" --oversubscribe --allow-run-as-root -np "$np" "$bin" "$scene" "$out" "$@"
 }
 fail=0
-for np in 1 2 3 4; do
-  run "$np" "$tmp/$np.bin" "$@" >"$tmp/$np.out" || { echo "FAIL: $name, $np ranks: the run failed"; fail=1; }
-  cat "$tmp/$np.out"
+keys=(1) labels=("1 rank")
+run 1 "$tmp/1.bin" "$@" >"$tmp/1.out" || { echo "FAIL: $name, 1 rank: the run failed"; fail=1; }
+cat "$tmp/1.out"
+for r in "${runs[@]}"; do
+  np=${r%%:*} spec=${r#*:} key=${r/:/-}
+  split=()
+  [[ -n $spec ]] && split=(--split "$spec")
+  keys+=("$key")
+  labels+=("$np ranks${spec:+, split $spec}")
+  run "$np" "$tmp/$key.bin" "$@" ${split[@]+"${split[@]}"} >"$tmp/$key.out" ||
+    { echo "FAIL: $name, $np ranks${spec:+, split $spec}: the run failed"; fail=1; }
+  cat "$tmp/$key.out"
 done
 run 1 "$tmp/serial.bin" --serial || { echo "FAIL: $name: the serial run failed"; fail=1; }
-for np in 2 3 4; do
+for i in "${!keys[@]}"; do
+  [[ $i -eq 0 ]] && continue
+  k=${keys[$i]} what_run=${labels[$i]}
   # the walls where they ended, and the accounts of insertions and outlets
   # (counts, masses): to the bit
   for what in walls accounts; do
-    if [[ -f $tmp/$np.out ]] && [[ $(grep "^$what:" "$tmp/1.out") != $(grep "^$what:" "$tmp/$np.out") ]]; then
-      echo "FAIL: $name, $np ranks: the $what line differs from 1 rank's"
+    if [[ -f $tmp/$k.out ]] && [[ $(grep "^$what:" "$tmp/1.out") != $(grep "^$what:" "$tmp/$k.out") ]]; then
+      echo "FAIL: $name, $what_run: the $what line differs from 1 rank's"
       fail=1
     fi
   done
-  if [[ -f $tmp/$np.bin && -f $tmp/1.bin ]] && cmp -s "$tmp/1.bin" "$tmp/$np.bin"; then
-    echo "ok: $name, $np ranks: the same $(stat -c %s "$tmp/$np.bin") bytes of state as 1 rank"
+  if [[ -f $tmp/$k.bin && -f $tmp/1.bin ]] && cmp -s "$tmp/1.bin" "$tmp/$k.bin"; then
+    echo "ok: $name, $what_run: the same $(stat -c %s "$tmp/$k.bin") bytes of state as 1 rank"
   else
-    echo "FAIL: $name, $np ranks: state differs from 1 rank's"
+    echo "FAIL: $name, $what_run: state differs from 1 rank's"
     fail=1
   fi
 done

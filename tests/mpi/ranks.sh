@@ -2,7 +2,10 @@
 # ranks.sh — the same bits on any rank count (issue 18): tests/mpi/spheres.c
 # on 1, 2, 3 and 4 ranks (oversubscribed: CI has two cores; Open MPI as
 # root needs --allow-run-as-root) must write the same gathered states, byte
-# for byte; the serial world (no decomposition) is compared to the bits of
+# for byte, split along x; and so must the same runs split otherwise (slabs
+# along y and z, grids 2 x 2 x 1 and 1 x 2 x 2, auto; periodic in x and y
+# across a grid), where particles cross the boxes' faces, edges and
+# corners. The serial world (no decomposition) is compared to the bits of
 # the decomposed runs' positions only within a tolerance, since it sums in
 # the search's order (docs/architecture.md, "MPI decomposition").
 #   ranks.sh MPI_SPHERES_BINARY MPIEXEC
@@ -39,6 +42,20 @@ for mode in box periodic; do
   done
   # the serial world against 1 rank: a sanity check of the physics
   /usr/bin/python3 "$(dirname "$0")/serial_vs_rank.py" "$tmp/${mode}serial.bin" "$tmp/${mode}1.bin" "$mode" 600 || fail=1
+done
+# the split does not change the bits: other grids against 1 rank's state
+# (itself the same bytes as the x split's on 2, 3 and 4 ranks, above)
+for s in box:2:y box:3:z box:4:2x2x1 box:4:1x2x2 box:4:auto periodic:4:2x2x1 periodic:3:y; do
+  IFS=: read -r mode np spec <<<"$s"
+  args=()
+  [[ $mode == periodic ]] && args=(--periodic)
+  out=$tmp/$mode-$spec-$np.bin
+  if run "$np" "$out" "${args[@]}" --split "$spec" && cmp -s "$tmp/${mode}1.bin" "$out"; then
+    echo "ok: $mode, $np ranks split $spec: the same $(stat -c %s "$out") bytes of state as 1 rank"
+  else
+    echo "FAIL: $mode, $np ranks split $spec: the run failed or its state differs from 1 rank's"
+    fail=1
+  fi
 done
 # a rank that fails alone (a bad material on rank 1 of 3) ends the job:
 # a non-zero status well before the timeout, one message naming the rank

@@ -1,18 +1,23 @@
 /* scene.c — one rank count's run of a scene for the MPI tests
  * (tests/mpi/kinds.sh): the scene (simulation.steps of it) built on every
- * rank, split along x over the ranks of mpirun, stepped with migrations
+ * rank, split over the ranks of mpirun (simulation.mpi_split, or --split),
+ * stepped with migrations
  * and contact history across rank boundaries. Every step the ranks'
  * particle count and id sums are checked against the whole set (none
  * lost, none duplicated); at the end rank 0 writes the gathered states, in
  * stable-id order, to the file given, which kinds.sh compares byte for
  * byte across rank counts.
  *
- *   mpi_scene SCENE OUT [--serial] [--hints] [--walls]
+ *   mpi_scene SCENE OUT [--serial] [--hints] [--walls] [--split SPEC]
  *     --serial: the plain world, no attach
  *     --hints:  on more than one rank, volume-law overlap hints (x0) must
  *               have travelled with migrating particles
  *     --walls:  on more than one rank, wall pairs' springs must have
  *               travelled with migrating particles
+ *     --split SPEC: the grid of boxes instead of the scene's (auto, x, y,
+ *               z or PxPyPz such as 2x2x1: tests/mpi/states.h)
+ *     --spread: on more than one rank, every rank must own particles at
+ *               the end (a world filled by insertion: not all on rank 0)
  *
  * On more than one rank particles must migrate and carry history entries
  * (the scenes are made so: fast particles in contact across the cuts).
@@ -26,6 +31,7 @@
 #include <shapedem/scene.h>
 
 #include "core/alloc.h"
+#include "io/scene.h"
 #include "mpi/mpi.h"
 #include "mpi/states.h"
 
@@ -89,10 +95,11 @@ int main(int argc, char **argv)
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     MPI_Comm_size(MPI_COMM_WORLD, &size);
     if (argc < 3) {
-        fprintf(stderr, "usage: mpi_scene SCENE OUT [--serial] [--hints] [--walls]\n");
+        fprintf(stderr, "usage: mpi_scene SCENE OUT [--serial] [--hints] [--walls] [--split SPEC] [--spread]\n");
         MPI_Abort(MPI_COMM_WORLD, 2);
     }
-    int serial = 0, hints = 0, walls = 0;
+    int serial = 0, hints = 0, walls = 0, spread = 0;
+    const char *split_arg = NULL;
     for (int a = 3; a < argc; ++a) {
         if (strcmp(argv[a], "--serial") == 0)
             serial = 1;
@@ -100,6 +107,10 @@ int main(int argc, char **argv)
             hints = 1;
         else if (strcmp(argv[a], "--walls") == 0)
             walls = 1;
+        else if (strcmp(argv[a], "--spread") == 0)
+            spread = 1;
+        else if (strcmp(argv[a], "--split") == 0 && a + 1 < argc)
+            split_arg = argv[++a];
         else {
             fprintf(stderr, "mpi_scene: unknown option %s\n", argv[a]);
             MPI_Abort(MPI_COMM_WORLD, 2);
@@ -120,7 +131,13 @@ int main(int argc, char **argv)
     unsigned long long want[3];
     mpi_test_id_sums(w, want);
     sd_mpi *m = NULL;
-    if (!serial && (st = sd_mpi_attach_built(w, &m, &err)) != SD_OK)
+    /* the scene's simulation.mpi_split, or --split */
+    sd_mpi_split_req split = {{sc->mpi_split[0], sc->mpi_split[1], sc->mpi_split[2]}, sc->mpi_split_line};
+    if (split_arg && mpi_test_split(split_arg, &split) != 0) {
+        fprintf(stderr, "mpi_scene: bad --split %s\n", split_arg);
+        MPI_Abort(MPI_COMM_WORLD, 2);
+    }
+    if (!serial && (st = sd_mpi_attach_built(w, &split, &m, &err)) != SD_OK)
         sd_mpi_fail(m, "attach", st, &err);
     long bad_steps = 0, contacts_max = 0, wall_contacts_max = 0;
     int reported = 0;
@@ -140,6 +157,11 @@ int main(int argc, char **argv)
                                    m ? sd_mpi_carried_hints(m) : 0, m ? sd_mpi_carried_walls(m) : 0},
                        moved_all[4] = {0, 0, 0, 0};
     MPI_Reduce(moved, moved_all, 4, MPI_UNSIGNED_LONG_LONG, MPI_SUM, 0, MPI_COMM_WORLD);
+    /* the particles each rank owns at the end (at most 64 ranks) */
+    unsigned long long own = sd_world_particle_count(w), owns[SD_MPI_MAX_RANKS] = {0}, fewest = own;
+    MPI_Gather(&own, 1, MPI_UNSIGNED_LONG_LONG, owns, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
+    for (int r = 0; rank == 0 && r < size; ++r)
+        fewest = owns[r] < fewest ? owns[r] : fewest;
     sd_particle_state *s = NULL;
     size_t n = 0;
     if (m) {
@@ -186,12 +208,24 @@ int main(int argc, char **argv)
     }
     if (rank == 0) {
         mpi_test_write_states(argv[2], s, n);
-        printf("%s: %d rank%s%s: %zu of %llu particles gathered, %ld steps, at most %ld particle and %ld "
-               "wall contacts; %llu migrations carrying %llu history entries (%llu overlap hints, %llu wall pairs'); steps with a wrong count "
+        const sd_mpi_grid *g = m ? sd_mpi_grid_of(m) : NULL;
+        printf("%s: %d rank%s%s, split %d x %d x %d: %zu of %llu particles gathered, %ld steps, at most %ld particle "
+               "and %ld "
+               "wall contacts; %llu migrations carrying %llu history entries (%llu overlap hints, %llu wall pairs'); "
+               "steps with a wrong count "
                "or id set: %ld\n",
-               argv[1], size, size > 1 ? "s" : "", serial ? " (serial world)" : "", n, want[0], steps,
-               contacts_max, wall_contacts_max, moved_all[0], moved_all[1], moved_all[2], moved_all[3], bad_steps);
+               argv[1], size, size > 1 ? "s" : "", serial ? " (serial world)" : "", g ? g->n[0] : 1, g ? g->n[1] : 1,
+               g ? g->n[2] : 1, n, want[0], steps, contacts_max, wall_contacts_max, moved_all[0], moved_all[1],
+               moved_all[2], moved_all[3], bad_steps);
         fail |= n != want[0] || bad_steps != 0 || contacts_max == 0 || wall_contacts_max == 0;
+        printf("  particles per rank at the end:");
+        for (int r = 0; r < size; ++r)
+            printf(" %llu", owns[r]);
+        printf("\n");
+        if (spread && size > 1 && !serial && fewest == 0) {
+            printf("  FAIL: a rank owns no particle at the end\n");
+            fail = 1;
+        }
         /* on more than one rank, particles must cross, some in contact */
         if (size > 1 && !serial &&
             (moved_all[0] == 0 || moved_all[1] == 0 || (hints && moved_all[2] == 0) || (walls && moved_all[3] == 0))) {

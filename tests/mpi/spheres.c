@@ -1,15 +1,17 @@
 /* spheres.c — one rank count's run of the MPI test (tests/mpi/ranks.sh):
- * 600 frictional spheres thrown about in a long box, split along x over
- * the ranks of mpirun, 500 steps with migrations and contact history
- * across rank boundaries. Every step the ranks' particle count and id sums
+ * 600 frictional spheres thrown about in a long box, split over the ranks
+ * of mpirun (along x, or as --split asks), 500 steps with migrations and
+ * contact history across rank boundaries. Every step the ranks' particle count and id sums
  * are checked against the whole set (none lost, none duplicated); at the
  * end rank 0 writes the gathered states, in stable-id order, to the file
  * given, which ranks.sh compares byte for byte across rank counts.
  *
- *   mpi_spheres OUT [--serial] [--periodic] [--fail-rank R]
+ *   mpi_spheres OUT [--serial] [--periodic] [--fail-rank R] [--split SPEC]
  *     --serial: the plain world, no attach
  *     --periodic: periodic along x and y (a floor plane, no box): particles
  *                 cross the periodic faces and, as images, the rank cuts
+ *     --split SPEC: the grid of boxes (tests/mpi/states.h: auto, x, y, z or
+ *                 PxPyPz such as 2x2x1); x when not given
  */
 #include <mpi.h>
 #include <stdio.h>
@@ -74,10 +76,11 @@ int main(int argc, char **argv)
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     MPI_Comm_size(MPI_COMM_WORLD, &size);
     if (argc < 2) {
-        fprintf(stderr, "usage: mpi_spheres OUT [--serial] [--periodic] [--fail-rank R]\n");
+        fprintf(stderr, "usage: mpi_spheres OUT [--serial] [--periodic] [--fail-rank R] [--split SPEC]\n");
         MPI_Abort(MPI_COMM_WORLD, 2);
     }
     int serial = 0, periodic = 0, fail_rank = -1;
+    sd_mpi_split_req split = {{-1, 1, 1}, 0}; /* along x */
     for (int a = 2; a < argc; ++a) {
         if (strcmp(argv[a], "--serial") == 0)
             serial = 1;
@@ -85,6 +88,12 @@ int main(int argc, char **argv)
             periodic = 1;
         else if (strcmp(argv[a], "--fail-rank") == 0 && a + 1 < argc)
             fail_rank = atoi(argv[++a]);
+        else if (strcmp(argv[a], "--split") == 0 && a + 1 < argc && mpi_test_split(argv[a + 1], &split) == 0)
+            ++a;
+        else {
+            fprintf(stderr, "mpi_spheres: unknown option %s\n", argv[a]);
+            MPI_Abort(MPI_COMM_WORLD, 2);
+        }
     }
     /* --fail-rank R: rank R alone reads a bad material (as a scene read on
      * one rank only would be): the job must end with one message, the
@@ -103,7 +112,7 @@ int main(int argc, char **argv)
     sd_world *w = make_world(periodic);
     sd_mpi *m = NULL;
     sd_status st;
-    if (!serial && (st = sd_mpi_attach(w, &m, &err)) != SD_OK)
+    if (!serial && (st = sd_mpi_attach(w, &split, &m, &err)) != SD_OK)
         sd_mpi_fail(m, "attach", st, &err);
     /* the whole set's id sums: 0 .. N-1 */
     unsigned long long want[3] = {N, 0, 0};
@@ -134,15 +143,18 @@ int main(int argc, char **argv)
             sd_world_get_particle(w, sd_world_find_particle(w, id), &s[id]);
     }
     int fail = 0;
+    const sd_mpi_grid *g = m ? sd_mpi_grid_of(m) : NULL;
     if (rank == 0) {
         size_t ids_in_order = 1;
         for (size_t k = 0; k < n; ++k)
             ids_in_order &= s[k].id == k;
         mpi_test_write_states(argv[1], s, n);
-        printf("%d rank%s%s%s: %zu particles gathered (ids 0..%d in order: %s), %llu migrations carrying %llu "
+        printf("%d rank%s%s%s, split %d x %d x %d: %zu particles gathered (ids 0..%d in order: %s), %llu migrations "
+               "carrying %llu "
                "springs, rank 0: %ld rebuilds, %ld contacts; steps with a wrong count or id set: %ld\n",
-               size, size > 1 ? "s" : "", serial ? " (serial world)" : "", periodic ? " periodic x, y" : "", n, N - 1, ids_in_order ? "yes" : "no",
-               moved_all[0], moved_all[1], stats.rebuilds, stats.contacts, bad_steps);
+               size, size > 1 ? "s" : "", serial ? " (serial world)" : "", periodic ? " periodic x, y" : "",
+               g ? g->n[0] : 1, g ? g->n[1] : 1, g ? g->n[2] : 1, n, N - 1, ids_in_order ? "yes" : "no", moved_all[0],
+               moved_all[1], stats.rebuilds, stats.contacts, bad_steps);
         /* on more than one rank, particles must cross, some in contact */
         fail = n != N || !ids_in_order || bad_steps != 0 || (size > 1 && (moved_all[0] == 0 || moved_all[1] == 0));
     }

@@ -1,13 +1,33 @@
 /* states.h — what the MPI test programs (tests/mpi/spheres.c, scene.c)
- * share: the id sums that check the particle set every step, and the file
- * of gathered states that the scripts compare byte for byte. */
+ * share: the id sums that check the particle set every step, the file of
+ * gathered states that the scripts compare byte for byte, and the --split
+ * option. */
 #ifndef SD_TESTS_MPI_STATES_H
 #define SD_TESTS_MPI_STATES_H
 
 #include <mpi.h>
 #include <stdio.h>
+#include <string.h>
 
 #include <shapedem/shapedem.h>
+
+#include "mpi/mpi.h"
+
+/* --split SPEC, as simulation.mpi_split reads it: auto, x, y, z or PxPyPz
+ * ("2x2x1"). Returns 0, or -1 for a SPEC that is none of those. */
+static inline int mpi_test_split(const char *spec, sd_mpi_split_req *out)
+{
+    *out = (sd_mpi_split_req){{0, 0, 0}, 0};
+    if (!strcmp(spec, "auto"))
+        return 0;
+    if (spec[0] >= 'x' && spec[0] <= 'z' && !spec[1]) {
+        for (int a = 0; a < 3; ++a)
+            out->n[a] = a == spec[0] - 'x' ? -1 : 1;
+        return 0;
+    }
+    char end;
+    return sscanf(spec, "%dx%dx%d%c", &out->n[0], &out->n[1], &out->n[2], &end) == 3 ? 0 : -1;
+}
 
 /* This rank's count, id sum and id square sum (out[0..2]): summed over the
  * ranks they must equal the whole set's, or a particle was lost or doubled. */
