@@ -57,6 +57,17 @@ for s in box:2:y box:3:z box:4:2x2x1 box:4:1x2x2 box:4:auto periodic:4:2x2x1 per
     fail=1
   fi
 done
+# simulation.mpi_rebalance_every under a grid: re-cut every 50 steps, the
+# same grid shape at the end, the same bytes
+if run 4 "$tmp/rebalanced.bin" --split 1x2x2 --rebalance 50 >"$tmp/rebalanced.out" &&
+  grep -q 'split 1 x 2 x 2 after [1-9][0-9]* re-cuts' "$tmp/rebalanced.out" &&
+  cmp -s "$tmp/box1.bin" "$tmp/rebalanced.bin"; then
+  echo "ok: box, 4 ranks split 1x2x2 rebalanced every 50 steps: $(grep -o 'split 1 x 2 x 2 after [0-9]* re-cuts' "$tmp/rebalanced.out"), the same bytes of state as 1 rank"
+else
+  echo "FAIL: box, 4 ranks split 1x2x2 rebalanced: the run failed, the grid changed or the state differs:"
+  cat "$tmp/rebalanced.out"
+  fail=1
+fi
 # a rank that fails alone (a bad material on rank 1 of 3) ends the job:
 # a non-zero status well before the timeout, one message naming the rank
 set +e

@@ -6,12 +6,13 @@
  * end rank 0 writes the gathered states, in stable-id order, to the file
  * given, which ranks.sh compares byte for byte across rank counts.
  *
- *   mpi_spheres OUT [--serial] [--periodic] [--fail-rank R] [--split SPEC]
+ *   mpi_spheres OUT [--serial] [--periodic] [--fail-rank R] [--split SPEC] [--rebalance K]
  *     --serial: the plain world, no attach
  *     --periodic: periodic along x and y (a floor plane, no box): particles
  *                 cross the periodic faces and, as images, the rank cuts
  *     --split SPEC: the grid of boxes (tests/mpi/states.h: auto, x, y, z or
  *                 PxPyPz such as 2x2x1); x when not given
+ *     --rebalance K: the split cut again every K steps (mpi/rebalance.c)
  */
 #include <mpi.h>
 #include <stdio.h>
@@ -76,10 +77,11 @@ int main(int argc, char **argv)
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     MPI_Comm_size(MPI_COMM_WORLD, &size);
     if (argc < 2) {
-        fprintf(stderr, "usage: mpi_spheres OUT [--serial] [--periodic] [--fail-rank R] [--split SPEC]\n");
+        fprintf(stderr, "usage: mpi_spheres OUT [--serial] [--periodic] [--fail-rank R] [--split SPEC] [--rebalance K]\n");
         MPI_Abort(MPI_COMM_WORLD, 2);
     }
     int serial = 0, periodic = 0, fail_rank = -1;
+    long rebalance = 0;
     sd_mpi_split_req split = {{-1, 1, 1}, 0}; /* along x */
     for (int a = 2; a < argc; ++a) {
         if (strcmp(argv[a], "--serial") == 0)
@@ -88,6 +90,8 @@ int main(int argc, char **argv)
             periodic = 1;
         else if (strcmp(argv[a], "--fail-rank") == 0 && a + 1 < argc)
             fail_rank = atoi(argv[++a]);
+        else if (strcmp(argv[a], "--rebalance") == 0 && a + 1 < argc)
+            rebalance = atol(argv[++a]);
         else if (strcmp(argv[a], "--split") == 0 && a + 1 < argc && mpi_test_split(argv[a + 1], &split) == 0)
             ++a;
         else {
@@ -114,6 +118,8 @@ int main(int argc, char **argv)
     sd_status st;
     if (!serial && (st = sd_mpi_attach(w, &split, &m, &err)) != SD_OK)
         sd_mpi_fail(m, "attach", st, &err);
+    if (m)
+        sd_mpi_set_rebalance(m, rebalance, 0);
     /* the whole set's id sums: 0 .. N-1 */
     unsigned long long want[3] = {N, 0, 0};
     for (unsigned long long id = 0; id < N; ++id) {
@@ -149,12 +155,12 @@ int main(int argc, char **argv)
         for (size_t k = 0; k < n; ++k)
             ids_in_order &= s[k].id == k;
         mpi_test_write_states(argv[1], s, n);
-        printf("%d rank%s%s%s, split %d x %d x %d: %zu particles gathered (ids 0..%d in order: %s), %llu migrations "
-               "carrying %llu "
-               "springs, rank 0: %ld rebuilds, %ld contacts; steps with a wrong count or id set: %ld\n",
+        printf("%d rank%s%s%s, split %d x %d x %d after %ld re-cuts: %zu particles gathered (ids 0..%d in order: "
+               "%s), %llu migrations carrying %llu springs, rank 0: %ld rebuilds, %ld contacts; steps with a wrong "
+               "count or id set: %ld\n",
                size, size > 1 ? "s" : "", serial ? " (serial world)" : "", periodic ? " periodic x, y" : "",
-               g ? g->n[0] : 1, g ? g->n[1] : 1, g ? g->n[2] : 1, n, N - 1, ids_in_order ? "yes" : "no", moved_all[0],
-               moved_all[1], stats.rebuilds, stats.contacts, bad_steps);
+               g ? g->n[0] : 1, g ? g->n[1] : 1, g ? g->n[2] : 1, m ? sd_mpi_rebalances(m) : 0L, n, N - 1,
+               ids_in_order ? "yes" : "no", moved_all[0], moved_all[1], stats.rebuilds, stats.contacts, bad_steps);
         /* on more than one rank, particles must cross, some in contact */
         fail = n != N || !ids_in_order || bad_steps != 0 || (size > 1 && (moved_all[0] == 0 || moved_all[1] == 0));
     }
