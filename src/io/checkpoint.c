@@ -764,14 +764,14 @@ sd_status sd_checkpoint_write_collective(const sd_snapshot *s, const sd_ckpt_par
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     char *tmp = sd_ckpt_tmp_name(path);
     const char *what = tmp ? sd_fs_not_regular(tmp) : NULL;
-    /* every process takes the same way: rank 0's look at the temporary */
-    int go = tmp && !what;
-    MPI_Bcast(&go, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    /* every process takes the same way: rank 0's look at the temporary,
+     * and every process's name for it */
+    int mine = tmp && (rank != 0 || !what), go = 0;
+    MPI_Allreduce(&mine, &go, 1, MPI_INT, MPI_LAND, MPI_COMM_WORLD);
     sd_status st = SD_OK;
     if (!go)
-        st = !tmp ? sd_error_set(err, SD_ERR_MEMORY, path, 0, "", "out of memory")
-                  : sd_error_set(err, SD_ERR_IO, tmp, 0, "", "cannot write the checkpoint: %s is in the way",
-                                 what ? what : "something");
+        st = what ? sd_error_set(err, SD_ERR_IO, tmp, 0, "", "cannot write the checkpoint: %s is in the way", what)
+                  : sd_error_set(err, SD_ERR_MEMORY, path, 0, "", "out of memory");
     else {
         st = sd_h5_write_path(s, parts, tmp, err); /* collective; closed on every process on return */
         int ok = st == SD_OK, all = 0;
@@ -784,10 +784,10 @@ sd_status sd_checkpoint_write_collective(const sd_snapshot *s, const sd_ckpt_par
                                   "process (disk full?)");
             st = sd_ckpt_finish(st, tmp, path, err);
         }
-        int code = (int)st;
-        MPI_Bcast(&code, 1, MPI_INT, 0, MPI_COMM_WORLD);
-        st = (sd_status)code;
     }
+    int code = (int)st; /* rank 0's status on every process */
+    MPI_Bcast(&code, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    st = (sd_status)code;
     sd_free(tmp);
     return st;
 #else

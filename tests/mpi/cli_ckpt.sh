@@ -91,4 +91,19 @@ if "$bin" run "$scene" --restart "$d.p2/checkpoint-000200.h5" -o "$d.serial" -q 
 else
   bad "box: the serial restart from the 2-rank parallel checkpoint failed"
 fi
+# a directory in the way of the temporary: one message, exit 1 (a serial
+# run's failed checkpoint), no hang, nothing renamed into place
+set +e
+mpi -np 2 "$bin" run "$scene" --steps 50 -o "$tmp/way" -q
+mkdir "$tmp/way/.checkpoint-000200.h5.tmp"
+mpi -np 2 "$bin" run "$scene" --steps 200 -o "$tmp/way" -q 2>"$tmp/way.err"
+rc=$?
+set -e
+if [[ $rc -eq 1 && ! -e $tmp/way/checkpoint-000200.h5 ]] &&
+  grep -q '^shapedem: run stopped at step 200: .*checkpoint-000200.h5.tmp: cannot write the checkpoint: a directory is in the way' "$tmp/way.err"; then
+  ok "a directory in the way of the temporary: exit 1, $(grep -c '^shapedem:' "$tmp/way.err") message: $(grep '^shapedem:' "$tmp/way.err")"
+else
+  bad "a directory in the way of the temporary: exit $rc (124: a hang):"
+  cat "$tmp/way.err"
+fi
 exit $fail
