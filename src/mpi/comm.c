@@ -8,6 +8,7 @@
  * exchange: any rank may send to any other, so a box thinner than the
  * contact reach still gets every ghost it needs.
  */
+#include <math.h>
 #include <mpi.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -518,9 +519,21 @@ static sd_status sd_hook_ghosts(void *ctx, sd_world *w, sd_error *err)
         sd_mpi_grid_box(&m->grid, r, lo[r], hi[r]);
     double span[3] = {w->def.domain_hi.x - w->def.domain_lo.x, w->def.domain_hi.y - w->def.domain_lo.y,
                       w->def.domain_hi.z - w->def.domain_lo.z};
+    double dlo[3] = {w->def.domain_lo.x, w->def.domain_lo.y, w->def.domain_lo.z};
     for (int a = 0; a < 3; ++a) /* SD_PERIODIC_X, _Y, _Z: bits 0, 1, 2 */
         period[a] = (w->def.periodic & (1u << a)) ? span[a] : 0.0;
     int periodic = period[0] > 0 || period[1] > 0 || period[2] > 0;
+    /* on a periodic axis every owned particle lies in the domain now (the
+     * rebuild wrapped it before the migration), so a box's open outer face
+     * closes at the domain's: else every particle one period away would be
+     * within reach of the outer boxes, and sent there for nothing (an
+     * empty box, +inf to +inf, stays empty) */
+    for (int r = 0; !oom && r < m->size; ++r)
+        for (int a = 0; a < 3; ++a)
+            if (period[a] > 0) {
+                lo[r][a] = fmax(lo[r][a], dlo[a]);
+                hi[r][a] = fmin(hi[r][a], dlo[a] + span[a]);
+            }
     /* per rank in turn, so the rows come out grouped by destination */
     m->send_n = 0;
     size_t n_local = 0;

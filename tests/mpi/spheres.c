@@ -133,8 +133,9 @@ int main(int argc, char **argv)
             sd_mpi_fail(m, "step", st, &err);
         bad_steps += mpi_test_check_ids(w, want, step, rank, &reported);
     }
-    unsigned long long moved[2] = {m ? sd_mpi_migrated(m) : 0, m ? sd_mpi_carried(m) : 0}, moved_all[2] = {0, 0};
-    MPI_Reduce(moved, moved_all, 2, MPI_UNSIGNED_LONG_LONG, MPI_SUM, 0, MPI_COMM_WORLD);
+    unsigned long long moved[3] = {m ? sd_mpi_migrated(m) : 0, m ? sd_mpi_carried(m) : 0, m ? sd_mpi_ghosts(m) : 0},
+                       moved_all[3] = {0, 0, 0};
+    MPI_Reduce(moved, moved_all, 3, MPI_UNSIGNED_LONG_LONG, MPI_SUM, 0, MPI_COMM_WORLD);
     sd_stats stats;
     sd_world_stats(w, &stats);
     sd_particle_state *s = NULL;
@@ -156,11 +157,11 @@ int main(int argc, char **argv)
             ids_in_order &= s[k].id == k;
         mpi_test_write_states(argv[1], s, n);
         printf("%d rank%s%s%s, split %d x %d x %d after %ld re-cuts: %zu particles gathered (ids 0..%d in order: "
-               "%s), %llu migrations carrying %llu springs, rank 0: %ld rebuilds, %ld contacts; steps with a wrong "
+               "%s), %llu migrations carrying %llu springs, %llu remote ghosts at the end, rank 0: %ld rebuilds, %ld contacts; steps with a wrong "
                "count or id set: %ld\n",
                size, size > 1 ? "s" : "", serial ? " (serial world)" : "", periodic ? " periodic x, y" : "",
                g ? g->n[0] : 1, g ? g->n[1] : 1, g ? g->n[2] : 1, m ? sd_mpi_rebalances(m) : 0L, n, N - 1,
-               ids_in_order ? "yes" : "no", moved_all[0], moved_all[1], stats.rebuilds, stats.contacts, bad_steps);
+               ids_in_order ? "yes" : "no", moved_all[0], moved_all[1], moved_all[2], stats.rebuilds, stats.contacts, bad_steps);
         /* on more than one rank, particles must cross, some in contact */
         fail = n != N || !ids_in_order || bad_steps != 0 || (size > 1 && (moved_all[0] == 0 || moved_all[1] == 0));
     }
