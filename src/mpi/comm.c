@@ -477,11 +477,19 @@ static int sd_near_box(const double y[3], const double lo[3], const double hi[3]
 }
 
 /* 1 when the particle at x (m), moved by a period on one or more periodic
- * axes (period[a], m; 0 on the others), is near the box: an image of one
- * of the box's particles may touch it there. */
-static int sd_near_box_period(const double x[3], const double period[3], const double lo[3], const double hi[3],
-                              double band)
+ * axes (period[a], m; 0 on the others; the domain from dlo), is near the
+ * box (clamped to the domain on those axes): an image of one of the box's
+ * particles may touch it there. Only a particle within 2 band of a
+ * periodic face can be: one period away it lies beyond the domain by more
+ * than band otherwise, so the 26 moves are tried for those only. */
+static int sd_near_box_period(const double x[3], const double period[3], const double dlo[3], const double lo[3],
+                              const double hi[3], double band)
 {
+    int edge = 0;
+    for (int a = 0; a < 3; ++a)
+        edge |= period[a] > 0 && (x[a] < dlo[a] + 2 * band || x[a] > dlo[a] + period[a] - 2 * band);
+    if (!edge)
+        return 0;
     for (int s = 1; s < 27; ++s) { /* the 26 moves (-1, 0, +1)^3 but none */
         int d[3] = {s % 3 - 1, (s / 3) % 3 - 1, s / 9 - 1};
         if ((d[0] && !period[0]) || (d[1] && !period[1]) || (d[2] && !period[2]) || (!d[0] && !d[1] && !d[2]))
@@ -558,7 +566,7 @@ static sd_status sd_hook_ghosts(void *ctx, sd_world *w, sd_error *err)
                  * true position (broad/bins.h), on both ranks */
                 int near = sd_near_box(y, lo[r], hi[r], (double)band);
                 if (!near && t == 0 && periodic)
-                    near = sd_near_box_period(y, period, lo[r], hi[r], (double)band);
+                    near = sd_near_box_period(y, period, dlo, lo[r], hi[r], (double)band);
                 if (!near)
                     continue;
                 if (sd_send_add(m, k, sh[t])) {
