@@ -108,18 +108,24 @@ static sd_history *sd_history_sort(int threads, int parallel, sd_history *h, sd_
 {
     const uint64_t mask = SD_HIST_RADIX - 1;
     uint64_t differ[SD_KEY_FIELDS];
+    int nt = parallel && threads > 1 ? threads : 1;
     for (int f = 0; f < SD_KEY_FIELDS; ++f) {
         uint64_t all_or = 0, all_and = ~(uint64_t)0;
-        SD_PRAGMA(omp parallel for schedule(static) num_threads(threads) if (parallel) \
-                      reduction(| : all_or) reduction(& : all_and))
-        for (size_t k = 0; k < m; ++k) {
-            uint64_t v = sd_key_field(&h[k].key, f);
-            all_or |= v;
-            all_and &= v;
-        }
+        if (nt > 1) {
+            SD_PRAGMA(omp parallel for schedule(static) num_threads(nt) reduction(| : all_or) reduction(& : all_and))
+            for (size_t k = 0; k < m; ++k) {
+                uint64_t v = sd_key_field(&h[k].key, f);
+                all_or |= v;
+                all_and &= v;
+            }
+        } else /* no OpenMP region at all: each one costs a system call (core/base.h: SD_OMP_EACH) */
+            for (size_t k = 0; k < m; ++k) {
+                uint64_t v = sd_key_field(&h[k].key, f);
+                all_or |= v;
+                all_and &= v;
+            }
         differ[f] = all_or ^ all_and;
     }
-    int nt = parallel && threads > 1 ? threads : 1;
     size_t one[SD_HIST_RADIX];
     size_t *count = nt > 1 ? sd_malloc((size_t)nt * SD_HIST_RADIX * sizeof *count) : NULL;
     if (!count) { /* one thread (or no memory for the threads' counts) */
@@ -130,7 +136,20 @@ static sd_history *sd_history_sort(int threads, int parallel, sd_history *h, sd_
         for (int shift = 0; shift < sd_key_width[f]; shift += SD_HIST_BITS) {
             if (((differ[f] >> shift) & mask) == 0)
                 continue; /* the same digit everywhere: already in order */
-            SD_PRAGMA(omp parallel num_threads(nt) if (nt > 1))
+            if (nt == 1) { /* the same pass without a region (its barriers are system calls) */
+                memset(count, 0, SD_HIST_RADIX * sizeof *count);
+                for (size_t k = 0; k < m; ++k)
+                    count[(sd_key_field(&h[k].key, f) >> shift) & mask]++;
+                size_t sum = 0;
+                for (size_t d = 0; d < SD_HIST_RADIX; ++d) {
+                    size_t v = count[d];
+                    count[d] = sum;
+                    sum += v;
+                }
+                for (size_t k = 0; k < m; ++k)
+                    tmp[count[(sd_key_field(&h[k].key, f) >> shift) & mask]++] = h[k];
+            } else
+            SD_PRAGMA(omp parallel num_threads(nt))
             {
                 int t = 0;
 #ifdef _OPENMP

@@ -81,6 +81,27 @@ typedef double sd_real;
  * it: backend/cpu/parallel.h). */
 #define SD_PRAGMA(x) _Pragma(#x)
 
+/* SD_OMP_EACH(par, nth, k, k0, k1, body): for (size_t k = k0; k < k1; ++k)
+ * body, over nth threads (static schedule) when par, else a plain loop
+ * that never enters the OpenMP runtime: a region with if (0) still ends
+ * with libgomp's barrier, which wakes a futex with a system call (1-3 us
+ * on a virtual machine) every time, and a small world's step and rebuild
+ * run dozens of them (backend/cpu/parallel.h). Items must write only
+ * their own slots, so both give the same bits. */
+#define SD_LOOP_(k, ...)                                                                                       \
+    for (size_t k = k##_lo_; k < k##_hi_; ++k) {                                                               \
+        __VA_ARGS__;                                                                                           \
+    }
+#define SD_OMP_EACH(par, nth, k, k0, k1, ...)                                                                  \
+    do {                                                                                                       \
+        const size_t k##_lo_ = (k0), k##_hi_ = (k1);                                                           \
+        if (par) {                                                                                             \
+            SD_PRAGMA(omp parallel for schedule(static) num_threads(nth))                                      \
+            SD_LOOP_(k, __VA_ARGS__)                                                                           \
+        } else                                                                                                 \
+            SD_LOOP_(k, __VA_ARGS__)                                                                           \
+    } while (0)
+
 #define SD_PI SD_R(3.14159265358979323846)
 #define SD_PI_D 3.14159265358979323846 /* always double: parameter set-up */
 

@@ -143,12 +143,8 @@ void sd_particles_permute(sd_particles *p, const uint32_t *perm, void *scratch, 
     {                                                                                                       \
         _Static_assert(sizeof(type) <= 32, "scratch too small");                                            \
         type *tmp = (type *)scratch;                                                                        \
-        SD_PRAGMA(omp parallel for schedule(static) num_threads(threads) if (parallel))                     \
-        for (size_t k = 0; k < n; ++k)                                                                      \
-            tmp[k] = p->name[perm[k]];                                                                      \
-        SD_PRAGMA(omp parallel for schedule(static) num_threads(threads) if (parallel))                     \
-        for (size_t k = 0; k < n; ++k)                                                                      \
-            p->name[k] = tmp[k];                                                                            \
+        SD_OMP_EACH(parallel, threads, k, 0, n, tmp[k] = p->name[perm[k]]);                                 \
+        SD_OMP_EACH(parallel, threads, k, 0, n, p->name[k] = tmp[k]);                                      \
     }
     SD_PARTICLE_FIELDS(SD_X_PERMUTE)
 #undef SD_X_PERMUTE

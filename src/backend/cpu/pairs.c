@@ -10,7 +10,9 @@
  * iterations and support calls per pair of shape kinds, since the world was
  * created) are tallied by each thread for the pairs it ran and added to the
  * world's counters once per loop: integer sums, exact in any order, and no
- * serial pass over the pairs.
+ * serial pass over the pairs. The narrow-phase kinds' functions are run by
+ * each thread of a team (their loops are orphaned `omp for` constructs,
+ * SD_CPU_TEAM), or once when the world is serial.
  */
 #include <string.h>
 
@@ -22,9 +24,7 @@ static void sd_cpu_spheres(sd_stage *s, size_t e0, size_t e1)
 {
     const sd_step_view *v = &s->v;
     sd_pair_out *o = &s->pairs;
-SD_CPU_FOR(s->exec)
-    for (size_t e = e0; e < e1; ++e)
-        sd_item_spheres(v, o, e);
+    SD_CPU_EACH(s->exec, e, e0, e1, sd_item_spheres(v, o, e));
 }
 
 /* A thread's narrow-phase tallies (3D: evaluations, iterations, support
@@ -66,8 +66,6 @@ static void sd_cpu_convex(sd_stage *s, size_t e0, size_t e1)
 {
     const sd_step_view *v = &s->v;
     sd_pair_out *o = &s->pairs;
-SD_CPU_REGION(s->exec)
-    {
     sd_tally3 y;
     memset(&y, 0, sizeof y);
 SD_PRAGMA(omp for schedule(dynamic, 64))
@@ -76,7 +74,6 @@ SD_PRAGMA(omp for schedule(dynamic, 64))
         sd_tally3_add(&y, v, o, e);
     }
     sd_tally3_flush(s, &y);
-    }
 }
 
 /* The volume law over [e0, e1), with one overlap workspace per thread (a
@@ -87,8 +84,6 @@ static void sd_cpu_poly_volume(sd_stage *s, size_t e0, size_t e1)
 {
     const sd_step_view *v = &s->v;
     sd_pair_out *o = &s->pairs;
-SD_CPU_REGION(s->exec)
-    {
     sd_overlap_workspace ws;
     sd_tally3 y;
     memset(&y, 0, sizeof y);
@@ -98,7 +93,6 @@ SD_PRAGMA(omp for schedule(dynamic, 64))
         sd_tally3_add(&y, v, o, e);
     }
     sd_tally3_flush(s, &y);
-    }
 }
 
 /* The composite element pairs over [e0, e1): one item per run of element
@@ -111,8 +105,6 @@ static void sd_cpu_elements(sd_stage *s, size_t e0, size_t e1)
 {
     const sd_step_view *v = &s->v;
     sd_pair_out *o = &s->pairs;
-SD_CPU_REGION(s->exec)
-    {
     sd_overlap_workspace ws;
     sd_tally3 y;
     memset(&y, 0, sizeof y);
@@ -128,7 +120,6 @@ SD_PRAGMA(omp for schedule(dynamic, 16))
             sd_tally3_add(&y, v, o, k);
     }
     sd_tally3_flush(s, &y);
-    }
 }
 
 /* The 2D tallies: evaluations, contacts, support calls, support calls of
@@ -142,8 +133,6 @@ static void sd_cpu_convex2d(sd_stage *s, size_t e0, size_t e1)
 {
     const sd_step_view *v = &s->v;
     sd_pair_out *o = &s->pairs;
-SD_CPU_REGION(s->exec)
-    {
     sd_tally2 y;
     memset(&y, 0, sizeof y);
 SD_PRAGMA(omp for schedule(dynamic, 64))
@@ -170,7 +159,6 @@ SD_PRAGMA(omp critical(sd_narrow_tally))
                 for (int c = 0; c < 4; ++c)
                     s->narrow2d[a][b][c] += y.t[a][b][c];
     }
-    }
 }
 
 void sd_cpu_forces(sd_stage *s, sd_pair_kind kind)
@@ -184,16 +172,16 @@ void sd_cpu_forces(sd_stage *s, sd_pair_kind kind)
         sd_cpu_spheres(s, e0, e1);
         break;
     case SD_PAIR_CONVEX:
-        sd_cpu_convex(s, e0, e1);
+        SD_CPU_TEAM(s->exec, sd_cpu_convex(s, e0, e1));
         break;
     case SD_PAIR_POLY_VOLUME:
-        sd_cpu_poly_volume(s, e0, e1);
+        SD_CPU_TEAM(s->exec, sd_cpu_poly_volume(s, e0, e1));
         break;
     case SD_PAIR_CONVEX2D:
-        sd_cpu_convex2d(s, e0, e1);
+        SD_CPU_TEAM(s->exec, sd_cpu_convex2d(s, e0, e1));
         break;
     case SD_PAIR_ELEMENTS:
-        sd_cpu_elements(s, e0, e1);
+        SD_CPU_TEAM(s->exec, sd_cpu_elements(s, e0, e1));
         break;
     case SD_PAIR_KIND_COUNT:
         break;

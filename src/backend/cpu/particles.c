@@ -26,9 +26,7 @@ void sd_cpu_kick_drift(sd_stage *s)
     sd_vec3 g = v->gravity;
     int mode = sd_item_kick_mode(v);
     sd_real alpha = v->damping;
-SD_CPU_FOR(s->exec)
-    for (size_t k = 0; k < n; ++k)
-        sd_item_kick_drift(mode, alpha, v, k, g, h, dt);
+    SD_CPU_EACH(s->exec, k, 0, n, sd_item_kick_drift(mode, alpha, v, k, g, h, dt));
 }
 
 void sd_cpu_gather(sd_stage *s)
@@ -37,9 +35,7 @@ void sd_cpu_gather(sd_stage *s)
     const sd_pair_out *l = &s->pairs;
     const sd_wall_pair_out *wl = &s->wpairs;
     size_t n = v->n_owned;
-SD_CPU_FOR(s->exec)
-    for (size_t k = 0; k < n; ++k)
-        sd_item_gather(l, wl, k, &v->f[k], &v->t[k]);
+    SD_CPU_EACH(s->exec, k, 0, n, sd_item_gather(l, wl, k, &v->f[k], &v->t[k]));
 }
 
 void sd_cpu_gather_kick_drift(sd_stage *s)
@@ -53,13 +49,9 @@ void sd_cpu_gather_kick_drift(sd_stage *s)
     int mode = sd_item_kick_mode(v);
     sd_real alpha = v->damping;
     if (mode == SD_KICK_PLAIN) { /* the common case, with the mode a constant */
-SD_CPU_FOR(s->exec)
-        for (size_t k = 0; k < n; ++k)
-            sd_item_gather_kick_drift(l, wl, SD_KICK_PLAIN, SD_R(0.0), v, k, g, h, dt);
+        SD_CPU_EACH(s->exec, k, 0, n, sd_item_gather_kick_drift(l, wl, SD_KICK_PLAIN, SD_R(0.0), v, k, g, h, dt));
     } else {
-SD_CPU_FOR(s->exec)
-        for (size_t k = 0; k < n; ++k)
-            sd_item_gather_kick_drift(l, wl, mode, alpha, v, k, g, h, dt);
+        SD_CPU_EACH(s->exec, k, 0, n, sd_item_gather_kick_drift(l, wl, mode, alpha, v, k, g, h, dt));
     }
 }
 
@@ -73,11 +65,7 @@ void sd_cpu_gather_kick(sd_stage *s)
     sd_vec3 g = v->gravity;
     int mode = sd_item_kick_mode(v);
     sd_real alpha = v->damping;
-SD_CPU_FOR(s->exec)
-    for (size_t k = 0; k < n; ++k) {
-        sd_item_gather(l, wl, k, &v->f[k], &v->t[k]);
-        sd_item_kick(mode, alpha, v, k, g, h);
-    }
+    SD_CPU_EACH(s->exec, k, 0, n, sd_item_gather(l, wl, k, &v->f[k], &v->t[k]); sd_item_kick(mode, alpha, v, k, g, h));
 }
 
 /* The skin test (backend/particle_items.h). */
@@ -86,9 +74,7 @@ int sd_cpu_needs_rebuild(sd_stage *s)
     const sd_step_view *v = &s->v;
     size_t n = v->n_owned;
     int need = 0;
-SD_CPU_FOR_REDUCE_OR(s->exec, need)
-    for (size_t k = 0; k < n; ++k)
-        need |= sd_item_skin_used(v, k);
+    SD_CPU_ANY(s->exec, need, k, 0, n, need |= sd_item_skin_used(v, k));
     return need;
 }
 
@@ -97,9 +83,7 @@ int sd_cpu_check_finite(sd_stage *s)
     const sd_step_view *v = &s->v;
     size_t n = v->n_owned;
     int bad = 0;
-SD_CPU_FOR_REDUCE_OR(s->exec, bad)
-    for (size_t k = 0; k < n; ++k)
-        bad |= sd_item_nonfinite(v, k);
+    SD_CPU_ANY(s->exec, bad, k, 0, n, bad |= sd_item_nonfinite(v, k));
     return bad;
 }
 
@@ -111,9 +95,7 @@ void sd_cpu_exchange_ghosts(sd_stage *s)
     size_t n0 = v->n_owned, n = v->n_total;
     if (n <= n0)
         return;
-SD_CPU_FOR(s->exec)
-    for (size_t k = n0; k < n; ++k)
-        sd_item_ghost(v, k);
+    SD_CPU_EACH(s->exec, k, n0, n, sd_item_ghost(v, k));
 }
 
 sd_real sd_cpu_min_radius(sd_stage *s)

@@ -19,57 +19,36 @@ static void sd_cpu_wall_kind(sd_stage *s, int kind, size_t e0, size_t e1)
     sd_wall_pair_out *o = &s->wpairs;
     switch (kind) {
     case SD_WALL_PAIR_SPHERE:
-SD_CPU_FOR(s->exec)
-        for (size_t e = e0; e < e1; ++e)
-            sd_item_wall_sphere(v, o, e);
+        SD_CPU_EACH(s->exec, e, e0, e1, sd_item_wall_sphere(v, o, e));
         break;
     case SD_WALL_PAIR_CONVEX:
-SD_CPU_FOR(s->exec)
-        for (size_t e = e0; e < e1; ++e)
-            sd_item_wall_convex(v, o, e);
+        SD_CPU_EACH(s->exec, e, e0, e1, sd_item_wall_convex(v, o, e));
         break;
     case SD_WALL_PAIR_POLY_VOLUME:
-SD_CPU_FOR_DYNAMIC(s->exec)
-        for (size_t e = e0; e < e1; ++e)
-            sd_item_wall_poly_volume(v, o, e);
+        SD_CPU_EACH_DYNAMIC(s->exec, e, e0, e1, sd_item_wall_poly_volume(v, o, e));
         break;
     case SD_WALL_PAIR_CONVEX2D:
-SD_CPU_FOR(s->exec)
-        for (size_t e = e0; e < e1; ++e)
-            sd_item_wall_convex2d(v, o, e);
+        SD_CPU_EACH(s->exec, e, e0, e1, sd_item_wall_convex2d(v, o, e));
         break;
     case SD_WALL_PAIR_ELEMENTS:
         /* one item per run of a composite's elements against one feature
          * (seed 004 §2.6), found by the thread whose chunk it starts in */
-SD_CPU_FOR_DYNAMIC(s->exec)
-        for (size_t e = e0; e < e1; ++e) {
-            if (!sd_item_wall_elements_starts(o, e0, e))
-                continue;
-            size_t end = e + 1;
-            while (end < e1 && !sd_item_wall_elements_starts(o, e0, end))
-                ++end;
-            (void)sd_item_wall_elements(v, o, e, end);
-        }
+        SD_CPU_EACH_DYNAMIC(s->exec, e, e0, e1, if (!sd_item_wall_elements_starts(o, e0, e)) continue;
+                            size_t end = e + 1;
+                            while (end < e1 && !sd_item_wall_elements_starts(o, e0, end)) ++end;
+                            (void)sd_item_wall_elements(v, o, e, end));
         break;
     case SD_WALL_PAIR_MESH_SPHERE:
-SD_CPU_FOR(s->exec)
-        for (size_t e = e0; e < e1; ++e)
-            sd_item_mesh_sphere(v, o, e);
+        SD_CPU_EACH(s->exec, e, e0, e1, sd_item_mesh_sphere(v, o, e));
         break;
     case SD_WALL_PAIR_MESH_CONVEX:
-SD_CPU_FOR_DYNAMIC(s->exec)
-        for (size_t e = e0; e < e1; ++e)
-            sd_item_mesh_convex(v, o, e);
+        SD_CPU_EACH_DYNAMIC(s->exec, e, e0, e1, sd_item_mesh_convex(v, o, e));
         break;
     case SD_WALL_PAIR_MESH_POLY_VOLUME:
-SD_CPU_FOR_DYNAMIC(s->exec)
-        for (size_t e = e0; e < e1; ++e)
-            sd_item_mesh_poly_volume(v, o, e);
+        SD_CPU_EACH_DYNAMIC(s->exec, e, e0, e1, sd_item_mesh_poly_volume(v, o, e));
         break;
     case SD_WALL_PAIR_MESH_CONVEX2D:
-SD_CPU_FOR(s->exec)
-        for (size_t e = e0; e < e1; ++e)
-            sd_item_mesh_convex2d(v, o, e);
+        SD_CPU_EACH(s->exec, e, e0, e1, sd_item_mesh_convex2d(v, o, e));
         break;
     default:
         break;
