@@ -12,6 +12,7 @@
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/types.h>
@@ -135,6 +136,99 @@ sd_status sd_fs_create_append(const char *path, FILE **fp, sd_error *err)
                             "remove it or choose another directory)",
                             what);
     return sd_error_set(err, SD_ERR_IO, path, 0, "", "cannot create the file: %s", strerror(e));
+}
+
+/* The length of the rows of a CSV file (text f of n bytes) to keep: the
+ * header and every row before the first whose `step` column is at least
+ * step (or is not a number). -1 when there is no header with a step
+ * column. */
+static long sd_fs_csv_keep(const char *f, size_t n, long step)
+{
+    const char *eol = memchr(f, '\n', n);
+    if (!eol)
+        return -1;
+    int col = -1, c = 0;
+    for (const char *a = f; a < eol; ++c) {
+        const char *b = a;
+        while (b < eol && *b != ',')
+            ++b;
+        if (b - a == 4 && memcmp(a, "step", 4) == 0)
+            col = c;
+        a = b < eol ? b + 1 : eol;
+    }
+    if (col < 0)
+        return -1;
+    size_t at = (size_t)(eol - f) + 1;
+    while (at < n) {
+        const char *row = f + at, *end = memchr(row, '\n', n - at);
+        if (!end)
+            break; /* a row cut short by a crash: dropped */
+        const char *a = row;
+        for (int k = 0; k < col && a < end; ++k) {
+            const char *b = memchr(a, ',', (size_t)(end - a));
+            a = b ? b + 1 : end;
+        }
+        char num[32];
+        size_t len = 0;
+        while (a + len < end && a[len] != ',' && len + 1 < sizeof num)
+            ++len;
+        memcpy(num, a, len);
+        num[len] = '\0';
+        char *stop;
+        long v = strtol(num, &stop, 10);
+        if (len == 0 || *stop != '\0' || v >= step)
+            break;
+        at = (size_t)(end - f) + 1;
+    }
+    return (long)at;
+}
+
+sd_status sd_fs_resume_csv(const char *path, long step, FILE **fp, int *kept, sd_error *err)
+{
+    *fp = NULL;
+    *kept = 0;
+    if (!sd_fs_is_regular_file(path))
+        return sd_fs_create_append(path, fp, err); /* nothing there (or in the way: its message) */
+    FILE *in = fopen(path, "rb");
+    if (!in)
+        return sd_error_set(err, SD_ERR_IO, path, 0, "", "cannot read the file: %s", strerror(errno));
+    char *text = NULL;
+    size_t n = 0, cap = 0;
+    for (;;) {
+        if (n == cap) {
+            cap = cap ? 2 * cap : 65536;
+            char *t = sd_realloc(text, cap);
+            if (!t) {
+                sd_free(text);
+                fclose(in);
+                return sd_error_set(err, SD_ERR_MEMORY, path, 0, "", "out of memory");
+            }
+            text = t;
+        }
+        size_t got = fread(text + n, 1, cap - n, in);
+        n += got;
+        if (got == 0)
+            break;
+    }
+    int bad = ferror(in);
+    fclose(in);
+    long keep = bad ? -1 : sd_fs_csv_keep(text ? text : "", n, step);
+    sd_free(text);
+    if (keep < 0) { /* not a series this run can continue: a new one */
+        if (remove(path) != 0)
+            return sd_error_set(err, SD_ERR_IO, path, 0, "", "cannot remove the file: %s", strerror(errno));
+        return sd_fs_create_append(path, fp, err);
+    }
+    *fp = sd_fs_open_plain(path, O_APPEND, "a");
+    if (!*fp || ftruncate(fileno(*fp), (off_t)keep) != 0) {
+        int e = errno;
+        if (*fp)
+            fclose(*fp);
+        *fp = NULL;
+        return sd_error_set(err, SD_ERR_IO, path, 0, "", "cannot continue the file: %s", strerror(e));
+    }
+    *kept = 1;
+    return SD_OK;
 }
 
 sd_status sd_fs_list_dir(const char *dir, int (*visit)(const char *name, void *ctx), void *ctx,

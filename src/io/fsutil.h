@@ -35,6 +35,13 @@ const char *sd_fs_not_regular(const char *path);
  * cannot redirect the writes to a file outside the directory. */
 sd_status sd_fs_create_append(const char *path, FILE **fp, sd_error *err);
 
+/* A CSV series a restarted run continues (io/run.c): keeps the header and
+ * the rows before the first whose `step` column is at least step, cuts the
+ * rest and opens path for appending after them (*kept = 1); with nothing
+ * there, or a file without a step column in its header, creates it anew
+ * (*kept = 0: write the header). Never through a link, as above. */
+sd_status sd_fs_resume_csv(const char *path, long step, FILE **fp, int *kept, sd_error *err);
+
 /* Calls visit(name, ctx) for each entry of dir except "." and "..";
  * stops early when visit returns non-zero. */
 sd_status sd_fs_list_dir(const char *dir, int (*visit)(const char *name, void *ctx), void *ctx,

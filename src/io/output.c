@@ -8,7 +8,8 @@
  * summary.txt and their ".<name>.tmp" temporaries); every file except the
  * CSVs is replaced atomically; stats.csv, walls.csv (worlds with walls) and
  * biaxial.csv (2D boxes) are only ever appended to, one flushed row per call,
- * so a crash loses at most the row being written.
+ * so a crash loses at most the row being written; a restart
+ * (sd_output_def.resume_step) keeps their rows before its step and appends.
  *
  * The world is read only through the public API in shapedem.h.
  */
@@ -43,6 +44,7 @@ struct sd_output {
     double *frame_times;  /* s, one per frame, for frames.pvd */
     size_t frame_cap;
     FILE *stats;          /* stats.csv, opened at the first row */
+    long resume_step;     /* sd_output_def.resume_step */
     size_t stats_walls;   /* walls in the header */
     size_t stats_solver;  /* the header has this many solver columns (world/solver.h) */
     long stats_rows;
@@ -114,6 +116,7 @@ static int sd_output_scan_visit(const char *name, void *ctx)
 
 typedef struct sd_output_clean {
     const char *dir;
+    int resume;           /* a restart: the CSV series stay (sd_output_open_csv cuts them) */
     sd_status status;
     sd_error *err;
 } sd_output_clean;
@@ -122,6 +125,8 @@ static int sd_output_clean_visit(const char *name, void *ctx)
 {
     sd_output_clean *c = ctx;
     if (!sd_output_is_ours(name))
+        return 0;
+    if (c->resume && (!strcmp(name, "stats.csv") || !strcmp(name, "walls.csv") || !strcmp(name, "biaxial.csv")))
         return 0;
     char *path = sd_fs_join(c->dir, name);
     if (!path) {
@@ -153,7 +158,7 @@ static int sd_output_clean_visit(const char *name, void *ctx)
 
 /* ---- open ------------------------------------------------------------------ */
 
-static sd_status sd_output_prepare_dir(const char *dir, sd_error *err)
+static sd_status sd_output_prepare_dir(const char *dir, int resume, sd_error *err)
 {
     sd_status s = sd_fs_mkdir_p(dir, err);
     if (s != SD_OK)
@@ -177,7 +182,7 @@ static sd_status sd_output_prepare_dir(const char *dir, sd_error *err)
                                 "so nothing you made is lost: choose a new or empty directory",
                                 sc.example ? sc.example : "?");
     } else {
-        sd_output_clean c = {dir, SD_OK, err};
+        sd_output_clean c = {dir, resume, SD_OK, err};
         s = sd_fs_list_dir(dir, sd_output_clean_visit, &c, err);
         if (s != SD_OK)
             return s;
@@ -205,7 +210,7 @@ sd_status sd_output_open(const sd_output_def *def, const sd_world *w, sd_output 
     if (!def || !def->directory || !def->directory[0])
         return sd_error_set(err, SD_ERR_INPUT, "", 0, SD_OUTPUT_KEY,
                             "no output directory given");
-    sd_status s = sd_output_prepare_dir(def->directory, err);
+    sd_status s = sd_output_prepare_dir(def->directory, def->resume_step > 0, err);
     if (s != SD_OK)
         return s;
     sd_output *o = sd_calloc(1, sizeof *o);
@@ -221,6 +226,7 @@ sd_status sd_output_open(const sd_output_def *def, const sd_world *w, sd_output 
     }
     o->vtk = def->vtk || def->shapes;
     o->csv = def->csv;
+    o->resume_step = def->resume_step;
     o->walls_csv = def->csv;
     if (def->shapes) {
         s = sd_vtk_shapes_make(w, def->shape_resolution ? def->shape_resolution : 24, &o->shapes, err);
@@ -386,19 +392,33 @@ static void sd_solver_value_print(FILE *fp, const char *before, const sd_solver_
         fprintf(fp, "%s%.10g", before, it->v[v]);
 }
 
-static sd_status sd_output_stats_header(sd_output *o, const sd_world *w, size_t nw, sd_error *err)
+/* A CSV series of the run: created new, or on a restart continued after
+ * its rows before the restart step (*kept: its header is there already). */
+static sd_status sd_output_open_csv(const sd_output *o, const char *path, FILE **fp, int *kept, sd_error *err)
 {
+    *kept = 0;
+    if (o->resume_step > 0)
+        return sd_fs_resume_csv(path, o->resume_step, fp, kept, err);
+    return sd_fs_create_append(path, fp, err);
+}
+
+/* stats.csv's header; with write 0 (a continued file has it) only the
+ * column counts the rows follow. */
+static sd_status sd_output_stats_header(sd_output *o, const sd_world *w, size_t nw, int write, sd_error *err)
+{
+    FILE *fp = write ? o->stats : NULL;
     char *pre = sd_malloc((nw ? nw : 1) * SD_OUTPUT_PREFIX_MAX);
     if (!pre)
         return sd_error_set(err, SD_ERR_MEMORY, o->dir, 0, "", "out of memory");
     sd_status s = sd_output_wall_prefixes(w, nw, pre, err);
     if (s == SD_OK) {
-        fprintf(o->stats, "step,time,kinetic_translational,kinetic_rotational,potential_gravity,"
-                          "potential_elastic,total_energy,contacts,wall_contacts,"
-                          "max_overlap_ratio,max_speed,rebuilds");
-        for (size_t i = 0; i < nw; ++i) {
+        if (fp)
+            fprintf(fp, "step,time,kinetic_translational,kinetic_rotational,potential_gravity,"
+                        "potential_elastic,total_energy,contacts,wall_contacts,"
+                        "max_overlap_ratio,max_speed,rebuilds");
+        for (size_t i = 0; i < nw && fp; ++i) {
             const char *p = pre + i * SD_OUTPUT_PREFIX_MAX;
-            fprintf(o->stats, ",%s_fx,%s_fy,%s_fz,%s_tx,%s_ty,%s_tz", p, p, p, p, p, p);
+            fprintf(fp, ",%s_fx,%s_fy,%s_fz,%s_tx,%s_ty,%s_tz", p, p, p, p, p, p);
         }
         /* the solver's own columns (the grid's pouring, outlet, cell
          * conflicts): fixed from here on, the world being prepared */
@@ -407,10 +427,12 @@ static sd_status sd_output_stats_header(sd_output *o, const sd_world *w, size_t 
         o->stats_solver = 0;
         for (size_t i = 0; i < ni; ++i)
             if (it[i].column) {
-                fprintf(o->stats, ",%s", it[i].column);
+                if (fp)
+                    fprintf(fp, ",%s", it[i].column);
                 o->stats_solver++;
             }
-        fputc('\n', o->stats);
+        if (fp)
+            fputc('\n', fp);
         o->stats_walls = nw;
     }
     sd_free(pre);
@@ -431,9 +453,11 @@ static sd_status sd_output_biaxial(sd_output *o, const sd_world *w, sd_error *er
         return sd_error_set(err, SD_ERR_MEMORY, o->dir, 0, "", "out of memory");
     if (!o->biaxial) {
         /* created, never opened through a link (fsutil.h) */
-        if ((s = sd_fs_create_append(path, &o->biaxial, err)) != SD_OK)
+        int kept;
+        if ((s = sd_output_open_csv(o, path, &o->biaxial, &kept, err)) != SD_OK)
             goto done;
-        fputs(SD_OUTPUT_BIAXIAL_HEADER, o->biaxial);
+        if (!kept)
+            fputs(SD_OUTPUT_BIAXIAL_HEADER, o->biaxial);
     }
     fprintf(o->biaxial, "%ld,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g\n", sd_world_step_count(w),
             sd_world_time(w), b.width, b.height, b.sigma_xx, b.sigma_yy, b.strain_axial, b.strain_lateral,
@@ -467,9 +491,10 @@ static sd_status sd_output_walls(sd_output *o, const sd_world *w, sd_error *err)
         }
         s = sd_output_wall_prefixes(w, nw, pre, err);
         /* created, never opened through a link (fsutil.h) */
+        int kept = 0;
         if (s == SD_OK)
-            s = sd_fs_create_append(path, &o->walls, err);
-        if (s == SD_OK) {
+            s = sd_output_open_csv(o, path, &o->walls, &kept, err);
+        if (s == SD_OK && !kept) {
             fputs("step,time", o->walls);
             for (size_t i = 0; i < nw; ++i) {
                 const char *p = pre + i * SD_OUTPUT_PREFIX_MAX;
@@ -512,11 +537,13 @@ sd_status sd_output_stats(sd_output *o, const sd_world *w, sd_error *err)
     size_t nw = sd_world_wall_count(w);
     if (!o->stats) {
         /* Append mode: a write can never truncate earlier rows. Created
-         * new (the previous run's file was removed at open), never opened
-         * through a link (fsutil.h). */
-        if ((s = sd_fs_create_append(path, &o->stats, err)) != SD_OK)
+         * new (the previous run's file was removed at open), or on a
+         * restart continued after its rows before the restart step; never
+         * opened through a link (fsutil.h). */
+        int kept;
+        if ((s = sd_output_open_csv(o, path, &o->stats, &kept, err)) != SD_OK)
             goto done;
-        s = sd_output_stats_header(o, w, nw, err);
+        s = sd_output_stats_header(o, w, nw, !kept, err);
         if (s != SD_OK)
             goto done;
     } else if (nw != o->stats_walls) {
@@ -776,7 +803,7 @@ sd_status sd_output_estimate(const sd_output_def *def, const sd_world *w, size_t
     if (s == SD_OK && o.csv) {
         o.stats = fp[1];
         o.biaxial = fp[2];
-        s = sd_output_stats_header(&o, w, sd_world_wall_count(w), err);
+        s = sd_output_stats_header(&o, w, sd_world_wall_count(w), 1, err);
         out->stats_header = (double)ftell(fp[1]);
         if (s == SD_OK)
             s = sd_output_stats(&o, w, err);

@@ -21,6 +21,8 @@ typedef struct sd_output_def {
     const char *scene;  /* scene path, recorded in the summary */
     int shapes;         /* with each frame, the true shapes (shapes_NNNNNN.vtp, io/vtk_shapes.c) */
     int shape_resolution; /* directions per turn of curved surfaces (0: 24) */
+    long resume_step;   /* > 0: a restart at this step: stats.csv, walls.csv and biaxial.csv keep
+                           their rows before it and go on (sd_fs_resume_csv); 0: a new run */
 } sd_output_def;
 
 typedef struct sd_run_summary {

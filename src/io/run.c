@@ -4,7 +4,9 @@
  * line and a signal handler.
  *
  * The schedule: the frame and the stats.csv row of step 0 on the first
- * advance; then the world is stepped in chunks that end at the next
+ * advance (a restarted world: its step's frame, and the CSV rows of its
+ * step only where due, each CSV file kept up to that step and continued,
+ * so the series match an uninterrupted run's byte for byte); then the world is stepped in chunks that end at the next
  * output event, a stats row at every multiple of stats_every, a frame at
  * every multiple of every and at the last step. Chunking does not change
  * the state: sd_world_step(w, a) then (w, b) gives the bits of (w, a + b).
@@ -27,6 +29,7 @@
 
 #include "core/alloc.h"
 #include "core/error.h"
+#include "io/fsutil.h"
 #include "io/output.h"
 #include "io/run.h"
 #include "io/scene.h"
@@ -40,6 +43,7 @@ struct sd_run {
     char dir[SD_SCENE_PATH_MAX + 16];
     long steps, every, stats_every, done;
     int started, failed;
+    int resumed;                 /* a restored world: the CSV series go on from its step */
     double stepping;             /* s of wall time inside sd_world_step */
     double psteps;               /* particle-steps (the count changes with a pour or an outlet) */
     /* checkpoints (io/checkpoint.c): every ckpt_every steps of the world
@@ -98,6 +102,28 @@ static void sd_run_outlet_row(sd_run *r)
     }
 }
 
+/* A continued outlet.csv: the time and removed mass of its last row (the
+ * first row after a restart rates the mass removed since that one; read
+ * back at the 10 digits written, so that rate may differ from the
+ * uninterrupted run's in its last digits). Left at 0 when none. */
+static void sd_run_outlet_last(const char *path, double *t, double *m)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return;
+    char line[4096], last[4096] = "";
+    int rows = 0;
+    while (fgets(line, sizeof line, f))
+        if (rows++ > 0 && strchr(line, '\n'))
+            memcpy(last, line, sizeof last);
+    fclose(f);
+    double v[8];
+    if (sscanf(last, "%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf", &v[0], &v[1], &v[2], &v[3], &v[4], &v[5], &v[6], &v[7]) == 8) {
+        *t = v[0]; /* time, ..., removed_mass: the columns of sd_outlet_csv_header */
+        *m = v[7];
+    }
+}
+
 static double sd_run_now(void)
 {
     struct timespec ts;
@@ -131,6 +157,7 @@ sd_status sd_run_open(const sd_scene *s, sd_world *w, const char *dir, sd_run **
         snprintf(r->stop, sizeof r->stop, "not met (not checked yet: after %.6g s)", s->stop_after);
     /* a restarted world (sd_checkpoint_restore) continues the schedule */
     r->done = sd_world_step_count(w) < r->steps ? sd_world_step_count(w) : r->steps;
+    r->resumed = r->done > 0;
     r->ckpt_every = s->output.checkpoint_every;
     r->ckpt_seconds = 60.0 * s->output.checkpoint_minutes;
     r->ckpt_wall = sd_run_now();
@@ -145,7 +172,8 @@ sd_status sd_run_open(const sd_scene *s, sd_world *w, const char *dir, sd_run **
                             .csv = info.write_stats,
                             .shapes = (s->output.formats & SD_OUT_SHAPES) != 0,
                             .shape_resolution = s->output.shape_resolution,
-                            .scene = s->path};
+                            .scene = s->path,
+                            .resume_step = r->resumed ? r->done : 0};
         sd_status st = sd_output_open(&od, w, &r->out, err);
         if (st != SD_OK) {
             sd_free(r);
@@ -154,15 +182,24 @@ sd_status sd_run_open(const sd_scene *s, sd_world *w, const char *dir, sd_run **
         if (sd_world_outlet_count(w) > 0) {
             char path[sizeof r->dir + 16];
             snprintf(path, sizeof path, "%s/outlet.csv", r->dir);
-            r->outlet = fopen(path, "w");
-            if (!r->outlet) {
+            int kept = 0;
+            if (r->resumed)
+                st = sd_fs_resume_csv(path, r->done, &r->outlet, &kept, err);
+            else {
+                remove(path);
+                st = sd_fs_create_append(path, &r->outlet, err);
+            }
+            if (st != SD_OK) {
                 sd_output_close(r->out, w, NULL, NULL);
                 sd_free(r);
-                return sd_error_set(err, SD_ERR_IO, path, 0, "", "cannot write outlet.csv");
+                return st;
             }
-            sd_outlet_csv_header(r->outlet, w);
+            if (!kept)
+                sd_outlet_csv_header(r->outlet, w);
+            else
+                sd_run_outlet_last(path, &r->outlet_t, &r->outlet_m);
         }
-        if ((st = sd_analysis_run_open(s, r->dir, &r->an, err)) != SD_OK) {
+        if ((st = sd_analysis_run_open(s, r->dir, r->resumed ? r->done : 0, &r->an, err)) != SD_OK) {
             if (r->outlet)
                 fclose(r->outlet);
             sd_output_close(r->out, w, NULL, NULL);
@@ -246,12 +283,16 @@ sd_status sd_run_advance(sd_run *r, long steps, sd_error *err)
     if (!r->started) {
         r->started = 1;
         double t0 = sd_run_now();
+        /* a restart continues the CSV series: their rows at this step only
+         * when due, as the uninterrupted run wrote them */
+        int row = !r->resumed || r->done % r->stats_every == 0;
         if (r->out && ((st = sd_output_frame(r->out, r->w, err)) != SD_OK ||
-                       (st = sd_output_stats(r->out, r->w, err)) != SD_OK)) {
+                       (row && (st = sd_output_stats(r->out, r->w, err)) != SD_OK))) {
             r->failed = 1;
             return st;
         }
-        sd_run_outlet_row(r);
+        if (row)
+            sd_run_outlet_row(r);
         if ((st = sd_analysis_run_rows(r->an, r->w, r->done, r->steps, err)) != SD_OK) {
             r->failed = 1;
             return st;

@@ -374,7 +374,8 @@ static void sd_an_header(FILE *f, const sd_scene_analysis_entry *e)
     }
 }
 
-sd_status sd_analysis_run_open(const sd_scene *s, const char *dir, sd_analysis_run **out, sd_error *err)
+sd_status sd_analysis_run_open(const sd_scene *s, const char *dir, long resume_step, sd_analysis_run **out,
+                               sd_error *err)
 {
     *out = NULL;
     if (!s->analysis || s->analysis->count == 0 || !dir)
@@ -387,10 +388,10 @@ sd_status sd_analysis_run_open(const sd_scene *s, const char *dir, sd_analysis_r
         const sd_scene_analysis_entry *e = &a->sa->e[k];
         char path[SD_SCENE_PATH_MAX + 96];
         snprintf(path, sizeof path, "%s/%s", dir, e->file);
-        a->last[k] = -1;
+        a->last[k] = resume_step > 0 ? 0 : -1; /* a restart writes no row before one is due */
         /* as the run's own CSV files (io/output.c): a plain file of an
-         * earlier run is replaced; a link or a directory under the name is
-         * refused, never written through */
+         * earlier run is replaced (continued by a restart); a link or a
+         * directory under the name is refused, never written through */
         const char *what = sd_fs_not_regular(path);
         if (what) {
             sd_analysis_run_close(a);
@@ -399,14 +400,21 @@ sd_status sd_analysis_run_open(const sd_scene *s, const char *dir, sd_analysis_r
                                 "will not write through it",
                                 what, e->name);
         }
-        remove(path);
-        sd_status st = sd_fs_create_append(path, &a->f[k], err);
+        int kept = 0;
+        sd_status st;
+        if (resume_step > 0)
+            st = sd_fs_resume_csv(path, resume_step, &a->f[k], &kept, err);
+        else {
+            remove(path);
+            st = sd_fs_create_append(path, &a->f[k], err);
+        }
         if (st != SD_OK) {
             sd_analysis_run_close(a);
             return st;
         }
         a->count = k + 1;
-        sd_an_header(a->f[k], e);
+        if (!kept)
+            sd_an_header(a->f[k], e);
         fflush(a->f[k]);
     }
     *out = a;

@@ -65,7 +65,11 @@ void sd_scene_analysis_free(sd_scene *s);
  * entry at the first call, then at multiples of every and at last, the
  * run's final step); closed with the run. Errors name the file. */
 typedef struct sd_analysis_run sd_analysis_run;
-sd_status sd_analysis_run_open(const sd_scene *s, const char *dir, sd_analysis_run **out, sd_error *err);
+/* resume_step > 0: a restart at that step; each file keeps its rows
+ * before it and goes on (sd_fs_resume_csv), and the first rows come when
+ * their entries fall due, as in the uninterrupted run. */
+sd_status sd_analysis_run_open(const sd_scene *s, const char *dir, long resume_step, sd_analysis_run **out,
+                               sd_error *err);
 long sd_analysis_run_next(const sd_analysis_run *a, long done);
 sd_status sd_analysis_run_rows(sd_analysis_run *a, const sd_world *w, long done, long last, sd_error *err);
 void sd_analysis_run_close(sd_analysis_run *a);
