@@ -555,7 +555,8 @@ const sd_scene_key sd_scene_keys[] = {
     {SD_SEC_INSERT, "name", SD_KT_STRING, SD_KR_NONEMPTY, NULL, ALL, 0, "", "insert0, insert1, ...",
      "name in summary.txt and messages"},
     {SD_SEC_INSERT, "region", SD_KT_ENUM, SD_KR_ANY, "box|cylinder|disc|mesh", ALL, ALL, "", "required",
-     "where the particles go: every bounding sphere inside the region (disc: centres on the disc; mesh: "
+     "where the particles go: every bounding sphere inside the region, but across the seam of a periodic axis "
+     "that a box spans whole (disc: centres on the disc; mesh: "
      "inside a closed triangle mesh, by its winding number, clear of its triangles)"},
     {SD_SEC_INSERT, "min", SD_KT_VEC3, SD_KR_ANY, NULL, IBOX, IBOX, "m", "required", "box: lower corner"},
     {SD_SEC_INSERT, "max", SD_KT_VEC3, SD_KR_ANY, NULL, IBOX, IBOX, "m", "required",

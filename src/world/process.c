@@ -10,11 +10,13 @@
  *
  * Insertion is random sequential addition with retries (seed 004 §4.1):
  * a candidate position is drawn in the region (the particle's bounding
- * sphere inside it) and taken when that sphere overlaps no bounding
+ * sphere inside it, except across the seam of a periodic axis that the
+ * region spans whole) and taken when that sphere overlaps no bounding
  * sphere present — every owned particle, whichever generator or
  * insertion made it, and their periodic images — else drawn again, up to
  * `attempts` times. Bounding spheres make the check exact for spheres and
- * conservative for shapes. A new particle touches nothing, so its force
+ * conservative for shapes; the new particles' images go in too. A new
+ * particle touches nothing, so its force
  * at this time is zero and the prepared state stays valid: the step goes
  * on without a new prepare (which would evaluate the pairs a second time
  * and advance their springs twice); the next step rebuilds the lists.
@@ -402,14 +404,44 @@ static int sd_region_contains(const sd_region_def *r, sd_v3d x)
     return fabs(s) <= 0.5 * r->length && q2 <= r->radius * r->radius;
 }
 
+/* The axes on which a box region wraps: periodic, and the box spans the
+ * whole period there. On such an axis a particle may straddle the seam
+ * (its images on the other side are in the placing grid), so a centre is
+ * drawn over the whole period; elsewhere the bounding sphere stays inside
+ * the region. Without this a strip of one bounding radius each side of
+ * the seam started empty. */
+typedef struct sd_region_wrap {
+    unsigned axes;        /* bit a: axis a wraps */
+    double lo[3], hi[3];  /* m, the periodic box */
+} sd_region_wrap;
+
+static sd_region_wrap sd_region_wraps(const sd_world *w, const sd_region_def *r)
+{
+    sd_region_wrap wr;
+    memset(&wr, 0, sizeof wr);
+    if (r->kind != SD_REGION_BOX)
+        return wr;
+    const double dl[3] = {w->def.domain_lo.x, w->def.domain_lo.y, w->def.domain_lo.z};
+    const double dh[3] = {w->def.domain_hi.x, w->def.domain_hi.y, w->def.domain_hi.z};
+    const double rl[3] = {r->lo.x, r->lo.y, r->lo.z}, rh[3] = {r->hi.x, r->hi.y, r->hi.z};
+    for (int a = 0; a < 3; ++a) {
+        wr.lo[a] = dl[a];
+        wr.hi[a] = dh[a];
+        if (((w->def.periodic >> a) & 1u) && rl[a] <= dl[a] && rh[a] >= dh[a])
+            wr.axes |= 1u << a;
+    }
+    return wr;
+}
+
 /* A uniform random centre for a bounding radius b in the region, the
- * sphere inside it; 0 when it cannot fit. Always the same number of draws
- * per call for a region kind (three), so the stream does not depend on
- * the sizes. 2D: z = 0. A mesh region (m) draws points in its box, three
- * draws each, until one holds the sphere, at most 64: 2 when none did
- * (the attempt failed, as a taken spot does). */
-static int sd_region_draw(const sd_region_def *r, const sd_region_mesh *m, double b, int dim2, sd_rng *rng,
-                          sd_v3d *out)
+ * sphere inside it (but across the seam of a wrapping axis, wr); 0 when
+ * it cannot fit. Always the same number of draws per call for a region
+ * kind (three), so the stream does not depend on the sizes. 2D: z = 0. A
+ * mesh region (m) draws points in its box, three draws each, until one
+ * holds the sphere, at most 64: 2 when none did (the attempt failed, as a
+ * taken spot does). */
+static int sd_region_draw(const sd_region_def *r, const sd_region_mesh *m, const sd_region_wrap *wr, double b,
+                          int dim2, sd_rng *rng, sd_v3d *out)
 {
     if (r->kind == SD_REGION_MESH) {
         if (!m || m->hi[0] - m->lo[0] < 2 * b || m->hi[1] - m->lo[1] < 2 * b || m->hi[2] - m->lo[2] < 2 * b)
@@ -431,6 +463,14 @@ static int sd_region_draw(const sd_region_def *r, const sd_region_mesh *m, doubl
         if (ex < 0 || ey < 0 || (!dim2 && ez < 0))
             return 0;
         *out = sd_d3(r->lo.x + b + u1 * ex, r->lo.y + b + u2 * ey, dim2 ? 0.0 : r->lo.z + b + u3 * ez);
+        /* a wrapping axis: anywhere in [lo, hi) of the period */
+        const double u[3] = {u1, u2, u3};
+        double *o[3] = {&out->x, &out->y, &out->z};
+        for (int a = 0; a < 3; ++a)
+            if ((wr->axes >> a) & 1u) {
+                double c = wr->lo[a] + u[a] * (wr->hi[a] - wr->lo[a]);
+                *o[a] = c < wr->hi[a] ? c : wr->lo[a];
+            }
         return 1;
     }
     double rr = r->radius - b;
@@ -1162,6 +1202,27 @@ static int sd_place_free_spot(const sd_place_grid *g, sd_v3d x, double r)
     return 1;
 }
 
+/* A sphere and its images one period away on each periodic axis (those
+ * far from the region fall outside the grid and are left out); 0 when out
+ * of memory. */
+static int sd_place_push_images(const sd_world *w, sd_place_grid *g, sd_v3d x, double r)
+{
+    const unsigned per = w->def.periodic;
+    const double len[3] = {w->def.domain_hi.x - w->def.domain_lo.x, w->def.domain_hi.y - w->def.domain_lo.y,
+                           w->def.domain_hi.z - w->def.domain_lo.z};
+    int lim[3];
+    for (int a = 0; a < 3; ++a)
+        lim[a] = (per >> a) & 1u;
+    for (int ix = -lim[0]; ix <= lim[0]; ++ix)
+        for (int iy = -lim[1]; iy <= lim[1]; ++iy)
+            for (int iz = -lim[2]; iz <= lim[2]; ++iz) {
+                sd_v3d y = {x.x + ix * len[0], x.y + iy * len[1], x.z + iz * len[2]};
+                if (!sd_place_push(g, y, r))
+                    return 0;
+            }
+    return 1;
+}
+
 /* Builds the grid of what is present near the region; rnew is the largest
  * bounding radius the batch may place. */
 static sd_status sd_place_grid_build(const sd_world *w, const sd_region_def *reg, double rnew, sd_place_grid *g)
@@ -1204,9 +1265,6 @@ static sd_status sd_place_grid_build(const sd_world *w, const sd_region_def *reg
     }
     for (size_t c = 0; c < cells; ++c)
         g->head[c] = SD_PLACE_NONE;
-    unsigned per = w->def.periodic;
-    const double dl[3] = {w->def.domain_lo.x, w->def.domain_lo.y, w->def.domain_lo.z};
-    const double dh[3] = {w->def.domain_hi.x, w->def.domain_hi.y, w->def.domain_hi.z};
     for (size_t k = 0; k < np; ++k) {
         sd_v3d x;
         double r;
@@ -1217,19 +1275,10 @@ static sd_status sd_place_grid_build(const sd_world *w, const sd_region_def *reg
             x = (sd_v3d){(double)p->x[k].x, (double)p->x[k].y, (double)p->x[k].z};
             r = (double)p->radius[k];
         }
-        /* the particle and its images one period away on each periodic axis */
-        int lim[3];
-        for (int a = 0; a < 3; ++a)
-            lim[a] = (per >> a) & 1u;
-        for (int ix = -lim[0]; ix <= lim[0]; ++ix)
-            for (int iy = -lim[1]; iy <= lim[1]; ++iy)
-                for (int iz = -lim[2]; iz <= lim[2]; ++iz) {
-                    sd_v3d y = {x.x + ix * (dh[0] - dl[0]), x.y + iy * (dh[1] - dl[1]), x.z + iz * (dh[2] - dl[2])};
-                    if (!sd_place_push(g, y, r)) {
-                        sd_free(xr);
-                        return SD_ERR_MEMORY;
-                    }
-                }
+        if (!sd_place_push_images(w, g, x, r)) {
+            sd_free(xr);
+            return SD_ERR_MEMORY;
+        }
     }
     sd_free(xr);
     return SD_OK;
@@ -1336,6 +1385,7 @@ static sd_status sd_insert_run(sd_world *w, sd_insertion *ins, sd_error *err)
         return sd_error_set(err, st, "", 0, "", "out of memory for the insertion check");
     }
     int was_prepared = w->prepared;
+    const sd_region_wrap wrap = sd_region_wraps(w, &d->region);
     size_t n_before = w->p.n; /* a decomposed run: the new ones go to their ranks below */
     double rmin_new = HUGE_VAL;
     size_t failed = 0, before = ins->inserted;
@@ -1375,7 +1425,7 @@ static sd_status sd_insert_run(sd_world *w, sd_insertion *ins, sd_error *err)
         int ok = 0, fits = 1;
         const sd_region_mesh *rm = ins->mesh >= 0 && w->region_meshes ? &w->region_meshes->slot[ins->mesh] : NULL;
         for (int a = 0; a < d->attempts && !ok; ++a) {
-            int drawn = sd_region_draw(&d->region, rm, b, dim2, &ins->rng, &x);
+            int drawn = sd_region_draw(&d->region, rm, &wrap, b, dim2, &ins->rng, &x);
             if (!drawn) {
                 fits = 0;
                 break;
@@ -1420,7 +1470,7 @@ static sd_status sd_insert_run(sd_world *w, sd_insertion *ins, sd_error *err)
         pr->inserted++;
         pr->inserted_mass += m;
         rmin_new = fmin(rmin_new, (double)w->p.radius[w->p.n - 1]);
-        if (!sd_place_push(&g, x, b)) {
+        if (!sd_place_push_images(w, &g, x, b)) {
             sd_place_grid_free(&g);
             return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory for the insertion check");
         }

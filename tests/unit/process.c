@@ -12,7 +12,9 @@
  *    removed = initial + inserted (and the masses) every 100 steps, with
  *    1 and 2 threads, the same bits;
  *  - bad input: a mix not summing to 1, a negative radius, a region
- *    outside the domain, each refused with its key.
+ *    outside the domain, each refused with its key;
+ *  - a box spanning a periodic cell: spheres straddle the seams, none
+ *    overlaps a particle or its image.
  */
 #include <math.h>
 #include <string.h>
@@ -490,8 +492,78 @@ static void test_generators(void)
     remove(path);
 }
 
+/* Insertion into a box that spans a periodic cell on x and y (issue 16):
+ * the spheres cover the seams (before, each bounding sphere was kept
+ * inside the box, so a strip one radius wide each side of a seam stayed
+ * empty) and none overlaps another or another's periodic image. */
+static void test_periodic_seam(void)
+{
+    sd_error err;
+    sd_world *w;
+    const double L = 0.02, r = 0.001;
+    sd_world_def wd = sd_world_def_default();
+    wd.dt = 1e-5;
+    wd.periodic = SD_PERIODIC_X | SD_PERIODIC_Y;
+    wd.domain_lo = sd_test_v(0, 0, 0);
+    wd.domain_hi = sd_test_v(L, L, 0.02);
+    sd_test_require(sd_world_create(&wd, &w, &err) == SD_OK, "world", &err);
+    sd_material_def m = sd_material_def_default();
+    m.youngs_modulus = 1e7;
+    int mat = sd_world_add_material(w, &m, &err);
+    sd_insert_def d = sd_insert_def_default();
+    d.region.kind = SD_REGION_BOX;
+    d.region.lo = sd_test_v(0, 0, 0.001);
+    d.region.hi = sd_test_v(L, L, 0.011);
+    d.entry_count = 1;
+    d.entries[0].shape = -1;
+    d.entries[0].material = mat;
+    d.entries[0].size = sd_size_def_fixed(r);
+    d.entries[0].fraction = 1;
+    d.count = 250; /* a solid fraction of 0.26 */
+    d.attempts = 1000;
+    CHECK(sd_world_add_insertion(w, &d, &err) == 0);
+    sd_test_require(sd_world_step(w, 1, &err) == SD_OK, "step", &err);
+    sd_insert_info info;
+    sd_world_get_insertion(w, 0, &info);
+    size_t n = sd_world_particle_count(w);
+    printf("     periodic box: asked %zu, inserted %zu (%zu particles)\n", info.asked, info.inserted, n);
+    CHECK(info.inserted == 250 && n == 250);
+    sd_particle_state *p = calloc(n, sizeof *p);
+    for (size_t k = 0; k < n; ++k)
+        sd_world_get_particle(w, k, &p[k]);
+    /* the smallest gap by the nearest images on x and y */
+    double gap = HUGE_VAL;
+    for (size_t i = 0; i < n; ++i)
+        for (size_t j = i + 1; j < n; ++j) {
+            double dx = p[i].position.x - p[j].position.x, dy = p[i].position.y - p[j].position.y,
+                   dz = p[i].position.z - p[j].position.z;
+            dx -= L * round(dx / L);
+            dy -= L * round(dy / L);
+            gap = fmin(gap, sqrt(dx * dx + dy * dy + dz * dz) - p[i].radius - p[j].radius);
+        }
+    /* spheres across a seam: their centre within r of x = 0 (or L), of y = 0 */
+    size_t across_x = 0, across_y = 0, inside = 0;
+    for (size_t k = 0; k < n; ++k) {
+        double x = p[k].position.x, y = p[k].position.y;
+        across_x += x < r || x > L - r;
+        across_y += y < r || y > L - r;
+        inside += x >= 0 && x < L && y >= 0 && y < L;
+    }
+    free(p);
+    /* uniform centres: 2r/L of them within r of a seam, 25 of 250 */
+    double expect = (double)n * 2 * r / L;
+    printf("     smallest gap to a particle or an image %.3g m; across the x seam %zu, the y seam %zu "
+           "(uniform: %.0f each; at least half asserted)\n",
+           gap, across_x, across_y, expect);
+    CHECK_NEAR("overlap of spheres or images (m), none", fmax(-gap, 0), 0, 0);
+    CHECK((double)across_x >= 0.5 * expect && (double)across_y >= 0.5 * expect);
+    CHECK(inside == n);
+    sd_world_destroy(w);
+}
+
 int main(void)
 {
+    test_periodic_seam();
     test_generators();
     test_bad();
     test_mix();
