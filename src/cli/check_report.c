@@ -462,10 +462,12 @@ void sd_check_print_stop(FILE *f, const sd_scene *s)
 {
     if (s->stop_given)
         fprintf(f,
-                "stop         at the first stats row (every %ld steps) from t = %.4g s whose kinetic energy is below "
-                "%.4g J (simulation.stop_when): the run may end before its steps; the run time and output below "
+                "stop         at the first stats row (every %ld steps) from t = %.4g s whose %s is below "
+                "%.4g %s (simulation.stop_when): the run may end before its steps; the run time and output below "
                 "are for all of them\n",
-                s->output.stats_every, s->stop_after, s->stop_ke_below);
+                s->output.stats_every, s->stop_after, s->stop_speed_below > 0 ? "mean speed" : "kinetic energy",
+                s->stop_speed_below > 0 ? s->stop_speed_below : s->stop_ke_below,
+                s->stop_speed_below > 0 ? "m/s" : "J");
 }
 
 void sd_check_print_grid(FILE *f, const sd_scene *s)

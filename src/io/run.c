@@ -35,6 +35,7 @@
 #include "io/scene.h"
 #include "io/scene_analysis.h"
 #include "io/scene_process.h"
+#include <shapedem/analysis.h>
 
 struct sd_run {
     const sd_scene *s;
@@ -66,8 +67,9 @@ struct sd_run {
 
 /* simulation.stop_when at a stats row: met once its time has come, every
  * insertion has run out (a bed still being filled is not at rest) and the
- * kinetic energy (translational and rotational, sd_world_stats) is below
- * the threshold. Then the run ends here and r->stop says so. */
+ * kinetic energy (translational and rotational, sd_world_stats) or the
+ * mean speed of the centres (sd_world_motion_stats) is below the
+ * threshold. Then the run ends here and r->stop says so. */
 static void sd_run_check_stop(sd_run *r)
 {
     const sd_scene *s = r->s;
@@ -78,19 +80,31 @@ static void sd_run_check_stop(sd_run *r)
         if (sd_world_get_insertion(r->w, k, &ii) == SD_OK && !ii.done)
             return;
     }
-    sd_stats st;
-    sd_world_stats(r->w, &st);
-    double ke = st.kinetic_translational + st.kinetic_rotational;
-    if (!(ke < s->stop_ke_below)) {
-        snprintf(r->stop, sizeof r->stop, "not met (kinetic energy %.4g J at step %ld, t = %.6g s; below %.4g J "
-                 "after %.6g s asked)", ke, r->done, sd_world_time(r->w), s->stop_ke_below, s->stop_after);
+    const char *what = "kinetic energy", *unit = "J";
+    double value, below = s->stop_ke_below;
+    if (s->stop_speed_below > 0) { /* the mean speed of the centres (shapedem/analysis.h, serial sums) */
+        sd_motion_stats ms;
+        sd_error e;
+        if (sd_world_motion_stats(r->w, NULL, &ms, &e) != SD_OK)
+            return;
+        what = "mean speed", unit = "m/s";
+        value = ms.mean_speed;
+        below = s->stop_speed_below;
+    } else {
+        sd_stats st;
+        sd_world_stats(r->w, &st);
+        value = st.kinetic_translational + st.kinetic_rotational;
+    }
+    if (!(value < below)) {
+        snprintf(r->stop, sizeof r->stop, "not met (%s %.4g %s at step %ld, t = %.6g s; below %.4g %s "
+                 "after %.6g s asked)", what, value, unit, r->done, sd_world_time(r->w), below, unit, s->stop_after);
         return;
     }
     r->stopped = 1;
     r->steps = r->done;
-    snprintf(r->stop, sizeof r->stop, "met at step %ld of %ld, t = %.6g s: kinetic energy %.4g J below %.4g J "
-             "(checked from %.6g s on, at each stats row)", r->done, r->asked_steps, sd_world_time(r->w), ke,
-             s->stop_ke_below, s->stop_after);
+    snprintf(r->stop, sizeof r->stop, "met at step %ld of %ld, t = %.6g s: %s %.4g %s below %.4g %s "
+             "(checked from %.6g s on, at each stats row)", r->done, r->asked_steps, sd_world_time(r->w), what,
+             value, unit, below, unit, s->stop_after);
 }
 
 /* outlet.csv: a row with each stats row, when the world has outlets. */

@@ -192,9 +192,11 @@ struct sd_scene {
     int mpi_split_line;           /* its line, 0 when absent */
     int dt_line;                  /* line of simulation.dt, for errors */
     /* simulation.stop_when (io/run.c): the run ends at the first stats row
-     * at or after stop_after s whose kinetic energy is below stop_ke_below J */
+     * at or after stop_after s whose kinetic energy is below stop_ke_below J
+     * or, when stop_speed_below > 0, whose mean particle speed is below it */
     int stop_given, stop_line;
     double stop_ke_below, stop_after; /* J, s */
+    double stop_speed_below;          /* m/s; 0: the kinetic energy is the condition */
     size_t material_count, interaction_count, generator_count, wall_count, shape_count;
     sd_scene_material *materials;
     sd_scene_shape *shapes;

@@ -686,10 +686,14 @@ const sd_scene_key sd_scene_keys[] = {
      "the columns fitted: fractions of the drum's diameter (surface_angle) or of the heap's radius "
      "(repose_angle)"},
 
-    {SD_SEC_STOP, "kinetic_energy_below", SD_KT_NUMBER, SD_KR_POS, NULL, ALL, ALL, "J", "required",
+    {SD_SEC_STOP, "kinetic_energy_below", SD_KT_NUMBER, SD_KR_POS, NULL, ALL, 0, "J", "-",
      "the run stops at the first stats row (every output.stats_every steps) whose kinetic energy, "
      "translational and rotational of all particles, is below this, once after has passed and every "
-     "insertion is done; that row, a frame and the analyses' rows are written, and summary.txt says so"},
+     "insertion is done; that row, a frame and the analyses' rows are written, and summary.txt says so. "
+     "Give this or mean_speed_below"},
+    {SD_SEC_STOP, "mean_speed_below", SD_KT_NUMBER, SD_KR_POS, NULL, ALL, 0, "m/s", "-",
+     "as kinetic_energy_below, on the mean speed of the particles' centres: a sum of energies is held "
+     "up by its fastest few (one rattler on a bed at rest), a mean speed much less"},
     {SD_SEC_STOP, "after", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "s", "0",
      "simulated time before which the condition is not checked (the particles are still falling); "
      "must be before the run's end"},

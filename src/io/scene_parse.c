@@ -98,8 +98,15 @@ static sd_status sd_parse_stop(sd_parse *p, yaml_node_t *sim)
     if ((st = sd_yaml_check_map(&p->y, m, SD_SEC_STOP, SD_KIND_ALL, "", path, s->stop_line)))
         return st;
     s->stop_given = 1;
-    sd_yaml_get(&p->y, m, SD_SEC_STOP, "kinetic_energy_below", path, &v);
-    s->stop_ke_below = v.num;
+    int has_ke = sd_yaml_get(&p->y, m, SD_SEC_STOP, "kinetic_energy_below", path, &v);
+    s->stop_ke_below = has_ke ? v.num : 0.0;
+    int ke_line = v.line;
+    int has_speed = sd_yaml_get(&p->y, m, SD_SEC_STOP, "mean_speed_below", path, &v);
+    s->stop_speed_below = has_speed ? v.num : 0.0;
+    if (has_ke == has_speed)
+        return sd_fail(p, has_ke ? ke_line : s->stop_line, "simulation.stop_when.kinetic_energy_below",
+                       "expected one condition: kinetic_energy_below (J) or mean_speed_below (m/s), got %s",
+                       has_ke ? "both" : "neither");
     int has_after = sd_yaml_get(&p->y, m, SD_SEC_STOP, "after", path, &v);
     s->stop_after = v.num;
     double end = (double)s->steps * s->world.dt;

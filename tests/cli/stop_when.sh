@@ -11,7 +11,10 @@
 #  - with 1 thread it stops at the same row, the same energy to the digit;
 #  - shapedem check on it prints the condition (its stop line);
 #  - stop_scenes/never.yaml (a threshold of 1e-30 J): the run goes to its
-#    end and summary.txt says the condition was not met.
+#    end and summary.txt says the condition was not met;
+#  - stop_scenes/settle-speed.yaml (mean_speed_below: 0.01 m/s): it stops
+#    at the first row whose mean speed (energy.csv) is below it, the same
+#    row on 1 and 2 threads.
 # (Bad values of stop_when are scenes of tests/cli/bad/, stop-*.yaml.)
 set -u
 bin="$1"
@@ -69,5 +72,27 @@ grep "^stop_when: " "$tmp/n/summary.txt"
 grep -q "^stop_when: not met (kinetic energy .* at step 5000, " "$tmp/n/summary.txt" &&
     grep -q "^steps_run: 5000$" "$tmp/n/summary.txt"
 check "never: ran its 5000 steps, summary.txt says the condition was not met" "$((! $?))"
+
+# the mean speed: the last stats row is the first energy.csv row from
+# 0.05 s on whose mean_speed is below 0.01 m/s, and the same on 1 thread
+"$bin" run "$scenes/settle-speed.yaml" --threads 2 --quiet -o "$tmp/v" >"$tmp/v.out" 2>&1
+rc=$?
+check "settle-speed: exit 0 (got $rc)" "$((rc == 0))"
+read -r vfirst vabove < <(awk -F, 'NR > 1 && $1 >= 0.05 {
+        if ($8 < 0.01 && first == "") first = $2
+        if (first == "" && $8 >= 0.01) above++
+    } END { print (first == "" ? -1 : first), above + 0 }' "$tmp/v/energy.csv")
+vlast=$(tail -n 1 "$tmp/v/stats.csv" | cut -d, -f1)
+grep "^stop_when: " "$tmp/v/summary.txt"
+check "settle-speed: stopped at the first row with a mean speed below 0.01 m/s (step $vfirst, last stats row $vlast, $vabove rows above before it)" \
+    "$([[ $vfirst -gt 0 && $vfirst -lt 50000 && $vlast == "$vfirst" && $vabove -ge 1 ]] && echo 1 || echo 0)"
+grep -q "^stop_when: met at step $vfirst of 50000, t = .*: mean speed .* m/s below 0.01 m/s" "$tmp/v/summary.txt"
+check "settle-speed: summary.txt names the mean speed" "$((! $?))"
+"$bin" run "$scenes/settle-speed.yaml" --threads 1 --quiet -o "$tmp/v1" >/dev/null 2>&1
+a=$(grep "^stop_when: " "$tmp/v/summary.txt")
+b=$(grep "^stop_when: " "$tmp/v1/summary.txt")
+check "settle-speed: 1 thread stops at the same row with the same mean speed as 2" "$([[ -n $a && $a == "$b" ]] && echo 1 || echo 0)"
+"$bin" check "$scenes/settle-speed.yaml" --threads 1 | grep -q "^stop         at the first stats row (every 250 steps) from t = 0.05 s whose mean speed is below 0.01 m/s"
+check "check: prints the mean-speed condition" "$((! $?))"
 
 finish
