@@ -60,10 +60,12 @@ sd_status sd_scene_build(const sd_scene *s, sd_world **out, sd_error *err);
 /* Overrides, applied before sd_scene_build (the CLI's --threads, --steps
  * and --backend): threads >= 1 replaces simulation.threads; steps >= 0
  * replaces the run length; a backend below SD_BACKEND_COUNT replaces
- * simulation.backend. */
+ * simulation.backend; device >= 0 is the CUDA device slot
+ * (sd_world_def.device: under mpirun, the rank's node-local rank). */
 void sd_scene_set_threads(sd_scene *s, int threads);
 void sd_scene_set_steps(sd_scene *s, long steps);
 void sd_scene_set_backend(sd_scene *s, sd_backend_kind backend);
+void sd_scene_set_device(sd_scene *s, int device);
 
 /* Steps of the run: simulation.steps, or duration / dt rounded up. */
 long sd_scene_steps(const sd_scene *s);

@@ -201,6 +201,9 @@ typedef struct sd_world_def {
     int multi_contact;      /* SD_MULTI_CONTACT_AVERAGE (model B, default, seed 004 eq. 21) or
                                SD_MULTI_CONTACT_SUM (model A, eq. 18): composite pairs */
     sd_backend_kind backend; /* SD_BACKEND_AUTO by default; for either solver */
+    int device;             /* >= 0, the CUDA backend's device slot: it runs on device
+                               (device mod the devices present); 0 by default; under
+                               mpirun each rank's node-local rank (docs/mpi.md) */
     double max_overlap;     /* -, the overlap guard: a contact deeper than this fraction of the
                                smaller radius stops the step with SD_ERR_PHYSICS (0.5 by
                                default; 0 = off; cells solver) */

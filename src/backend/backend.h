@@ -6,7 +6,13 @@
  * Invariants: every stage works on the views of backend/view.h (struct
  * sd_stage), never on sd_world, except rebuild, which hands the world to
  * the broad phase (broad/ builds the pair lists on the host; the world
- * refills the views after it). Every entry is set. The table is called a
+ * refills the views after it; under MPI the migration and the ghosts run
+ * inside it, on the host). Every entry is set. Whatever the host reads or
+ * writes between stages a device backend copies around it: read_back
+ * before the host reads the state (output, guards, a rebuild), upload
+ * after the host changed it, and within a step only the narrow copies
+ * (the wall pairs for the wall motion, the state rows around the ghost
+ * exchange of a decomposed run). The table is called a
  * few times per step, never per particle or per pair: the indirect calls
  * cost nothing, and DESIGN.md rule 6 forbids function pointers in device
  * code only. Stages run in the order step.c gives; each one writes only
@@ -35,7 +41,8 @@ typedef struct sd_backend {
     int (*needs_rebuild)(sd_stage *s);
     /* new pair lists (broad phase), history carried by key */
     sd_status (*rebuild)(sd_world *w, sd_error *err);
-    /* refreshes the ghosts' state from their owners (none yet: a no-op) */
+    /* refreshes the local ghosts' state from their owners (periodic
+     * images; another rank's particles are the decomposition's) */
     void (*exchange_ghosts)(sd_stage *s);
     /* forces of one kind segment of the particle pairs (contact/kinds.h) */
     void (*forces)(sd_stage *s, sd_pair_kind kind);
@@ -62,9 +69,19 @@ typedef struct sd_backend {
      * and the narrow-phase tallies back (the CPU's state is the host's:
      * nothing to do) */
     void (*read_back)(sd_stage *s);
-    /* the wall pairs' overlaps only: what the host's wall motion reads
-     * each step (servo stiffness, world/servo.c) */
+    /* the wall pairs' overlaps and forces only: what the host's wall
+     * motion reads each step (servo stiffness; under MPI the servo walls'
+     * forces summed over the ranks, world/servo.c) */
     void (*read_back_wall_pairs)(sd_stage *s);
+    /* a decomposed run's ghost exchange (step.c, w->comm) sends the owned
+     * particles' rows from the host's arrays and writes the ghosts' rows
+     * there, each step: read_back_state copies the particle state the
+     * stages write (x, v, w, q, f, t) of rows [first, end) to the host,
+     * upload_state those rows from the host (the rows only: the views are
+     * those of the last upload; the CPU's state is the host's: nothing to
+     * do) */
+    void (*read_back_state)(sd_stage *s, size_t first, size_t end);
+    void (*upload_state)(sd_stage *s, size_t first, size_t end);
     /* the world is destroyed: frees what the backend keeps (s->device) */
     void (*release)(sd_stage *s);
     /* SD_OK, or the first error since the last call (a device backend's

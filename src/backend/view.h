@@ -143,6 +143,8 @@ typedef struct sd_stage {
     sd_vec3 *wall_force, *wall_torque; /* N, N m: per wall, summed by the wall totals stage */
     size_t wall_cap;
     struct sd_cuda_state *device;  /* the CUDA backend's device copies (backend/cuda/), NULL on the CPU */
+    int device_index;              /* the CUDA device they live on (world/backend.c: sd_world_def.device
+                                    * mod the devices present); 0 on the CPU */
 } sd_stage;
 
 #endif

@@ -187,9 +187,11 @@ static int sd_parse_args(int argc, char **argv, sd_cli *c)
     return 0;
 }
 
-/* Loads, applies the command-line overrides, builds; on bad input fills
- * msg with the one line to print after "shapedem: " and returns 2. */
-static int sd_load_world_msg(const sd_cli *c, sd_scene **scene, sd_world **world, char *msg, size_t size)
+/* Loads, applies the command-line overrides (and the CUDA device slot
+ * under mpirun: cli/mpi_run.c; -1 none), builds; on bad input fills msg
+ * with the one line to print after "shapedem: " and returns 2. */
+static int sd_load_world_msg(const sd_cli *c, int device, sd_scene **scene, sd_world **world, char *msg,
+                             size_t size)
 {
     sd_error err;
     memset(&err, 0, sizeof err);
@@ -206,6 +208,7 @@ static int sd_load_world_msg(const sd_cli *c, sd_scene **scene, sd_world **world
         if (c->steps >= 0)
             sd_scene_set_steps(*scene, c->steps);
         sd_scene_set_backend(*scene, (sd_backend_kind)c->backend); /* SD_BACKEND_COUNT: the scene's */
+        sd_scene_set_device(*scene, device);
         failed = sd_scene_build(*scene, world, &err) != SD_OK;
     }
     /* --restart: the checkpoint's state replaces the scene's start (refused
@@ -226,7 +229,7 @@ static int sd_load_world_msg(const sd_cli *c, sd_scene **scene, sd_world **world
 static int sd_load_world(const sd_cli *c, sd_scene **scene, sd_world **world)
 {
     char msg[1200];
-    int rc = sd_load_world_msg(c, scene, world, msg, sizeof msg);
+    int rc = sd_load_world_msg(c, -1, scene, world, msg, sizeof msg);
     if (rc)
         fprintf(stderr, "shapedem: %s\n", msg);
     return rc;

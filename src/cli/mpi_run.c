@@ -65,7 +65,9 @@ int sd_cli_mpi_begin(const void *cli, sd_cli_load_fn load, const char *restart, 
     sd_mpi *m = NULL;
     sd_error err;
     memset(&err, 0, sizeof err);
-    int rc = sd_cli_mpi_agree(load(cli, scene, &w, msg, sizeof msg), msg, rank, size);
+    /* rank r of a node takes CUDA device r mod the node's devices (when
+     * the scene's backend is cuda; chosen as the world is created) */
+    int rc = sd_cli_mpi_agree(load(cli, sd_mpi_local_rank(), scene, &w, msg, sizeof msg), msg, rank, size);
     if (rc == 0 && (*scene)->output.checkpoint_minutes > 0) {
         /* a checkpoint makes every rank rebuild at the next step: at a
          * step count, the bits do not depend on the wall clock */

@@ -6,14 +6,17 @@
 #include <shapedem/scene.h>
 #include <shapedem/shapedem.h>
 
-/* The CLI's loader: the scene loaded, overridden and built; on bad input
+/* The CLI's loader: the scene loaded, overridden (device: the CUDA device
+ * slot, sd_scene_set_device; -1 keeps the default) and built; on bad input
  * msg gets the line to print after "shapedem: " and the exit status is
  * returned (0: loaded). */
-typedef int (*sd_cli_load_fn)(const void *cli, sd_scene **scene, sd_world **world, char *msg, size_t size);
+typedef int (*sd_cli_load_fn)(const void *cli, int device, sd_scene **scene, sd_world **world, char *msg,
+                              size_t size);
 
 typedef struct sd_cli_mpi sd_cli_mpi;
 
-/* MPI_Init, then every rank loads and builds the scene (load), and the ranks agree: bad
+/* MPI_Init, then every rank loads and builds the scene (load, with its
+ * node-local rank as the device slot: one rank per GPU), and the ranks agree: bad
  * input on any rank is printed once (by the lowest rank that met it) and
  * every rank returns 2. Then the world is split over the ranks; restart,
  * when not NULL, is the checkpoint the split world continues from. Rank 0

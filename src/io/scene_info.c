@@ -2,7 +2,7 @@
  * (shapedem/scene.h): what a runner or a report needs to know of a scene
  * without seeing its internal struct (io/scene.h).
  *
- * Invariant: the queries only read; the two overrides change the values
+ * Invariant: the queries only read; the overrides change the values
  * the builder and the run read afterwards, nothing else.
  */
 #include <stdio.h>
@@ -20,6 +20,12 @@ void sd_scene_set_backend(sd_scene *s, sd_backend_kind backend)
 {
     if (backend >= 0 && backend < SD_BACKEND_COUNT)
         s->world.backend = backend;
+}
+
+void sd_scene_set_device(sd_scene *s, int device)
+{
+    if (device >= 0)
+        s->world.device = device;
 }
 
 void sd_scene_set_steps(sd_scene *s, long steps)

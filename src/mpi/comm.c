@@ -860,9 +860,13 @@ static sd_status sd_mpi_refuse(const sd_world *w, sd_error *err)
     if (w->solver != &sd_solver_cells)
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.solver",
                             "MPI ranks run the cells solver only (the grid solver is not decomposed yet)");
-    if (w->backend && w->backend != &sd_backend_cpu)
-        return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.backend",
-                            "MPI ranks run the CPU backend only in this version");
+    /* either backend: the hooks work on the host's arrays, and the step
+     * copies a device backend's rows around them (world/step.c: the
+     * migration and the ghosts inside the rebuild, which reads back before
+     * and uploads after; the state rows around each exchange; the servo
+     * walls' pairs before the wall motion). Each rank's device is chosen
+     * when its world is created (sd_world_def.device: the node-local rank,
+     * sd_mpi_local_rank) */
     int size = 1;
     MPI_Comm_size(MPI_COMM_WORLD, &size);
     if (size > SD_MPI_MAX_RANKS)
@@ -947,6 +951,11 @@ sd_status sd_mpi_attach(sd_world *w, const sd_mpi_split_req *split, sd_mpi **out
         }
         return st;
     }
+    /* a device backend's copies were sized for the whole world (the
+     * scene's build prepared it before the split): freed, so that the
+     * next upload sizes them for this rank's part */
+    if (w->backend)
+        w->backend->release(&w->stage);
     w->comm = &sd_mpi_hooks;
     w->comm_ctx = m;
     *out = m;

@@ -204,6 +204,10 @@ static void sd_drive_note(sd_mpi *m, const sd_world *w, char *note, size_t size)
     MPI_Gather(mine, 2, MPI_UNSIGNED_LONG_LONG, all, 2, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
     double secs[2] = {sd_drive_time.step, sd_drive_time.exchange}, all_secs[128];
     MPI_Gather(secs, 2, MPI_DOUBLE, all_secs, 2, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    /* each rank's CUDA device (its node-local rank mod the node's devices,
+     * world/backend.c), -1 on the CPU */
+    int dev = strcmp(sd_world_backend(w), "cuda") == 0 ? w->stage.device_index : -1, all_dev[64];
+    MPI_Gather(&dev, 1, MPI_INT, all_dev, 1, MPI_INT, 0, MPI_COMM_WORLD);
     if (!note)
         return;
     size_t used = 0;
@@ -221,7 +225,14 @@ static void sd_drive_note(sd_mpi *m, const sd_world *w, char *note, size_t size)
         SD_NOTE(" %llu", all[2 * r]);
         moved += all[2 * r + 1];
     }
-    SD_NOTE("\nmpi_migrations: %llu\nmpi_rebalances: %ld\n", moved, sd_mpi_rebalances(m));
+    SD_NOTE("\nmpi_migrations: %llu\nmpi_rebalances: %ld\nmpi_devices:", moved, sd_mpi_rebalances(m));
+    for (int r = 0; r < ranks; ++r) {
+        if (all_dev[r] >= 0)
+            SD_NOTE(" cuda:%d", all_dev[r]);
+        else
+            SD_NOTE(" cpu");
+    }
+    SD_NOTE("\n");
     /* wall seconds per rank inside its steps, and of those inside the
      * exchanges (ghosts, migration, the rebuild vote: waiting included) */
     double share = 0;
@@ -288,6 +299,18 @@ void sd_mpi_follow(sd_mpi *m, sd_world *w)
         (void)sd_drive_do(m, w, NULL, cmd, &err); /* a failed step or gather is rank 0's to report */
     }
     sd_drive_note(m, w, NULL, 0);
+}
+
+int sd_mpi_local_rank(void)
+{
+    /* the ranks that share this node's memory, in the order of their world
+     * ranks (MPI errors are fatal: MPI_ERRORS_ARE_FATAL) */
+    MPI_Comm node;
+    int r = 0;
+    MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+    MPI_Comm_rank(node, &r);
+    MPI_Comm_free(&node);
+    return r;
 }
 
 sd_status sd_mpi_attach_built(sd_world *w, const sd_mpi_split_req *split, sd_mpi **out, sd_error *err)

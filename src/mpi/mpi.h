@@ -2,8 +2,9 @@
  * the serial build has none of it): every particle kind (spheres, convex
  * shapes, sharp polyhedra under the volume law, composites, the planar
  * mode) with fixed and moving walls (prescribed motions, servo walls,
- * drums, triangle meshes), insertions and outlets, on the cells solver and
- * the CPU backend, a split into a grid of boxes.
+ * drums, triangle meshes), insertions and outlets, on the cells solver,
+ * the CPU or the CUDA backend (one rank per GPU), a split into a grid of
+ * boxes.
  *
  * Each rank builds the same world (the same scene: every particle on every
  * rank), then sd_mpi_attach keeps the particles of its own sub-domain and
@@ -136,9 +137,8 @@ typedef struct sd_mpi sd_mpi;
  * prepared: sd_mpi_attach_built takes a world sd_scene_build made) over
  * the ranks of MPI_COMM_WORLD as split asks (sd_mpi_plan; NULL: auto):
  * keeps this rank's particles and installs the hooks. MPI must be
- * initialised. Refuses what is not decomposed yet (the grid solver, a
- * device backend), and a split that does not fit the rank count, with
- * SD_ERR_INPUT. */
+ * initialised. Refuses what is not decomposed yet (the grid solver), and
+ * a split that does not fit the rank count, with SD_ERR_INPUT. */
 sd_status sd_mpi_attach(sd_world *w, const sd_mpi_split_req *split, sd_mpi **out, sd_error *err);
 /* The hooks off and the memory freed (the world stays, holding its own
  * particles). */
@@ -231,7 +231,7 @@ sd_status sd_mpi_drive_step(void *drive, long n, sd_error *err);
  * restore or a change outside the steps). */
 sd_status sd_mpi_drive_view(sd_mpi_drive *d, sd_error *err);
 /* Rank 0: the followers stop; note gets summary.txt's lines on the ranks
- * (the split, particles per rank now, migrations). */
+ * (the split, particles per rank now, migrations, each rank's device). */
 void sd_mpi_drive_end(sd_mpi_drive *d, char *note, size_t size);
 /* sd_mpi_attach for a world that sd_scene_build made (prepared, at step
  * 0): its pair lists, ghosts and rebuild count are dropped first, so the
@@ -254,5 +254,10 @@ sd_status sd_mpi_drive_write(void *drive, const char *path, sd_error *err);
 void sd_mpi_drive_time(sd_world *w);
 /* Ranks other than 0: follow rank 0's commands until it ends the run. */
 void sd_mpi_follow(sd_mpi *m, sd_world *w);
+/* Collective: this rank's index among the ranks of its node (those that
+ * share memory, MPI_COMM_TYPE_SHARED, in world-rank order): the device
+ * slot of its world (sd_world_def.device, sd_scene_set_device), so that
+ * rank r of a node takes CUDA device r mod the node's devices. */
+int sd_mpi_local_rank(void);
 
 #endif

@@ -2,7 +2,8 @@
  * stages (sd_world_def.backend), made once when the world is created.
  *
  * Invariant: after sd_world_create, w->backend is a complete stage table
- * and w->backend_note says why it was chosen (or names the device), so
+ * and w->backend_note says why it was chosen (or names the device: slot
+ * def.device mod the devices present, in w->stage.device_index), so
  * step.c never asks again and a run can report it (summary.txt, the
  * CLI's last line). `cuda` that cannot run is refused here, before any
  * particle is added or any file written, with the reason: the backend not
@@ -65,10 +66,12 @@ sd_status sd_world_choose_backend(sd_world *w, sd_error *err)
         return SD_OK;
     }
     char note[sizeof w->backend_note];
-    sd_cuda_probe_result r = sd_cuda_probe(note, sizeof note);
+    int device = 0;
+    sd_cuda_probe_result r = sd_cuda_probe(w->def.device, &device, note, sizeof note);
     const sd_backend *cuda = sd_cuda_backend();
     if (r == SD_CUDA_USABLE && cuda) {
         w->backend = cuda;
+        w->stage.device_index = device; /* def.device mod the devices present */
         snprintf(w->backend_note, sizeof w->backend_note, "%s", note);
         return SD_OK;
     }

@@ -19,7 +19,7 @@
  * ones computed at the end of the previous step, so sd_world_prepare
  * computes them once before the first step (sd_cells_prepare: the cells
  * solver's half of the solver interface, world/solver.h). The CUDA backend
- * will provide the same stages on device copies of the same views.
+ * provides the same stages on device copies of the same views.
  */
 #include <math.h>
 
@@ -49,7 +49,7 @@ static const sd_backend *sd_backend_of(const sd_world *w)
 
 /* Broad phase: new pair lists when the skin is used up, a wall moved
  * beyond it or particles were added; the views follow the new arrays; then
- * the ghosts' state (none yet). */
+ * the ghosts' state (another rank's particles, periodic images). */
 static sd_status sd_stage_rebuild(sd_world *w, const sd_backend *be, sd_error *err)
 {
     double t = sd_profile_now();
@@ -67,9 +67,20 @@ static sd_status sd_stage_rebuild(sd_world *w, const sd_backend *be, sd_error *e
         if ((st = be->status(&w->stage, err)) != SD_OK)
             return st;
     }
-    be->exchange_ghosts(&w->stage);
-    if (w->comm)
-        w->comm->exchange(w->comm_ctx, w); /* other ranks' particles: their owners' state of this step */
+    sd_stage *s = &w->stage;
+    if (w->comm) {
+        /* other ranks' particles: their owners' state of this step, sent
+         * from and received into the host's rows (a device backend copies
+         * the owned rows back before and the ghost rows up after; nothing
+         * on the CPU) */
+        be->read_back_state(s, 0, s->v.n_owned);
+        w->comm->exchange(w->comm_ctx, w);
+        be->upload_state(s, s->v.n_owned, s->v.n_total);
+    }
+    /* the local images (periodic) after that upload, which carried the
+     * host's stale copies of them (independent of the exchange: an image
+     * reads its own owner's row, the exchange writes other ranks' rows only) */
+    be->exchange_ghosts(s);
     sd_profile_lap(w, SD_PROFILE_REBUILD, &t, 1);
     return SD_OK;
 }

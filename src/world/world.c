@@ -193,6 +193,8 @@ sd_status sd_world_create(const sd_world_def *def, sd_world **out, sd_error *err
     if (def->multi_contact != SD_MULTI_CONTACT_AVERAGE && def->multi_contact != SD_MULTI_CONTACT_SUM)
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "simulation.multi_contact",
                             "expected average or sum, got %d", def->multi_contact);
+    if (def->device < 0)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "", "expected a CUDA device slot >= 0, got %d", def->device);
     sd_status periodic_st = sd_world_check_periodic_def(def, err); /* world/rebuild.c */
     if (periodic_st != SD_OK)
         return periodic_st;

@@ -14,19 +14,31 @@
 # PxPyPz such as 2x2x1), each against 1 rank's state: the bits do not
 # depend on the split either (the serial world is left to the test
 # without --splits).
-#   kinds.sh MPI_SCENE_BINARY MPIEXEC SCENE [--splits "NP:SPEC ..."] [--hints | --walls]
+# --cuda N (BINARY built against the emulated CUDA backend,
+# mpi_scene_cuda): the ranks run on backend cuda with N emulated devices
+# per node (rank r must take device r mod N: scene.c checks it), and 1
+# rank's state must also equal the CPU backend's byte for byte (issue 18:
+# one rank per GPU).
+#   kinds.sh MPI_SCENE_BINARY MPIEXEC SCENE [--splits "NP:SPEC ..."] [--cuda N] [--hints | --walls]
 set -euo pipefail
 bin=$1
 mpiexec=${2:-mpirun}
 scene=$3
 shift 3
 runs=("2:" "3:" "4:") # NP:SPEC, SPEC empty: the scene's own split
-serial=1
-if [[ ${1:-} == --splits ]]; then
-  read -r -a runs <<<"$2"
-  serial=0
+serial=1 cuda=0
+while [[ ${1:-} == --splits || ${1:-} == --cuda ]]; do
+  if [[ $1 == --splits ]]; then
+    read -r -a runs <<<"$2"
+    serial=0
+  else
+    cuda=1
+    export SD_CUDA_EMULATE_DEVICES=$2
+  fi
   shift 2
-fi
+done
+backend=()
+[[ $cuda == 1 ]] && backend=(--backend cuda)
 tmp=$(mktemp -d)
 # Open MPI's session directory in this test's own $tmp: jobs that other
 # tests (ctest -j) start and end at the same time cannot remove it under
@@ -42,7 +54,7 @@ run() { # ranks out [args]
 }
 fail=0
 keys=(1) labels=("1 rank")
-run 1 "$tmp/1.bin" "$@" >"$tmp/1.out" || { echo "FAIL: $name, 1 rank: the run failed"; fail=1; }
+run 1 "$tmp/1.bin" "$@" ${backend[@]+"${backend[@]}"} >"$tmp/1.out" || { echo "FAIL: $name, 1 rank: the run failed"; fail=1; }
 cat "$tmp/1.out"
 for r in "${runs[@]}"; do
   np=${r%%:*} spec=${r#*:} key=${r/:/-}
@@ -50,12 +62,23 @@ for r in "${runs[@]}"; do
   [[ -n $spec ]] && split=(--split "$spec")
   keys+=("$key")
   labels+=("$np ranks${spec:+, split $spec}")
-  run "$np" "$tmp/$key.bin" "$@" ${split[@]+"${split[@]}"} >"$tmp/$key.out" ||
+  run "$np" "$tmp/$key.bin" "$@" ${split[@]+"${split[@]}"} ${backend[@]+"${backend[@]}"} >"$tmp/$key.out" ||
     { echo "FAIL: $name, $np ranks${spec:+, split $spec}: the run failed"; fail=1; }
   cat "$tmp/$key.out"
 done
 if [[ $serial -eq 1 ]]; then
-  run 1 "$tmp/serial.bin" --serial || { echo "FAIL: $name: the serial run failed"; fail=1; }
+  run 1 "$tmp/serial.bin" --serial --backend cpu || { echo "FAIL: $name: the serial run failed"; fail=1; }
+fi
+if [[ $cuda == 1 ]]; then
+  # the CPU backend's decomposed run: the device's bits to the last one
+  run 1 "$tmp/cpu.bin" "$@" --backend cpu >"$tmp/cpu.out" || { echo "FAIL: $name: the CPU backend's run failed"; fail=1; }
+  if [[ -f $tmp/cpu.bin && -f $tmp/1.bin ]] && cmp -s "$tmp/cpu.bin" "$tmp/1.bin" &&
+     [[ $(grep "^walls:" "$tmp/cpu.out") == $(grep "^walls:" "$tmp/1.out") ]]; then
+    echo "ok: $name, backend cuda on 1 rank: the same $(stat -c %s "$tmp/1.bin") bytes of state and the same walls as the CPU backend"
+  else
+    echo "FAIL: $name, backend cuda on 1 rank: state or walls differ from the CPU backend's"
+    fail=1
+  fi
 fi
 for i in "${!keys[@]}"; do
   [[ $i -eq 0 ]] && continue

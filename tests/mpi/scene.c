@@ -8,8 +8,14 @@
  * stable-id order, to the file given, which kinds.sh compares byte for
  * byte across rank counts.
  *
- *   mpi_scene SCENE OUT [--serial] [--hints] [--walls] [--split SPEC]
+ *   mpi_scene SCENE OUT [--serial] [--hints] [--walls] [--split SPEC] [--backend B] [--chunk N]
  *     --serial: the plain world, no attach
+ *     --backend: auto, cpu or cuda instead of the scene's (each rank's
+ *               device slot is its node-local rank: sd_mpi_local_rank)
+ *     --chunk:  N steps per sd_world_step call (default 1), the count and
+ *               id set checked after each: on a device backend each call
+ *               ends with a whole read back, which N > 1 leaves out
+ *               between the steps of a call
  *     --hints:  on more than one rank, volume-law overlap hints (x0) must
  *               have travelled with migrating particles
  *     --walls:  on more than one rank, wall pairs' springs must have
@@ -21,6 +27,10 @@
  *
  * On more than one rank particles must migrate and carry history entries
  * (the scenes are made so: fast particles in contact across the cuts).
+ *
+ * Built against the emulated CUDA backend (mpi_scene_cuda, SD_TEST_CUDA_EMULATED:
+ * tests/mpi/kinds.sh --cuda), a run on backend cuda also checks that each
+ * rank was given device (node-local rank mod SD_CUDA_EMULATE_DEVICES).
  */
 #include <mpi.h>
 #include <stdio.h>
@@ -34,6 +44,9 @@
 #include "io/scene.h"
 #include "mpi/mpi.h"
 #include "mpi/states.h"
+#ifdef SD_TEST_CUDA_EMULATED
+#include "backend/cuda/cuda.h"
+#endif
 
 static int cmp_u64(const void *a, const void *b)
 {
@@ -88,6 +101,40 @@ static int check_process(const sd_world *w, long step, int rank, int size, int *
     return bad;
 }
 
+#ifdef SD_TEST_CUDA_EMULATED
+/* On backend cuda: every rank was given device (its node-local rank mod
+ * the emulated devices), the device its backend set and its world's note
+ * names; rank 0 prints each rank's. Returns 1 on rank 0 when not. */
+static int check_devices(const sd_world *w, int local, int rank, int size)
+{
+    if (strcmp(sd_world_backend(w), "cuda") != 0)
+        return 0;
+    const char *env = getenv("SD_CUDA_EMULATE_DEVICES");
+    int ndev = env && *env ? atoi(env) : 1;
+    ndev = ndev > 0 ? ndev : 1;
+    char named[48];
+    snprintf(named, sizeof named, "device %d of %d:", local % ndev, ndev);
+    int mine[3] = {local, sd_cuda_emulated_device(), strstr(sd_world_backend_note(w), named) != NULL};
+    int *all = sd_malloc((size_t)size * sizeof mine);
+    MPI_Gather(mine, 3, MPI_INT, all, 3, MPI_INT, 0, MPI_COMM_WORLD);
+    int bad = 0;
+    if (rank == 0) {
+        printf("devices (%d emulated):", ndev);
+        for (int r = 0; r < size; ++r) {
+            int ok = all[3 * r + 1] == all[3 * r] % ndev && all[3 * r + 2];
+            printf(" rank %d (local %d) device %d%s;", r, all[3 * r], all[3 * r + 1], ok ? "" : " WRONG");
+            bad |= !ok;
+        }
+        printf("\n");
+        if (bad)
+            printf("  FAIL: a rank's device is not its local rank mod %d, or its backend note does not name it "
+                   "(rank 0's: %s)\n", ndev, sd_world_backend_note(w));
+    }
+    sd_free(all);
+    return bad;
+}
+#endif
+
 int main(int argc, char **argv)
 {
     MPI_Init(&argc, &argv);
@@ -95,14 +142,21 @@ int main(int argc, char **argv)
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     MPI_Comm_size(MPI_COMM_WORLD, &size);
     if (argc < 3) {
-        fprintf(stderr, "usage: mpi_scene SCENE OUT [--serial] [--hints] [--walls] [--split SPEC] [--spread]\n");
+        fprintf(stderr, "usage: mpi_scene SCENE OUT [--serial] [--hints] [--walls] [--split SPEC] [--spread] "
+                        "[--backend B] [--chunk N]\n");
         MPI_Abort(MPI_COMM_WORLD, 2);
     }
     int serial = 0, hints = 0, walls = 0, spread = 0;
     const char *split_arg = NULL;
+    sd_backend_kind backend = SD_BACKEND_COUNT; /* the scene's */
+    long chunk = 1;
     for (int a = 3; a < argc; ++a) {
         if (strcmp(argv[a], "--serial") == 0)
             serial = 1;
+        else if (strcmp(argv[a], "--backend") == 0 && a + 1 < argc)
+            backend = sd_backend_kind_from_name(argv[++a]);
+        else if (strcmp(argv[a], "--chunk") == 0 && a + 1 < argc && atol(argv[a + 1]) > 0)
+            chunk = atol(argv[++a]);
         else if (strcmp(argv[a], "--hints") == 0)
             hints = 1;
         else if (strcmp(argv[a], "--walls") == 0)
@@ -123,8 +177,17 @@ int main(int argc, char **argv)
     if ((st = sd_scene_load(argv[1], &sc, &err)) != SD_OK)
         sd_mpi_fail(NULL, "scene", st, &err);
     sd_scene_set_threads(sc, 1);
+    sd_scene_set_backend(sc, backend);
+    int local = sd_mpi_local_rank();
+    sd_scene_set_device(sc, local);
     if ((st = sd_scene_build(sc, &w, &err)) != SD_OK)
         sd_mpi_fail(NULL, "scene", st, &err);
+    if (backend != SD_BACKEND_COUNT && backend != SD_BACKEND_AUTO &&
+        strcmp(sd_world_backend(w), sd_backend_kind_name(backend)) != 0) {
+        fprintf(stderr, "mpi_scene: asked for backend %s, runs on %s (%s)\n", sd_backend_kind_name(backend),
+                sd_world_backend(w), sd_world_backend_note(w));
+        MPI_Abort(MPI_COMM_WORLD, 1);
+    }
     long steps = sd_scene_steps(sc);
     /* insertions or outlets: the set of ids changes (check_process) */
     int process = sd_world_insertion_count(w) + sd_world_outlet_count(w) > 0;
@@ -141,8 +204,8 @@ int main(int argc, char **argv)
         sd_mpi_fail(m, "attach", st, &err);
     long bad_steps = 0, contacts_max = 0, wall_contacts_max = 0;
     int reported = 0;
-    for (long step = 0; step < steps; ++step) {
-        if ((st = sd_world_step(w, 1, &err)) != SD_OK)
+    for (long step = 0; step < steps; step += chunk) {
+        if ((st = sd_world_step(w, chunk < steps - step ? chunk : steps - step, &err)) != SD_OK)
             sd_mpi_fail(m, "step", st, &err);
         bad_steps += process ? check_process(w, step, rank, size, &reported)
                              : mpi_test_check_ids(w, want, step, rank, &reported);
@@ -234,6 +297,9 @@ int main(int argc, char **argv)
             fail = 1;
         }
     }
+#ifdef SD_TEST_CUDA_EMULATED
+    fail |= check_devices(w, local, rank, size);
+#endif
     sd_free(s);
     sd_mpi_detach(w, m);
     sd_world_destroy(w);

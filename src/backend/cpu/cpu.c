@@ -13,6 +13,13 @@ static void sd_cpu_nothing(sd_stage *s)
     (void)s;
 }
 
+static void sd_cpu_rows_nothing(sd_stage *s, size_t first, size_t end)
+{
+    (void)s;
+    (void)first;
+    (void)end;
+}
+
 /* the CPU's stages cannot fail */
 static sd_status sd_cpu_status(sd_stage *s, sd_error *err)
 {
@@ -39,6 +46,8 @@ const sd_backend sd_backend_cpu = {
     .min_radius = sd_cpu_min_radius,
     .read_back = sd_cpu_nothing,
     .read_back_wall_pairs = sd_cpu_nothing,
+    .read_back_state = sd_cpu_rows_nothing,
+    .upload_state = sd_cpu_rows_nothing,
     .release = sd_cpu_nothing,
     .status = sd_cpu_status,
 };

@@ -8,8 +8,10 @@
 #include "backend/cuda/cuda.h"
 #include "core/error.h"
 
-sd_cuda_probe_result sd_cuda_probe(char *note, size_t size)
+sd_cuda_probe_result sd_cuda_probe(int slot, int *device, char *note, size_t size)
 {
+    (void)slot;
+    *device = 0;
     if (note && size)
         snprintf(note, size, "not compiled with CUDA");
     return SD_CUDA_NOT_BUILT;

@@ -29,10 +29,17 @@ typedef enum sd_cuda_probe_result {
     SD_CUDA_ERROR        /* any other failure of the device query */
 } sd_cuda_probe_result;
 
-/* Asks for device 0. note gets the device's name when usable, else the
- * reason in words (e.g. "no CUDA device", "driver too old: it supports
- * CUDA 11.4, the backend was built for 13.0"). */
-sd_cuda_probe_result sd_cuda_probe(char *note, size_t size);
+/* Asks for the device of slot (>= 0): device slot mod the devices present
+ * (one rank per GPU: rank r of a node takes device r mod n), its index in
+ * *device (0 when none is usable). note gets "device d of n: " and the
+ * device's name when usable, else the reason in words (e.g. "no CUDA
+ * device", "driver too old: it supports CUDA 11.4, the backend was built
+ * for 13.0"). */
+sd_cuda_probe_result sd_cuda_probe(int slot, int *device, char *note, size_t size);
+
+/* The emulated build only (SHAPEDEM_CUDA_EMULATE, tests): the device the
+ * last cudaSetDevice chose, -1 before any (emulate.h). */
+int sd_cuda_emulated_device(void);
 
 /* The stage table, or NULL without the backend. */
 const sd_backend *sd_cuda_backend(void);

@@ -1,4 +1,4 @@
-/* device.cu — the CUDA backend's device memory: the probe of device 0,
+/* device.cu — the CUDA backend's device memory: the probe of the device,
  * the device copies of the views (backend/cuda/state.h's SD_CUDA_ARRAYS)
  * and of the mesh walls' facets, the copies both ways, and the first
  * error.
@@ -9,6 +9,10 @@
  * copies every array of the views, so the device holds exactly the host's
  * state after it (and a read back the reverse for the arrays the device
  * writes): the host may change anything between two sd_world_step calls.
+ * Within a step only narrow copies: the wall pairs before the wall motion,
+ * and under MPI the particle state rows around the ghost exchange. Every
+ * call goes to the device the world chose (sd_stage.device_index, set
+ * before the first allocation).
  * Out of device memory names the bytes the upload needed in all. No
  * floating point is computed here.
  */
@@ -31,9 +35,10 @@ extern "C" { /* C headers without their own guards */
 #define SD_CUDA_MAX_WORKSPACES 65536
 #endif
 
-extern "C" sd_cuda_probe_result sd_cuda_probe(char *note, size_t size)
+extern "C" sd_cuda_probe_result sd_cuda_probe(int slot, int *device, char *note, size_t size)
 {
     int driver = 0, runtime = 0, n = 0;
+    *device = 0;
     if (cudaDriverGetVersion(&driver) != cudaSuccess || driver == 0) {
         snprintf(note, size, "no CUDA device (no NVIDIA driver)");
         return SD_CUDA_NO_DEVICE;
@@ -56,20 +61,22 @@ extern "C" sd_cuda_probe_result sd_cuda_probe(char *note, size_t size)
         (void)cudaGetLastError();
         return SD_CUDA_ERROR;
     }
+    int d = (slot > 0 ? slot : 0) % n; /* one rank per GPU: rank r of a node takes device r mod n */
     cudaDeviceProp p;
-    if ((e = cudaGetDeviceProperties(&p, 0)) != cudaSuccess) {
+    if ((e = cudaGetDeviceProperties(&p, d)) != cudaSuccess) {
         snprintf(note, size, "the CUDA device query failed: %s", cudaGetErrorString(e));
         return SD_CUDA_ERROR;
     }
     /* the kernels are built for sm_80 and sm_90 (and PTX of 9.0 for later
      * devices): an older device cannot run them */
     if (p.major < 8) {
-        snprintf(note, size, "device %s has compute capability %d.%d; the backend was built for 8.0 and later",
-                 p.name, p.major, p.minor);
+        snprintf(note, size, "device %d (%s) has compute capability %d.%d; the backend was built for 8.0 and later",
+                 d, p.name, p.major, p.minor);
         return SD_CUDA_ERROR;
     }
-    snprintf(note, size, "%s, compute %d.%d, %.0f GiB", p.name, p.major, p.minor,
+    snprintf(note, size, "device %d of %d: %s, compute %d.%d, %.0f GiB", d, n, p.name, p.major, p.minor,
              (double)p.totalGlobalMem / (1024.0 * 1024.0 * 1024.0));
+    *device = d;
     return SD_CUDA_USABLE;
 }
 
@@ -123,7 +130,9 @@ static sd_cuda_state *sd_cuda_state_of(sd_stage *s)
     c->status = SD_OK;
     const char *sync = getenv("SD_CUDA_SYNC_STAGES");
     c->sync_stages = sync && sync[0] == '1';
-    if (sd_cuda_check(c, cudaSetDevice(0), "start", "cudaSetDevice(0)"))
+    /* the device the world chose (world/backend.c); this process's calls
+     * all go to it (one rank per GPU under mpirun) */
+    if (sd_cuda_check(c, cudaSetDevice(s->device_index), "start", "cudaSetDevice"))
         return c;
     (void)sd_cuda_check(c, cudaStreamCreate(&c->stream), "start", "cudaStreamCreate");
     return c;
@@ -349,12 +358,65 @@ extern "C" void sd_cuda_read_back_wall_pairs(sd_stage *s)
     sd_cuda_state *c = s->device;
     if (!c || c->status != SD_OK || !c->held[SD_CUDA_wpairs_delta])
         return;
+    /* the overlaps (each wall's contact stiffness) and the forces (a servo
+     * wall's force summed over the ranks, world/servo.c) */
     if (!sd_cuda_check(c, cudaMemcpyAsync((void *)s->wpairs.delta, c->buf[SD_CUDA_wpairs_delta].p,
                                           c->held[SD_CUDA_wpairs_delta] * sizeof(sd_real), cudaMemcpyDeviceToHost,
                                           c->stream),
-                       "wall motion", "wall pair overlaps"))
-        (void)sd_cuda_check(c, cudaStreamSynchronize(c->stream), "wall motion", "wall pair overlaps");
+                       "wall motion", "wall pair overlaps") &&
+        !sd_cuda_check(c, cudaMemcpyAsync((void *)s->wpairs.f, c->buf[SD_CUDA_wpairs_f].p,
+                                          c->held[SD_CUDA_wpairs_f] * sizeof(sd_vec3), cudaMemcpyDeviceToHost,
+                                          c->stream),
+                       "wall motion", "wall pair forces"))
+        (void)sd_cuda_check(c, cudaStreamSynchronize(c->stream), "wall motion", "wall pairs");
 }
+
+/* Which views' arrays are the particle state (state.h's view column). */
+#define SD_CUDA_ROWS_v 1
+#define SD_CUDA_ROWS_pairs 0
+#define SD_CUDA_ROWS_wpairs 0
+
+/* The particle state the stages write (the arrays of view v with back 1:
+ * x, v, w, q, f, t), rows [first, end) (within the last upload's), to
+ * the device (up) or back to the host; then waits, as the host reads or
+ * refills those rows next. */
+static void sd_cuda_state_rows(sd_stage *s, size_t first, size_t end, int up, const char *stage)
+{
+    sd_cuda_state *c = s->device;
+    if (!c || c->status != SD_OK || end <= first)
+        return;
+    int bad = 0;
+#define SD_X_ROWS(view, member, type, count, back)                                                               \
+    if (back && SD_CUDA_ROWS_##view && !bad) {                                                                    \
+        size_t e_ = end < c->held[SD_CUDA_##view##_##member] ? end : c->held[SD_CUDA_##view##_##member];          \
+        if (first < e_) {                                                                                         \
+            char *h_ = (char *)(void *)s->view.member + first * sizeof(type);                                    \
+            char *d_ = (char *)c->buf[SD_CUDA_##view##_##member].p + first * sizeof(type);                        \
+            bad = sd_cuda_check(c,                                                                               \
+                                cudaMemcpyAsync(up ? d_ : h_, up ? h_ : d_, (e_ - first) * sizeof(type),         \
+                                                up ? cudaMemcpyHostToDevice : cudaMemcpyDeviceToHost, c->stream), \
+                                stage, #view "." #member);                                                        \
+        }                                                                                                         \
+    }
+    SD_CUDA_ARRAYS(SD_X_ROWS)
+#undef SD_X_ROWS
+    if (!bad)
+        (void)sd_cuda_check(c, cudaStreamSynchronize(c->stream), stage, "the state rows");
+}
+
+extern "C" void sd_cuda_read_back_state(sd_stage *s, size_t first, size_t end)
+{
+    sd_cuda_state_rows(s, first, end, 0, "ghost exchange (read back)");
+}
+
+extern "C" void sd_cuda_upload_state(sd_stage *s, size_t first, size_t end)
+{
+    sd_cuda_state_rows(s, first, end, 1, "ghost exchange (upload)");
+}
+
+#ifdef SHAPEDEM_CUDA_EMULATE
+extern "C" int sd_cuda_emulated_device(void) { return sd_emu_device; }
+#endif
 
 static void sd_cuda_free_buf(sd_cuda_buf *b)
 {

@@ -18,7 +18,8 @@
  * elementary functions).
  *
  * Test knobs, read at each probe and allocation (environment):
- *   SD_CUDA_EMULATE_DEVICES=0      no device
+ *   SD_CUDA_EMULATE_DEVICES=N      N devices (default 1; 0: no device); the one the
+ *                                  backend sets is recorded (sd_emu_device)
  *   SD_CUDA_EMULATE_DRIVER=11040   the driver's CUDA version (1000 x major + 10 x minor;
  *                                  below the runtime's 13000: too old)
  *   SD_CUDA_EMULATE_MEMORY=BYTES   device memory (allocations beyond it fail)
@@ -41,7 +42,8 @@ typedef enum cudaError {
     cudaErrorInvalidValue = 1,
     cudaErrorMemoryAllocation = 2,
     cudaErrorInsufficientDriver = 35,
-    cudaErrorNoDevice = 100
+    cudaErrorNoDevice = 100,
+    cudaErrorInvalidDevice = 101
 } cudaError_t;
 
 enum cudaMemcpyKind { cudaMemcpyHostToDevice = 1, cudaMemcpyDeviceToHost = 2, cudaMemcpyDeviceToDevice = 3 };
@@ -93,6 +95,8 @@ static inline const char *cudaGetErrorString(cudaError_t e)
         return "CUDA driver version is insufficient for CUDA runtime version";
     case cudaErrorNoDevice:
         return "no CUDA-capable device is detected";
+    case cudaErrorInvalidDevice:
+        return "invalid device ordinal";
     }
     return "unknown error";
 }
@@ -122,7 +126,9 @@ static inline cudaError_t cudaGetDeviceCount(int *n)
 
 static inline cudaError_t cudaGetDeviceProperties(cudaDeviceProp *p, int dev)
 {
-    (void)dev;
+    int n = 0;
+    if (cudaGetDeviceCount(&n) != cudaSuccess || dev < 0 || dev >= n)
+        return cudaErrorInvalidDevice;
     memset(p, 0, sizeof *p);
     snprintf(p->name, sizeof p->name, "emulated on the host");
     p->totalGlobalMem = sd_emu_memory();
@@ -132,9 +138,16 @@ static inline cudaError_t cudaGetDeviceProperties(cudaDeviceProp *p, int dev)
     return cudaSuccess;
 }
 
+/* the device the last cudaSetDevice chose, -1 before any: a test reads it
+ * (sd_cuda_emulated_device) to see which device a rank was given */
+inline int sd_emu_device = -1;
+
 static inline cudaError_t cudaSetDevice(int dev)
 {
-    (void)dev;
+    int n = 0;
+    if (cudaGetDeviceCount(&n) != cudaSuccess || dev < 0 || dev >= n)
+        return cudaErrorInvalidDevice;
+    sd_emu_device = dev;
     return cudaSuccess;
 }
 

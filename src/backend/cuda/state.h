@@ -149,6 +149,8 @@ void sd_cuda_upload(sd_stage *s);
 void sd_cuda_upload_walls(sd_stage *s);
 void sd_cuda_read_back(sd_stage *s);
 void sd_cuda_read_back_wall_pairs(sd_stage *s);
+void sd_cuda_read_back_state(sd_stage *s, size_t first, size_t end);
+void sd_cuda_upload_state(sd_stage *s, size_t first, size_t end);
 void sd_cuda_release(sd_stage *s);
 sd_status sd_cuda_status(sd_stage *s, sd_error *err);
 /* particles.cu */

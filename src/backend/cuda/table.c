@@ -8,6 +8,11 @@
  * the current history, then calls the world's rebuild (world/rebuild.c,
  * the one exception to "no backend sees sd_world", as in cpu/cpu.c); the
  * world refills the views and step.c's upload copies them to the device.
+ * In a decomposed run (src/mpi/) the migration and the ghosts run inside
+ * that host rebuild, between the read back and the upload; the ghost
+ * exchange of every other step goes through the host's rows
+ * (read_back_state of the owned rows before it, upload_state of the ghost
+ * rows after it: step.c).
  */
 #include "backend/cuda/cuda.h"
 #include "backend/cuda/state.h"
@@ -41,6 +46,8 @@ static const sd_backend sd_backend_cuda_table = {
     .min_radius = sd_cuda_min_radius,
     .read_back = sd_cuda_read_back,
     .read_back_wall_pairs = sd_cuda_read_back_wall_pairs,
+    .read_back_state = sd_cuda_read_back_state,
+    .upload_state = sd_cuda_upload_state,
     .release = sd_cuda_release,
     .status = sd_cuda_status,
 };
