@@ -87,9 +87,10 @@ static double chi2(const size_t *obs, const double *p, int k, size_t n)
     return c;
 }
 
-/* The smallest gap between bounding spheres of particles ids >= first
- * and all others (negative: an overlap), brute force. */
-static double min_gap(const sd_world *w)
+/* The smallest gap between the bounding spheres of all particles
+ * (negative: an overlap), brute force; with period > 0, between nearest
+ * images on x and y (a cell periodic on both, of that side). */
+static double min_gap_periodic(const sd_world *w, double period)
 {
     size_t n = sd_world_particle_count(w);
     sd_particle_state *s = calloc(n, sizeof *s);
@@ -100,11 +101,17 @@ static double min_gap(const sd_world *w)
         for (size_t j = i + 1; j < n; ++j) {
             double dx = s[i].position.x - s[j].position.x, dy = s[i].position.y - s[j].position.y,
                    dz = s[i].position.z - s[j].position.z;
+            if (period > 0) {
+                dx -= period * round(dx / period);
+                dy -= period * round(dy / period);
+            }
             g = fmin(g, sqrt(dx * dx + dy * dy + dz * dz) - s[i].radius - s[j].radius);
         }
     free(s);
     return g;
 }
+
+static double min_gap(const sd_world *w) { return min_gap_periodic(w, 0.0); }
 
 static void test_mix(void)
 {
@@ -531,16 +538,7 @@ static void test_periodic_seam(void)
     sd_particle_state *p = calloc(n, sizeof *p);
     for (size_t k = 0; k < n; ++k)
         sd_world_get_particle(w, k, &p[k]);
-    /* the smallest gap by the nearest images on x and y */
-    double gap = HUGE_VAL;
-    for (size_t i = 0; i < n; ++i)
-        for (size_t j = i + 1; j < n; ++j) {
-            double dx = p[i].position.x - p[j].position.x, dy = p[i].position.y - p[j].position.y,
-                   dz = p[i].position.z - p[j].position.z;
-            dx -= L * round(dx / L);
-            dy -= L * round(dy / L);
-            gap = fmin(gap, sqrt(dx * dx + dy * dy + dz * dz) - p[i].radius - p[j].radius);
-        }
+    double gap = min_gap_periodic(w, L); /* by the nearest images on x and y */
     /* spheres across a seam: their centre within r of x = 0 (or L), of y = 0 */
     size_t across_x = 0, across_y = 0, inside = 0;
     for (size_t k = 0; k < n; ++k) {
