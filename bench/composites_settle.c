@@ -25,7 +25,7 @@
  * the bits (bench/ab). Build against a release library build, e.g.
  *   cmake -S . -B build-release -DCMAKE_BUILD_TYPE=Release && cmake --build build-release -j 2 --target shapedem_lib
  *   cc -O2 -std=c17 -fopenmp -Isrc -Iinclude bench/composites_settle.c \
- *      build-release/libshapedem.a -lyaml -lhdf5 -lm -o build-release/composites_settle
+ *      build-release/libshapedem.a $(pkg-config --libs yaml-0.1 hdf5-serial) -lm -o build-release/composites_settle
  *   build-release/composites_settle [--json] [threads] [steps] [warm]
  * --json: one JSON line per kind ({"case":"composites-settle","kind",
  * "particles","steps","threads","wall_s","cpu_s","psps","element_pair_tests_per_s",
