@@ -8,11 +8,13 @@
  * exchange: any rank may send to any other, so a box thinner than the
  * contact reach still gets every ghost it needs.
  */
+#define _POSIX_C_SOURCE 200809L /* nanosleep (sd_mpi_fail) */
 #include <math.h>
 #include <mpi.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "core/alloc.h"
 #include "backend/backend.h"
@@ -45,6 +47,20 @@ struct sd_mpi {
     long rebalance_next;       /* the step from which the next rebuild re-cuts */
     long rebalances;           /* re-cuts made */
 };
+
+/* Set when this rank fails only because another rank reported a failure
+ * in a vote (the ranks agree to fail alike, e.g. out of memory on one):
+ * that rank reports it, this one keeps quiet (sd_mpi_fail). */
+static int sd_failed_elsewhere;
+
+/* After a vote: 1 (and the mark above) when another rank failed and this
+ * one did not. */
+static int sd_elsewhere(int bad, int any)
+{
+    if (any && !bad)
+        sd_failed_elsewhere = 1;
+    return any && !bad;
+}
 
 /* ---- rows ------------------------------------------------------------------ */
 
@@ -360,6 +376,7 @@ static sd_status sd_hook_migrate(void *ctx, sd_world *w, sd_error *err)
      * a rank that stopped would leave the others waiting */
     int bad = st != SD_OK, any_bad = 0;
     MPI_Allreduce(&bad, &any_bad, 1, MPI_INT, MPI_LOR, m->comm);
+    sd_elsewhere(bad, any_bad);
     if (any_bad) {
         sd_free(dest);
         sd_free(ids);
@@ -582,6 +599,7 @@ static sd_status sd_hook_ghosts(void *ctx, sd_world *w, sd_error *err)
         oom = 1;
     int any = 0;
     MPI_Allreduce(&oom, &any, 1, MPI_INT, MPI_LOR, m->comm);
+    sd_elsewhere(oom, any);
     if (any) {
         m->send_n = 0;
         m->ghost_n = 0;
@@ -669,6 +687,7 @@ static int sd_allgather_doubles(sd_mpi *m, const double *mine, int count, double
     int *cnt = sd_malloc((size_t)m->size * 2 * sizeof *cnt);
     int ok = cnt != NULL, all = 0;
     MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_LAND, m->comm);
+    sd_elsewhere(!ok, !all);
     if (!all) {
         sd_free(cnt);
         return -1;
@@ -683,6 +702,7 @@ static int sd_allgather_doubles(sd_mpi *m, const double *mine, int count, double
     double *buf = sd_malloc((t ? t : 1) * sizeof *buf);
     ok = buf != NULL;
     MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_LAND, m->comm);
+    sd_elsewhere(!ok, !all);
     if (!all) {
         sd_free(cnt);
         sd_free(buf);
@@ -998,23 +1018,21 @@ sd_status sd_mpi_gather(const sd_mpi *m, const sd_world *w, sd_particle_state **
     *n = 0;
     size_t mine = w->p.n;
     sd_particle_state *s = sd_malloc((mine ? mine : 1) * sizeof *s);
-    int ok = s != NULL, all_ok = 0;
+    int *cnt = m->rank == 0 ? sd_malloc((size_t)m->size * 2 * sizeof *cnt) : NULL, *displ = cnt ? cnt + m->size : NULL;
+    int ok = s != NULL && (m->rank != 0 || cnt), all_ok = 0;
     for (size_t k = 0; ok && k < mine; ++k)
         sd_world_get_particle(w, k, &s[k]);
     MPI_Allreduce(&ok, &all_ok, 1, MPI_INT, MPI_LAND, m->comm);
+    sd_elsewhere(!ok, !all_ok);
     if (!all_ok) {
         sd_free(s);
-        return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "gather: out of memory on some rank");
+        sd_free(cnt);
+        return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "gather: out of memory on %s rank",
+                            ok ? "another" : "this");
     }
     int bytes = (int)(mine * sizeof *s);
-    int *cnt = NULL, *displ = NULL;
     sd_particle_state *all = NULL;
     size_t total = 0;
-    if (m->rank == 0) {
-        cnt = sd_malloc((size_t)m->size * 2 * sizeof *cnt);
-        if (cnt)
-            displ = cnt + m->size;
-    }
     MPI_Gather(&bytes, 1, MPI_INT, cnt, 1, MPI_INT, 0, m->comm);
     if (m->rank == 0) {
         for (int r = 0; r < m->size; ++r) {
@@ -1022,6 +1040,16 @@ sd_status sd_mpi_gather(const sd_mpi *m, const sd_world *w, sd_particle_state **
             total += (size_t)cnt[r];
         }
         all = sd_malloc(total ? total : 1);
+    }
+    /* rank 0's buffer for every row: the others must not send into none */
+    int got = m->rank != 0 || all;
+    MPI_Bcast(&got, 1, MPI_INT, 0, m->comm);
+    if (!got) {
+        sd_elsewhere(m->rank == 0 ? 1 : 0, 1);
+        sd_free(s);
+        sd_free(cnt);
+        return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "gather: out of memory on %s rank for %zu bytes",
+                            m->rank == 0 ? "this" : "another", total);
     }
     MPI_Gatherv(s, bytes, MPI_BYTE, all, cnt, displ, MPI_BYTE, 0, m->comm);
     sd_free(s);
@@ -1042,6 +1070,12 @@ _Noreturn void sd_mpi_fail(const sd_mpi *m, const char *stage, sd_status st, con
     char buf[1024] = "";
     if (err)
         sd_error_format(err, buf, sizeof buf);
+    /* A failure another rank reported in a vote (sd_elsewhere): that rank
+     * prints the one message and aborts the job; this one waits for it to
+     * (an abort from here could end the job before its message is out),
+     * at most 20 s, then ends the job itself, never a hang. */
+    for (int t = 0; sd_failed_elsewhere && t < 200; ++t)
+        nanosleep(&(struct timespec){0, 100000000L}, NULL);
     fprintf(stderr, "shapedem: rank %d of %d: %s failed (%s): %s\n", rank, size, stage,
             sd_status_name(st), buf);
     fflush(stderr);

@@ -1,5 +1,7 @@
-/* mpi.h — domain decomposition over MPI ranks (built with SHAPEDEM_MPI;
- * the serial build has none of it): every particle kind (spheres, convex
+/* mpi.h — domain decomposition over MPI ranks (the exchanges, the view,
+ * the drive and the checkpoints are built with SHAPEDEM_MPI only; the
+ * split, mpi/decomp.c and mpi/plan.c, calls no MPI and is in every build,
+ * for `shapedem check --ranks N`): every particle kind (spheres, convex
  * shapes, sharp polyhedra under the volume law, composites, the planar
  * mode) with fixed and moving walls (prescribed motions, servo walls,
  * drums, triangle meshes), insertions and outlets, on the cells solver,

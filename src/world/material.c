@@ -91,7 +91,7 @@ sd_status sd_world_mix_materials(sd_world *w, sd_error *err)
     size_t nm = w->material_count;
     sd_pair_params *mix = sd_realloc(w->mix, (nm ? nm * nm : 1) * sizeof *mix);
     if (!mix)
-        return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory");
+        return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory for the table of %zu material pairs", nm * nm);
     w->mix = mix;
     w->has_volume_law = 0;
     for (size_t a = 0; a < nm; ++a)

@@ -9,6 +9,7 @@
  * byte across rank counts.
  *
  *   mpi_scene SCENE OUT [--serial] [--hints] [--walls] [--split SPEC] [--backend B] [--chunk N]
+ *             [--fail-alloc RANK:N[:gather]]
  *     --serial: the plain world, no attach
  *     --backend: auto, cpu or cuda instead of the scene's (each rank's
  *               device slot is its node-local rank: sd_mpi_local_rank)
@@ -24,6 +25,10 @@
  *               z or PxPyPz such as 2x2x1: tests/mpi/states.h)
  *     --spread: on more than one rank, every rank must own particles at
  *               the end (a world filled by insertion: not all on rank 0)
+ *     --fail-alloc RANK:N[:gather]: on rank RANK only, the N-th
+ *               allocation after attach (with :gather, from the final
+ *               gather on) fails (core/alloc.h's hook): the run must end
+ *               with that rank's one message (tests/mpi/oom.sh)
  *
  * On more than one rank particles must migrate and carry history entries
  * (the scenes are made so: fast particles in contact across the cuts).
@@ -143,13 +148,16 @@ int main(int argc, char **argv)
     MPI_Comm_size(MPI_COMM_WORLD, &size);
     if (argc < 3) {
         fprintf(stderr, "usage: mpi_scene SCENE OUT [--serial] [--hints] [--walls] [--split SPEC] [--spread] "
-                        "[--backend B] [--chunk N]\n");
+                        "[--backend B] [--chunk N] [--fail-alloc RANK:N[:gather]]\n");
         MPI_Abort(MPI_COMM_WORLD, 2);
     }
     int serial = 0, hints = 0, walls = 0, spread = 0;
     const char *split_arg = NULL;
     sd_backend_kind backend = SD_BACKEND_COUNT; /* the scene's */
     long chunk = 1;
+    int fail_rank = -1;
+    long fail_n = 0;
+    char fail_at[8] = "";
     for (int a = 3; a < argc; ++a) {
         if (strcmp(argv[a], "--serial") == 0)
             serial = 1;
@@ -165,6 +173,10 @@ int main(int argc, char **argv)
             spread = 1;
         else if (strcmp(argv[a], "--split") == 0 && a + 1 < argc)
             split_arg = argv[++a];
+        else if (strcmp(argv[a], "--fail-alloc") == 0 && a + 1 < argc &&
+                 sscanf(argv[a + 1], "%d:%ld:%7s", &fail_rank, &fail_n, fail_at) >= 2 && fail_n > 0 &&
+                 (!*fail_at || strcmp(fail_at, "gather") == 0))
+            ++a;
         else {
             fprintf(stderr, "mpi_scene: unknown option %s\n", argv[a]);
             MPI_Abort(MPI_COMM_WORLD, 2);
@@ -202,6 +214,8 @@ int main(int argc, char **argv)
     }
     if (!serial && (st = sd_mpi_attach_built(w, &split, &m, &err)) != SD_OK)
         sd_mpi_fail(m, "attach", st, &err);
+    if (rank == fail_rank && !*fail_at)
+        sd_alloc_fail_after(fail_n);
     long bad_steps = 0, contacts_max = 0, wall_contacts_max = 0;
     int reported = 0;
     for (long step = 0; step < steps; step += chunk) {
@@ -227,6 +241,8 @@ int main(int argc, char **argv)
         fewest = owns[r] < fewest ? owns[r] : fewest;
     sd_particle_state *s = NULL;
     size_t n = 0;
+    if (rank == fail_rank && *fail_at)
+        sd_alloc_fail_after(fail_n);
     if (m) {
         if ((st = sd_mpi_gather(m, w, &s, &n, &err)) != SD_OK)
             sd_mpi_fail(m, "gather", st, &err);
