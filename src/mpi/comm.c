@@ -53,9 +53,7 @@ struct sd_mpi {
  * that rank reports it, this one keeps quiet (sd_mpi_fail). */
 static int sd_failed_elsewhere;
 
-/* After a vote: 1 (and the mark above) when another rank failed and this
- * one did not. */
-static int sd_elsewhere(int bad, int any)
+int sd_mpi_failed_elsewhere(int bad, int any)
 {
     if (any && !bad)
         sd_failed_elsewhere = 1;
@@ -376,7 +374,7 @@ static sd_status sd_hook_migrate(void *ctx, sd_world *w, sd_error *err)
      * a rank that stopped would leave the others waiting */
     int bad = st != SD_OK, any_bad = 0;
     MPI_Allreduce(&bad, &any_bad, 1, MPI_INT, MPI_LOR, m->comm);
-    sd_elsewhere(bad, any_bad);
+    sd_mpi_failed_elsewhere(bad, any_bad);
     if (any_bad) {
         sd_free(dest);
         sd_free(ids);
@@ -599,7 +597,7 @@ static sd_status sd_hook_ghosts(void *ctx, sd_world *w, sd_error *err)
         oom = 1;
     int any = 0;
     MPI_Allreduce(&oom, &any, 1, MPI_INT, MPI_LOR, m->comm);
-    sd_elsewhere(oom, any);
+    sd_mpi_failed_elsewhere(oom, any);
     if (any) {
         m->send_n = 0;
         m->ghost_n = 0;
@@ -687,7 +685,7 @@ static int sd_allgather_doubles(sd_mpi *m, const double *mine, int count, double
     int *cnt = sd_malloc((size_t)m->size * 2 * sizeof *cnt);
     int ok = cnt != NULL, all = 0;
     MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_LAND, m->comm);
-    sd_elsewhere(!ok, !all);
+    sd_mpi_failed_elsewhere(!ok, !all);
     if (!all) {
         sd_free(cnt);
         return -1;
@@ -702,7 +700,7 @@ static int sd_allgather_doubles(sd_mpi *m, const double *mine, int count, double
     double *buf = sd_malloc((t ? t : 1) * sizeof *buf);
     ok = buf != NULL;
     MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_LAND, m->comm);
-    sd_elsewhere(!ok, !all);
+    sd_mpi_failed_elsewhere(!ok, !all);
     if (!all) {
         sd_free(cnt);
         sd_free(buf);
@@ -1023,7 +1021,7 @@ sd_status sd_mpi_gather(const sd_mpi *m, const sd_world *w, sd_particle_state **
     for (size_t k = 0; ok && k < mine; ++k)
         sd_world_get_particle(w, k, &s[k]);
     MPI_Allreduce(&ok, &all_ok, 1, MPI_INT, MPI_LAND, m->comm);
-    sd_elsewhere(!ok, !all_ok);
+    sd_mpi_failed_elsewhere(!ok, !all_ok);
     if (!all_ok) {
         sd_free(s);
         sd_free(cnt);
@@ -1045,7 +1043,7 @@ sd_status sd_mpi_gather(const sd_mpi *m, const sd_world *w, sd_particle_state **
     int got = m->rank != 0 || all;
     MPI_Bcast(&got, 1, MPI_INT, 0, m->comm);
     if (!got) {
-        sd_elsewhere(m->rank == 0 ? 1 : 0, 1);
+        sd_mpi_failed_elsewhere(m->rank == 0 ? 1 : 0, 1);
         sd_free(s);
         sd_free(cnt);
         return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "gather: out of memory on %s rank for %zu bytes",
@@ -1070,10 +1068,10 @@ _Noreturn void sd_mpi_fail(const sd_mpi *m, const char *stage, sd_status st, con
     char buf[1024] = "";
     if (err)
         sd_error_format(err, buf, sizeof buf);
-    /* A failure another rank reported in a vote (sd_elsewhere): that rank
-     * prints the one message and aborts the job; this one waits for it to
-     * (an abort from here could end the job before its message is out),
-     * at most 20 s, then ends the job itself, never a hang. */
+    /* A failure another rank reported in a vote (sd_mpi_failed_elsewhere):
+     * that rank prints the one message and aborts the job; this one waits
+     * for it to (an abort from here could end the job before its message
+     * is out), at most 20 s, then ends the job itself, never a hang. */
     for (int t = 0; sd_failed_elsewhere && t < 200; ++t)
         nanosleep(&(struct timespec){0, 100000000L}, NULL);
     fprintf(stderr, "shapedem: rank %d of %d: %s failed (%s): %s\n", rank, size, stage,

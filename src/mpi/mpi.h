@@ -162,6 +162,12 @@ sd_status sd_mpi_gather(const sd_mpi *m, const sd_world *w, sd_particle_state **
 /* Ends the whole job after an error on this rank: one message on stderr,
  * naming the rank and the stage, then MPI_Abort with status 2 (input) or 1. */
 _Noreturn void sd_mpi_fail(const sd_mpi *m, const char *stage, sd_status st, const sd_error *err);
+
+/* After a vote on a failure (bad: this rank's, any: some rank's): 1 when
+ * another rank failed and this one did not, marking this rank so that its
+ * sd_mpi_fail keeps quiet and waits for the failing rank's message and
+ * abort (at most 20 s). */
+int sd_mpi_failed_elsewhere(int bad, int any);
 /* The split in use. */
 const sd_mpi_grid *sd_mpi_grid_of(const sd_mpi *m);
 

@@ -27,10 +27,12 @@ sd_status sd_mpi_recut(const sd_world *w, sd_mpi_grid *g, sd_error *err)
     uint64_t *id = sd_malloc((size_t)(n + total + 1) * sizeof *id);
     int ok = x && id, all_ok = 0;
     MPI_Allreduce(&ok, &all_ok, 1, MPI_INT, MPI_LAND, MPI_COMM_WORLD);
+    sd_mpi_failed_elsewhere(!ok, !all_ok);
     if (!all_ok) {
         sd_free(x);
         sd_free(id);
-        return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "rebalance: out of memory for %d positions", total);
+        return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "rebalance: out of memory for %d positions on %s rank",
+                            total, ok ? "another" : "this");
     }
     /* this rank's first (the send buffer), then every rank's */
     for (int k = 0; k < n; ++k) {
