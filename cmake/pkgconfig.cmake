@@ -24,9 +24,10 @@ if(YAML_FOUND)
 else()
   string(APPEND SD_PC_LIBS_PRIVATE "${YAML_LIBRARIES} ")
 endif()
-# HDF5 (checkpoints): Debian's hdf5.pc when pkg-config found it
+# HDF5 (checkpoints): the module pkg-config found it by (hdf5-serial on
+# Debian, whose plain hdf5.pc may point at the MPI build: CMakeLists.txt)
 if(SD_HDF5_FOUND)
-  string(APPEND SD_PC_REQUIRES_PRIVATE " hdf5")
+  string(APPEND SD_PC_REQUIRES_PRIVATE " ${SD_HDF5_PC}")
 else()
   foreach(lib ${SD_HDF5_LINK_LIBRARIES})
     string(APPEND SD_PC_LIBS_PRIVATE "${lib} ")
