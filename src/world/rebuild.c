@@ -357,7 +357,7 @@ sd_status sd_world_rebuild(sd_world *w, sd_error *err)
         if (mst != SD_OK)
             return mst;
     }
-    w->parallel = w->threads > 1 && p->n >= SD_PARALLEL_MIN_PARTICLES;
+    w->parallel = sd_world_wants_parallel(w);
     if (p->n == 0) {
         if (w->comm) { /* this rank still takes part in the ghost exchange */
             sd_status gst = w->comm->ghosts(w->comm_ctx, w, err);

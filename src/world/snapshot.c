@@ -396,7 +396,7 @@ sd_status sd_cells_resumed(sd_world *w, sd_error *err)
         st = sd_world_check_params(w, err);
     if (st != SD_OK)
         return st;
-    w->parallel = w->threads > 1 && w->p.n >= SD_PARALLEL_MIN_PARTICLES;
+    w->parallel = sd_world_wants_parallel(w);
     /* the gather lists index owned particles and pairs: check them, so a
      * damaged (but checksummed) file can never index past the arrays */
     const sd_pair_list *l = &w->pairs;

@@ -583,6 +583,12 @@ double sd_world_time(const sd_world *w) { return w->time; }
 double sd_world_dt(const sd_world *w) { return (double)w->dt; }
 int sd_world_threads(const sd_world *w) { return w->threads; }
 
+int sd_world_wants_parallel(const sd_world *w)
+{
+    size_t min = w->shape_count > 0 ? SD_PARALLEL_MIN_SHAPED : SD_PARALLEL_MIN_PARTICLES;
+    return w->threads > 1 && w->p.n >= min;
+}
+
 static sd_v3d sd_v3d_of(sd_vec3 v)
 {
     sd_v3d r = {(double)v.x, (double)v.y, (double)v.z};

@@ -97,8 +97,17 @@ typedef struct sd_wall {
     double drum_w0, drum_start, drum_ramp;
 } sd_wall;
 
-/* Below this many particles the CPU loops run serially. */
+/* Below this many particles the CPU loops run serially: a sphere pair
+ * costs tens of ns, less than handing out the work. A world with shape
+ * templates (convex, polyhedra, 2D shapes, composites) pays a narrow phase
+ * of microseconds per pair, so it shares the work from far fewer: the
+ * 1,000-particle packings of docs/examples/process.md ran serially on
+ * `threads: 2` below the sphere limit. */
 #define SD_PARALLEL_MIN_PARTICLES 1024
+#define SD_PARALLEL_MIN_SHAPED 128
+/* The threading policy of the CPU loops (w->parallel, set at rebuilds):
+ * more than one thread, and at least the limit above for the world's kind. */
+int sd_world_wants_parallel(const sd_world *w);
 
 struct sd_world {
     sd_world_def def;
