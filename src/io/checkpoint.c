@@ -405,43 +405,6 @@ static sd_status sd_h5_write_path(const sd_snapshot *s, const sd_ckpt_part *part
     return parts ? SD_OK : sd_ckpt_seal(path, err);
 }
 
-static sd_status sd_read_all(const char *path, void **buf, size_t *size, sd_error *err)
-{
-    *buf = NULL;
-    *size = 0;
-    FILE *fp = fopen(path, "rb");
-    if (!fp)
-        return sd_error_set(err, SD_ERR_IO, path, 0, "", "cannot open the checkpoint: %s", strerror(errno));
-    void *b = NULL;
-    size_t n = 0, cap = 0;
-    for (;;) {
-        if (n == cap) {
-            size_t nc = cap ? 2 * cap : 1 << 16;
-            void *q = sd_realloc(b, nc);
-            if (!q) {
-                sd_free(b);
-                fclose(fp);
-                return sd_error_set(err, SD_ERR_MEMORY, path, 0, "", "out of memory reading the checkpoint");
-            }
-            b = q;
-            cap = nc;
-        }
-        size_t got = fread((char *)b + n, 1, cap - n, fp);
-        n += got;
-        if (got == 0)
-            break;
-    }
-    int bad = ferror(fp);
-    fclose(fp);
-    if (bad) {
-        sd_free(b);
-        return sd_error_set(err, SD_ERR_IO, path, 0, "", "cannot read the checkpoint");
-    }
-    *buf = b;
-    *size = n;
-    return SD_OK;
-}
-
 sd_status sd_checkpoint_encode(const sd_snapshot *s, void **buf, size_t *size, sd_error *err)
 {
     *buf = NULL;
@@ -455,7 +418,7 @@ sd_status sd_checkpoint_encode(const sd_snapshot *s, void **buf, size_t *size, s
     close(fd);
     sd_status st = sd_h5_write_path(s, NULL, path, err);
     if (st == SD_OK)
-        st = sd_read_all(path, buf, size, err);
+        st = sd_fs_read_all(path, "checkpoint", buf, size, err);
     remove(path);
     return st;
 }
@@ -664,7 +627,7 @@ sd_status sd_checkpoint_read_file(const char *path, sd_snapshot *out, sd_error *
     sd_snapshot_init(out);
     void *buf;
     size_t n;
-    sd_status st = sd_read_all(path, &buf, &n, err);
+    sd_status st = sd_fs_read_all(path, "checkpoint", &buf, &n, err);
     if (st != SD_OK)
         return st;
     st = sd_checkpoint_decode(buf, n, out, err);

@@ -138,6 +138,43 @@ sd_status sd_fs_create_append(const char *path, FILE **fp, sd_error *err)
     return sd_error_set(err, SD_ERR_IO, path, 0, "", "cannot create the file: %s", strerror(e));
 }
 
+sd_status sd_fs_read_all(const char *path, const char *what, void **buf, size_t *size, sd_error *err)
+{
+    *buf = NULL;
+    *size = 0;
+    FILE *fp = fopen(path, "rb");
+    if (!fp)
+        return sd_error_set(err, SD_ERR_IO, path, 0, "", "cannot open the %s: %s", what, strerror(errno));
+    void *b = NULL;
+    size_t n = 0, cap = 0;
+    for (;;) {
+        if (n == cap) {
+            size_t nc = cap ? 2 * cap : 1 << 16;
+            void *q = sd_realloc(b, nc);
+            if (!q) {
+                sd_free(b);
+                fclose(fp);
+                return sd_error_set(err, SD_ERR_MEMORY, path, 0, "", "out of memory reading the %s", what);
+            }
+            b = q;
+            cap = nc;
+        }
+        size_t got = fread((char *)b + n, 1, cap - n, fp);
+        n += got;
+        if (got == 0)
+            break;
+    }
+    int bad = ferror(fp);
+    fclose(fp);
+    if (bad) {
+        sd_free(b);
+        return sd_error_set(err, SD_ERR_IO, path, 0, "", "cannot read the %s", what);
+    }
+    *buf = b;
+    *size = n;
+    return SD_OK;
+}
+
 /* The length of the rows of a CSV file (text f of n bytes) to keep: the
  * header and every row before the first whose `step` column is at least
  * step (or is not a number). -1 when there is no header with a step
@@ -189,30 +226,12 @@ sd_status sd_fs_resume_csv(const char *path, long step, FILE **fp, int *kept, sd
     *kept = 0;
     if (!sd_fs_is_regular_file(path))
         return sd_fs_create_append(path, fp, err); /* nothing there (or in the way: its message) */
-    FILE *in = fopen(path, "rb");
-    if (!in)
-        return sd_error_set(err, SD_ERR_IO, path, 0, "", "cannot read the file: %s", strerror(errno));
-    char *text = NULL;
-    size_t n = 0, cap = 0;
-    for (;;) {
-        if (n == cap) {
-            cap = cap ? 2 * cap : 65536;
-            char *t = sd_realloc(text, cap);
-            if (!t) {
-                sd_free(text);
-                fclose(in);
-                return sd_error_set(err, SD_ERR_MEMORY, path, 0, "", "out of memory");
-            }
-            text = t;
-        }
-        size_t got = fread(text + n, 1, cap - n, in);
-        n += got;
-        if (got == 0)
-            break;
-    }
-    int bad = ferror(in);
-    fclose(in);
-    long keep = bad ? -1 : sd_fs_csv_keep(text ? text : "", n, step);
+    void *text = NULL;
+    size_t n = 0;
+    sd_status st = sd_fs_read_all(path, "file", &text, &n, err);
+    if (st != SD_OK)
+        return st;
+    long keep = sd_fs_csv_keep(text, n, step);
     sd_free(text);
     if (keep < 0) { /* not a series this run can continue: a new one */
         if (remove(path) != 0)

@@ -35,6 +35,10 @@ const char *sd_fs_not_regular(const char *path);
  * cannot redirect the writes to a file outside the directory. */
 sd_status sd_fs_create_append(const char *path, FILE **fp, sd_error *err);
 
+/* The whole of file path in *buf (*size bytes; sd_free it); what names
+ * the file in the messages ("checkpoint"). */
+sd_status sd_fs_read_all(const char *path, const char *what, void **buf, size_t *size, sd_error *err);
+
 /* A CSV series a restarted run continues (io/run.c): keeps the header and
  * the rows before the first whose `step` column is at least step, cuts the
  * rest and opens path for appending after them (*kept = 1); with nothing
