@@ -521,8 +521,13 @@ int sd_check_print_dt(FILE *f, const sd_world *w)
     int n = 0;
     if (isfinite(r.recommended))
         fprintf(f, "dt limit     the recommended step is set by: %s\n", r.limit);
+    if (r.volume_skipped) {
+        fprintf(f, "warning      out of memory: the volume-law time-step estimates were not made, so the "
+                   "recommended step leaves out the sharp polyhedra's face contacts\n");
+        n++;
+    }
     if (!r.volume)
-        return 0;
+        return n;
     if (r.onset > 0)
         fprintf(f,
                 "volume law   regularised below V0 = %.3g m^3 at dt = %.4g s (a face sunk %.3g m, %.3g %% of R_eq = "

@@ -82,6 +82,17 @@ static int sd_output_is_frame_name(const char *s, size_t n, const char *prefix, 
     return 1;
 }
 
+/* The number of a frame file's name, -1 for any other name. */
+static long sd_output_frame_number(const char *name)
+{
+    static const char *pre[3] = {"particles_", "walls_", "shapes_"}, *suf[3] = {".vtu", ".vtp", ".vtp"};
+    size_t n = strlen(name);
+    for (int k = 0; k < 3; ++k)
+        if (sd_output_is_frame_name(name, n, pre[k], suf[k]))
+            return strtol(name + strlen(pre[k]), NULL, 10);
+    return -1;
+}
+
 static int sd_output_is_ours(const char *name)
 {
     const char *s = name;
@@ -117,6 +128,7 @@ static int sd_output_scan_visit(const char *name, void *ctx)
 typedef struct sd_output_clean {
     const char *dir;
     int resume;           /* a restart: the CSV series stay (sd_output_open_csv cuts them) */
+    long keep_frames;     /* a restart: frames numbered below this stay, and frames.pvd when > 0 */
     sd_status status;
     sd_error *err;
 } sd_output_clean;
@@ -127,6 +139,9 @@ static int sd_output_clean_visit(const char *name, void *ctx)
     if (!sd_output_is_ours(name))
         return 0;
     if (c->resume && (!strcmp(name, "stats.csv") || !strcmp(name, "walls.csv") || !strcmp(name, "biaxial.csv")))
+        return 0;
+    long f = sd_output_frame_number(name);
+    if ((f >= 0 && f < c->keep_frames) || (c->keep_frames > 0 && !strcmp(name, "frames.pvd")))
         return 0;
     char *path = sd_fs_join(c->dir, name);
     if (!path) {
@@ -156,9 +171,76 @@ static int sd_output_clean_visit(const char *name, void *ctx)
     return 0;
 }
 
+/* ---- a restart's frames ---------------------------------------------------- */
+
+static sd_status sd_output_write_pvd(sd_output *o, sd_error *err);
+
+/* A restart into the first part's directory continues its frames, as the
+ * CSV series: the frames before the restart time t stay, with their
+ * numbers, and the series goes on after them, so the directory holds the
+ * uninterrupted run's frames. frames.pvd tells which: its DataSets in the
+ * order sd_output_write_pvd writes them, `parts` a frame, the times at 17
+ * digits (exact). *kept 0, and the frames start again from 0, when there
+ * is no frames.pvd or it is not in that layout (another output format, or
+ * not a file we wrote); else *times holds the kept frames' times. */
+static sd_status sd_output_resume_frames(const char *dir, size_t parts, double t, double **times, long *kept,
+                                         sd_error *err)
+{
+    *times = NULL;
+    *kept = 0;
+    char *path = sd_fs_join(dir, "frames.pvd");
+    if (!path)
+        return sd_error_set(err, SD_ERR_MEMORY, dir, 0, "", "out of memory");
+    void *buf = NULL;
+    size_t size = 0;
+    sd_status s = SD_OK;
+    if (sd_fs_is_regular_file(path))
+        s = sd_fs_read_all(path, "frames.pvd", &buf, &size, err);
+    sd_free(path);
+    if (s != SD_OK || !buf)
+        return s;
+    char *text = buf;
+    size_t sets = 0;
+    for (const char *p = text; (p = strstr(p, "<DataSet ")) != NULL; ++p)
+        ++sets;
+    double *tt = sd_malloc((sets / parts + 1) * sizeof *tt);
+    if (!tt) {
+        sd_free(buf);
+        return sd_error_set(err, SD_ERR_MEMORY, dir, 0, "", "out of memory");
+    }
+    size_t i = 0;
+    int ok = sets % parts == 0;
+    for (const char *p = text; ok && (p = strstr(p, "<DataSet ")) != NULL; ++p, ++i) {
+        const char *ts = strstr(p, "timestep=\""), *fs = strstr(p, "file=\""), *end = strchr(p, '>');
+        ok = ts && fs && end && ts < end && fs < end;
+        if (!ok)
+            break;
+        double ti = strtod(ts + 10, NULL);
+        long f = (long)(i / parts);
+        char want[SD_OUTPUT_NAME_MAX];
+        int part = (int)(i % parts);
+        snprintf(want, sizeof want, part == 2 ? "shapes_%06ld.vtp" : part ? "walls_%06ld.vtp" : "particles_%06ld.vtu",
+                 f);
+        size_t wn = strlen(want);
+        ok = !strncmp(fs + 6, want, wn) && fs[6 + wn] == '"' && (part == 0 || ti == tt[f]);
+        if (ok && part == 0)
+            tt[f] = ti;
+    }
+    long k = 0;
+    while (ok && (size_t)k < sets / parts && tt[k] < t)
+        ++k;
+    sd_free(buf);
+    if (k == 0)
+        sd_free(tt);
+    else
+        *times = tt;
+    *kept = k;
+    return SD_OK;
+}
+
 /* ---- open ------------------------------------------------------------------ */
 
-static sd_status sd_output_prepare_dir(const char *dir, int resume, sd_error *err)
+static sd_status sd_output_prepare_dir(const char *dir, int resume, long keep_frames, sd_error *err)
 {
     sd_status s = sd_fs_mkdir_p(dir, err);
     if (s != SD_OK)
@@ -182,7 +264,7 @@ static sd_status sd_output_prepare_dir(const char *dir, int resume, sd_error *er
                                 "so nothing you made is lost: choose a new or empty directory",
                                 sc.example ? sc.example : "?");
     } else {
-        sd_output_clean c = {dir, resume, SD_OK, err};
+        sd_output_clean c = {dir, resume, keep_frames, SD_OK, err};
         s = sd_fs_list_dir(dir, sd_output_clean_visit, &c, err);
         if (s != SD_OK)
             return s;
@@ -210,17 +292,31 @@ sd_status sd_output_open(const sd_output_def *def, const sd_world *w, sd_output 
     if (!def || !def->directory || !def->directory[0])
         return sd_error_set(err, SD_ERR_INPUT, "", 0, SD_OUTPUT_KEY,
                             "no output directory given");
-    sd_status s = sd_output_prepare_dir(def->directory, def->resume_step > 0, err);
-    if (s != SD_OK)
+    double *kept_times = NULL;
+    long kept = 0;
+    sd_status s = SD_OK;
+    if (def->resume_step > 0 && w && (def->vtk || def->shapes))
+        s = sd_output_resume_frames(def->directory, def->shapes ? 3 : 2, sd_world_time(w), &kept_times, &kept, err);
+    if (s == SD_OK)
+        s = sd_output_prepare_dir(def->directory, def->resume_step > 0, kept, err);
+    if (s != SD_OK) {
+        sd_free(kept_times);
         return s;
+    }
     sd_output *o = sd_calloc(1, sizeof *o);
-    if (!o)
+    if (!o) {
+        sd_free(kept_times);
         return sd_error_set(err, SD_ERR_MEMORY, def->directory, 0, "", "out of memory");
+    }
+    o->frames = kept;
+    o->frame_times = kept_times;
+    o->frame_cap = (size_t)kept;
     o->dir = sd_output_strdup(def->directory);
     o->scene = sd_output_strdup(def->scene ? def->scene : "");
     if (!o->dir || !o->scene) {
         sd_free(o->dir);
         sd_free(o->scene);
+        sd_free(o->frame_times);
         sd_free(o);
         return sd_error_set(err, SD_ERR_MEMORY, def->directory, 0, "", "out of memory");
     }
@@ -230,12 +326,17 @@ sd_status sd_output_open(const sd_output_def *def, const sd_world *w, sd_output 
     o->walls_csv = def->csv;
     if (def->shapes) {
         s = sd_vtk_shapes_make(w, def->shape_resolution ? def->shape_resolution : 24, &o->shapes, err);
-        if (s != SD_OK) {
-            sd_free(o->dir);
-            sd_free(o->scene);
-            sd_free(o);
-            return s;
-        }
+    }
+    /* the kept frames only, those after the restart gone with their files */
+    if (s == SD_OK && kept > 0)
+        s = sd_output_write_pvd(o, err);
+    if (s != SD_OK) {
+        sd_vtk_shapes_free(o->shapes);
+        sd_free(o->dir);
+        sd_free(o->scene);
+        sd_free(o->frame_times);
+        sd_free(o);
+        return s;
     }
     *out = o;
     return SD_OK;
@@ -284,6 +385,8 @@ static sd_status sd_output_write_pvd(sd_output *o, sd_error *err)
     sd_free(names);
     return s;
 }
+
+long sd_output_frame_count(const sd_output *o) { return o ? o->frames : 0; }
 
 sd_status sd_output_frame(sd_output *o, const sd_world *w, sd_error *err)
 {

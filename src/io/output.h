@@ -22,7 +22,8 @@ typedef struct sd_output_def {
     int shapes;         /* with each frame, the true shapes (shapes_NNNNNN.vtp, io/vtk_shapes.c) */
     int shape_resolution; /* directions per turn of curved surfaces (0: 24) */
     long resume_step;   /* > 0: a restart at this step: stats.csv, walls.csv and biaxial.csv keep
-                           their rows before it and go on (sd_fs_resume_csv); 0: a new run */
+                           their rows before it and go on (sd_fs_resume_csv), and the frames
+                           (frames.pvd) those before it; 0: a new run */
 } sd_output_def;
 
 typedef struct sd_run_summary {
@@ -38,6 +39,9 @@ typedef struct sd_run_summary {
 
 sd_status sd_output_open(const sd_output_def *def, const sd_world *w, sd_output **out, sd_error *err);
 sd_status sd_output_frame(sd_output *o, const sd_world *w, sd_error *err);
+/* Frames in the directory's series: written so far, and on a restart
+ * those of the first part kept before the restart time. */
+long sd_output_frame_count(const sd_output *o);
 sd_status sd_output_stats(sd_output *o, const sd_world *w, sd_error *err);
 /* What a run of the world w would write (shapedem check), in bytes: one
  * particle frame at `particles` particles, one walls frame, frames.pvd

@@ -116,10 +116,10 @@ static void sd_run_outlet_row(sd_run *r)
     }
 }
 
-/* A continued outlet.csv: the time and removed mass of its last row (the
- * first row after a restart rates the mass removed since that one; read
- * back at the 10 digits written, so that rate may differ from the
- * uninterrupted run's in its last digits). Left at 0 when none. */
+/* A continued outlet.csv: the time and removed mass of its last row, from
+ * which the first row after a restart rates the mass removed; every row
+ * rates from the printed values (sd_outlet_csv_row), so the rate is the
+ * uninterrupted run's. Left at 0 when none. */
 static void sd_run_outlet_last(const char *path, double *t, double *m)
 {
     FILE *f = fopen(path, "rb");
@@ -297,10 +297,13 @@ sd_status sd_run_advance(sd_run *r, long steps, sd_error *err)
     if (!r->started) {
         r->started = 1;
         double t0 = sd_run_now();
-        /* a restart continues the CSV series: their rows at this step only
-         * when due, as the uninterrupted run wrote them */
+        /* a restart continues the CSV series and the frames: their rows and
+         * frame at this step only when due, as the uninterrupted run wrote
+         * them; a frame all the same where no frame was kept (another
+         * directory), so the series shows where it starts */
         int row = !r->resumed || r->done % r->stats_every == 0;
-        if (r->out && ((st = sd_output_frame(r->out, r->w, err)) != SD_OK ||
+        int frame = !r->resumed || r->done % r->every == 0 || sd_output_frame_count(r->out) == 0;
+        if (r->out && ((frame && (st = sd_output_frame(r->out, r->w, err)) != SD_OK) ||
                        (row && (st = sd_output_stats(r->out, r->w, err)) != SD_OK))) {
             r->failed = 1;
             return st;

@@ -15,6 +15,8 @@
 #include "io/scene_process.h"
 
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "core/alloc.h"
@@ -566,6 +568,15 @@ void sd_outlet_csv_header(FILE *f, const sd_world *w)
     fprintf(f, ",mass_rate_out\n");
 }
 
+/* A value as the row prints it (ten significant digits) and as it reads
+ * back from the file. */
+static double sd_outlet_printed(double x)
+{
+    char buf[32];
+    snprintf(buf, sizeof buf, "%.10g", x);
+    return strtod(buf, NULL);
+}
+
 void sd_outlet_csv_row(FILE *f, const sd_world *w, double *last_time, double *last_mass)
 {
     sd_process_info pi;
@@ -578,9 +589,13 @@ void sd_outlet_csv_row(FILE *f, const sd_world *w, double *last_time, double *la
         sd_world_get_outlet(w, k, &oi);
         fprintf(f, ",%zu,%.10g", oi.removed, oi.mass);
     }
-    /* kg/s over the interval since the previous row (0 on the first) */
-    double rate = t > *last_time ? (pi.removed_mass - *last_mass) / (t - *last_time) : 0.0;
+    /* kg/s over the interval since the previous row (0 on the first), from
+     * the time and removed mass as the two rows print them: the rate a
+     * reader gets from the columns, and the one a restart gets from the
+     * kept rows (io/run.c), so a continued file is the uninterrupted one's */
+    double tp = sd_outlet_printed(t), mp = sd_outlet_printed(pi.removed_mass);
+    double rate = tp > *last_time ? (mp - *last_mass) / (tp - *last_time) : 0.0;
     fprintf(f, ",%.10g\n", rate);
-    *last_time = t;
-    *last_mass = pi.removed_mass;
+    *last_time = tp;
+    *last_mass = mp;
 }

@@ -27,6 +27,8 @@ typedef struct sd_dt_report {
     double rest_depth;     /* m, its resting overlap under the weight */
     double rest_onset_depth; /* m, V0 / A of that pair */
     int rest_inside;       /* the resting face sits inside the regularised range at the world's dt */
+    int volume_skipped;    /* out of memory: the volume-law estimates were not made (the fields
+                              above and the recommended step leave them out) */
 } sd_dt_report;
 void sd_world_dt_report(const sd_world *w, sd_dt_report *r);
 

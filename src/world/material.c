@@ -460,6 +460,7 @@ void sd_world_dt_report(const sd_world *w, sd_dt_report *r)
     double vol_rec = INFINITY;
     const char *vol_what = "";
     unsigned char *seen = w->shape_count ? sd_calloc(w->shape_count * (nm ? nm : 1), 1) : NULL;
+    r->volume_skipped = w->shape_count > 0 && !seen && !w->dim2; /* out of memory: said by check */
     for (size_t k = 0; seen && !w->dim2 && k < p->n; ++k) {
         int a = p->material[k], s = p->shape[k];
         if (a < 0 || (size_t)a >= nm || a >= 256 || s < 0 || (size_t)s >= w->shape_count ||

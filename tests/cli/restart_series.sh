@@ -7,10 +7,12 @@
 # are kept, the later ones cut and written again. Step 2750 is no stats or
 # analysis step (rows due at 2500 and 3000), and the first part, ended by
 # --steps there, wrote closing rows at 2750 that the restart must cut.
-# Then A's directory, restarted from its step-5500 checkpoint (a stats and
-# coordination step), is left as it was. outlet.csv: the same rows up to
-# its mass rate, which the restart rates from the 10 digits of the last
-# kept row (docs/checkpoints.md).
+# outlet.csv too, its mass rates included (every row rates from the
+# printed values, as the restart reads them back). The frames go on as
+# well: B's frames.pvd and frame files are A's, the first part's frames
+# before step 2750 kept and its closing frame at 2750 (none is due there)
+# gone. Then A's directory, restarted from its step-5500 checkpoint (a
+# stats and coordination step), is left as it was.
 set -u
 bin="$1"
 root="$2"
@@ -41,10 +43,20 @@ for f in $series; do
   echo "     $f: A $(wc -l <"$tmp/a/$f") lines, B $(wc -l <"$tmp/b/$f") lines"
   check "$f of B is A's, byte for byte" "$same"
 done
-cut -d, -f1-10 "$tmp/a/outlet.csv" >"$tmp/oa"
-cut -d, -f1-10 "$tmp/b/outlet.csv" >"$tmp/ob"
-cmp -s "$tmp/oa" "$tmp/ob"
-check "outlet.csv of B is A's but for the mass rate ($(wc -l <"$tmp/oa") rows)" "$((! $?))"
+cmp -s "$tmp/a/outlet.csv" "$tmp/b/outlet.csv"
+check "outlet.csv of B is A's, byte for byte, mass rates included ($(wc -l <"$tmp/a/outlet.csv") rows)" "$((! $?))"
+cmp -s "$tmp/a/frames.pvd" "$tmp/b/frames.pvd"
+check "frames.pvd of B is A's ($(grep -c '<DataSet' "$tmp/a/frames.pvd") data sets)" "$((! $?))"
+frames_a=$(cd "$tmp/a" && ls particles_*.vtu walls_*.vtp | tr '\n' ' ')
+frames_b=$(cd "$tmp/b" && ls particles_*.vtu walls_*.vtp | tr '\n' ' ')
+echo "     frames: A $frames_a"
+check "B holds A's frame files, no more (the first part's closing frame at 2750 gone)" \
+  "$([[ -n $frames_a && $frames_a == "$frames_b" ]] && echo 1 || echo 0)"
+same=1
+for f in $frames_a; do
+  cmp -s "$tmp/a/$f" "$tmp/b/$f" || { same=0; echo "     $f differs"; }
+done
+check "each frame of B is A's, byte for byte (those of the first part kept)" "$same"
 removed=$(tail -n 1 "$tmp/a/outlet.csv" | cut -d, -f6)
 check "the drain removed particles, so outlet.csv has rows to compare (removed $removed)" "$((removed > 0))"
 
