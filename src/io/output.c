@@ -82,14 +82,23 @@ static int sd_output_is_frame_name(const char *s, size_t n, const char *prefix, 
     return 1;
 }
 
+/* A frame's files, by part (sd_vtk_dataset.part): prefix, number, suffix. */
+static const char *const sd_output_part_prefix[3] = {"particles_", "walls_", "shapes_"};
+static const char *const sd_output_part_suffix[3] = {".vtu", ".vtp", ".vtp"};
+
+/* The file name of part `part` of frame f. */
+static void sd_output_frame_file(char name[SD_OUTPUT_NAME_MAX], int part, long f)
+{
+    snprintf(name, SD_OUTPUT_NAME_MAX, "%s%06ld%s", sd_output_part_prefix[part], f, sd_output_part_suffix[part]);
+}
+
 /* The number of a frame file's name, -1 for any other name. */
 static long sd_output_frame_number(const char *name)
 {
-    static const char *pre[3] = {"particles_", "walls_", "shapes_"}, *suf[3] = {".vtu", ".vtp", ".vtp"};
     size_t n = strlen(name);
     for (int k = 0; k < 3; ++k)
-        if (sd_output_is_frame_name(name, n, pre[k], suf[k]))
-            return strtol(name + strlen(pre[k]), NULL, 10);
+        if (sd_output_is_frame_name(name, n, sd_output_part_prefix[k], sd_output_part_suffix[k]))
+            return strtol(name + strlen(sd_output_part_prefix[k]), NULL, 10);
     return -1;
 }
 
@@ -105,8 +114,10 @@ static int sd_output_is_ours(const char *name)
     for (size_t k = 0; k < sizeof fixed / sizeof fixed[0]; ++k)
         if (n == strlen(fixed[k]) && memcmp(s, fixed[k], n) == 0)
             return 1;
-    return sd_output_is_frame_name(s, n, "particles_", ".vtu") ||
-           sd_output_is_frame_name(s, n, "walls_", ".vtp") || sd_output_is_frame_name(s, n, "shapes_", ".vtp");
+    for (int k = 0; k < 3; ++k)
+        if (sd_output_is_frame_name(s, n, sd_output_part_prefix[k], sd_output_part_suffix[k]))
+            return 1;
+    return 0;
 }
 
 typedef struct sd_output_scan {
@@ -219,8 +230,7 @@ static sd_status sd_output_resume_frames(const char *dir, size_t parts, double t
         long f = (long)(i / parts);
         char want[SD_OUTPUT_NAME_MAX];
         int part = (int)(i % parts);
-        snprintf(want, sizeof want, part == 2 ? "shapes_%06ld.vtp" : part ? "walls_%06ld.vtp" : "particles_%06ld.vtu",
-                 f);
+        sd_output_frame_file(want, part, f);
         size_t wn = strlen(want);
         ok = !strncmp(fs + 6, want, wn) && fs[6 + wn] == '"' && (part == 0 || ti == tt[f]);
         if (ok && part == 0)
@@ -368,8 +378,7 @@ static sd_status sd_output_write_pvd(sd_output *o, sd_error *err)
         for (int part = 0; part < (int)parts; ++part) {
             size_t k = parts * (size_t)f + (size_t)part;
             char *name = names + SD_OUTPUT_NAME_MAX * k;
-            snprintf(name, SD_OUTPUT_NAME_MAX,
-                     part == 2 ? "shapes_%06ld.vtp" : part ? "walls_%06ld.vtp" : "particles_%06ld.vtu", f);
+            sd_output_frame_file(name, part, f);
             sets[k].time = o->frame_times[f];
             sets[k].part = part;
             sets[k].file = name;
@@ -405,7 +414,7 @@ sd_status sd_output_frame(sd_output *o, const sd_world *w, sd_error *err)
     char name[SD_OUTPUT_NAME_MAX];
     sd_atomic_file af;
 
-    snprintf(name, sizeof name, "particles_%06ld.vtu", o->frames);
+    sd_output_frame_file(name, 0, o->frames);
     sd_status s = sd_fs_atomic_begin(&af, o->dir, name, err);
     if (s != SD_OK)
         return s;
@@ -414,7 +423,7 @@ sd_status sd_output_frame(sd_output *o, const sd_world *w, sd_error *err)
     if (s != SD_OK)
         return s;
 
-    snprintf(name, sizeof name, "walls_%06ld.vtp", o->frames);
+    sd_output_frame_file(name, 1, o->frames);
     s = sd_fs_atomic_begin(&af, o->dir, name, err);
     if (s != SD_OK)
         return s;
@@ -424,7 +433,7 @@ sd_status sd_output_frame(sd_output *o, const sd_world *w, sd_error *err)
         return s;
 
     if (o->shapes) {
-        snprintf(name, sizeof name, "shapes_%06ld.vtp", o->frames);
+        sd_output_frame_file(name, 2, o->frames);
         s = sd_fs_atomic_begin(&af, o->dir, name, err);
         if (s != SD_OK)
             return s;

@@ -12,7 +12,8 @@
 # well: B's frames.pvd and frame files are A's, the first part's frames
 # before step 2750 kept and its closing frame at 2750 (none is due there)
 # gone. Then A's directory, restarted from its step-5500 checkpoint (a
-# stats and coordination step), is left as it was.
+# stats and coordination step), is left as it was, and its frames, with no
+# frames.pvd to continue, start from 0 at the restart step.
 set -u
 bin="$1"
 root="$2"
@@ -70,4 +71,7 @@ for f in $series; do
   cmp -s "$tmp/a/$f" "$tmp/c/$f"
   check "$f after a restart at a step with rows is still A's" "$((! $?))"
 done
+first_c=$(grep -m1 -o 'timestep="[^"]*"' "$tmp/c/frames.pvd" | cut -d'"' -f2)
+check "no frames.pvd to continue: C's frames start from 0 at the restart (frame 0 at t = $first_c)" \
+  "$([[ -f $tmp/c/particles_000000.vtu && $first_c == 0.055* ]] && echo 1 || echo 0)"
 finish
