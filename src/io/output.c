@@ -250,6 +250,16 @@ static sd_status sd_output_resume_frames(const char *dir, size_t parts, double t
 
 /* ---- open ------------------------------------------------------------------ */
 
+/* Frees o and what it holds (its files closed already). */
+static void sd_output_free(sd_output *o)
+{
+    sd_free(o->frame_times);
+    sd_vtk_shapes_free(o->shapes);
+    sd_free(o->scene);
+    sd_free(o->dir);
+    sd_free(o);
+}
+
 static sd_status sd_output_prepare_dir(const char *dir, int resume, long keep_frames, sd_error *err)
 {
     sd_status s = sd_fs_mkdir_p(dir, err);
@@ -324,10 +334,7 @@ sd_status sd_output_open(const sd_output_def *def, const sd_world *w, sd_output 
     o->dir = sd_output_strdup(def->directory);
     o->scene = sd_output_strdup(def->scene ? def->scene : "");
     if (!o->dir || !o->scene) {
-        sd_free(o->dir);
-        sd_free(o->scene);
-        sd_free(o->frame_times);
-        sd_free(o);
+        sd_output_free(o);
         return sd_error_set(err, SD_ERR_MEMORY, def->directory, 0, "", "out of memory");
     }
     o->vtk = def->vtk || def->shapes;
@@ -341,11 +348,7 @@ sd_status sd_output_open(const sd_output_def *def, const sd_world *w, sd_output 
     if (s == SD_OK && kept > 0)
         s = sd_output_write_pvd(o, err);
     if (s != SD_OK) {
-        sd_vtk_shapes_free(o->shapes);
-        sd_free(o->dir);
-        sd_free(o->scene);
-        sd_free(o->frame_times);
-        sd_free(o);
+        sd_output_free(o);
         return s;
     }
     *out = o;
@@ -851,11 +854,7 @@ sd_status sd_output_close(sd_output *o, const sd_world *w, const sd_run_summary 
     }
     if (s == SD_OK)
         s = s2;
-    sd_free(o->frame_times);
-    sd_vtk_shapes_free(o->shapes);
-    sd_free(o->scene);
-    sd_free(o->dir);
-    sd_free(o);
+    sd_output_free(o);
     return s;
 }
 
