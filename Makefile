@@ -42,14 +42,21 @@ test-sanitize: deps
 	  UBSAN_OPTIONS=$${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
 	  ctest --output-on-failure -j $(JOBS) $(CTEST_FLAGS)
 
-demo: build
+# The demo builds only the program it runs (and shapedem-mpi with it, in an
+# MPI build: the README's mpirun line), not the test suite.
+demo: configure
+	cmake --build $(BUILD) -j $(JOBS) --target shapedem
 	$(BUILD)/shapedem run examples/settle-spheres.yaml -o out/settle-spheres
 
 bench:
 	@bash bench/run
 
+# docs/scene-format.md from the key table, and the README's package list
+# (the line after its marker) from scripts/deps.sh --list
 docs: build
 	$(BUILD)/shapedem help scene --markdown > docs/scene-format.md
+	list=$$(SHAPEDEM_WITH_BENCH= bash scripts/deps.sh --list | paste -sd ' '); \
+	sed -i "/^<!-- scripts\/deps.sh --list -->$$/{n;s/.*/\`$$list\`/;}" README.md
 
 format:
 	clang-format -i $$(git ls-files '*.c' '*.h' '*.cu')

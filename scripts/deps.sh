@@ -5,6 +5,7 @@
 #
 #   scripts/deps.sh            install what is missing
 #   scripts/deps.sh --list     print the package list, one per line, and exit
+#                              (README.md shows it: `make docs` copies it there)
 #
 # tests/cli/deps_complete.sh checks that this list provides every command a
 # test or README command calls and every Python module a tracked script
@@ -15,7 +16,9 @@ set -euo pipefail
 # oracles (libccd for GJK/EPA, qhull for overlap volumes). Python 3 with
 # matplotlib (numpy comes with it): the analysis and plotting scripts (examples/,
 # docs/validation/, scripts/), which tests run; Debian's interpreter is the
-# one these modules install into (/usr/bin/python3). git: the suite lists the
+# one these modules install into (/usr/bin/python3). python3-h5py: the
+# reading of a checkpoint from Python that docs/checkpoints.md shows (run by
+# cli.checkpoint_h5py). git: the suite lists the
 # tracked files it checks. clang with libclang-rt-dev (which brings
 # libclang-rt-14-dev, the libFuzzer and sanitizer runtimes): `make fuzz`
 # (tests/fuzz). valgrind: the memcheck.run_short test (skipped without it).
@@ -28,7 +31,7 @@ set -euo pipefail
 # each checkpoint from every rank into one file (without it rank 0 writes it;
 # CMake takes the serial HDF5, pkg-config's hdf5-serial, for everything else).
 need_pkgs=(build-essential cmake pkg-config libyaml-dev libhdf5-dev libccd-dev libqhull-dev
-  python3 python3-matplotlib git clang libclang-rt-dev valgrind libmpfr-dev
+  python3 python3-matplotlib python3-h5py git clang libclang-rt-dev valgrind libmpfr-dev
   libcairo2-dev openmpi-bin libopenmpi-dev libhdf5-openmpi-dev)
 if [[ "${SHAPEDEM_WITH_BENCH:-0}" == 1 ]]; then
   need_pkgs+=(liggghts)

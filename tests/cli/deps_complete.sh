@@ -29,4 +29,19 @@ for case in python3-matplotlib:python3-matplotlib build-essential:make; do
     check "without $pkg: the check fails (rc $rc) and names $want ($named line(s))" \
         "$([[ $rc == 1 && $named -ge 1 ]] && echo 1 || echo 0)"
 done
+
+# The README shows the list (the line after its marker, which `make docs`
+# writes): it must be scripts/deps.sh --list, in order; a README that drops
+# or adds a package fails, shown on a copy with one package dropped.
+readme_list() { sed -n '/^<!-- scripts\/deps.sh --list -->$/{n;p;q;}' "$1" | tr -d '`'; }
+want=$(SHAPEDEM_WITH_BENCH= bash "$root/scripts/deps.sh" --list | paste -sd ' ')
+got=$(readme_list "$root/README.md")
+[[ $got == "$want" ]] || printf 'README.md lists: %s\nscripts/deps.sh: %s\n(make docs rewrites the README line)\n' "$got" "$want"
+check "README.md lists the packages of scripts/deps.sh --list ($(wc -w <<<"$want") packages)" \
+    "$([[ -n $want && $got == "$want" ]] && echo 1 || echo 0)"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+sed '/^<!-- scripts\/deps.sh --list -->$/{n;s/ python3-h5py//;}' "$root/README.md" >"$tmp/README.md"
+got=$(readme_list "$tmp/README.md")
+check "a README without python3-h5py in its list is told apart" "$([[ $got != "$want" ]] && echo 1 || echo 0)"
 finish
