@@ -12,6 +12,9 @@ wall says side: outside.
 Usage:
   scripts/make_meshes.py drum OUT.stl [--radius R --length L --segments N]
   scripts/make_meshes.py hopper OUT.stl [--radius R --height H --orifice D --segments N --rings K --layers M]
+  scripts/make_meshes.py cone OUT.stl [--outlet R0 --radius R --cone-height HC --height H
+                                       --segments N --rings K --layers M]
+  scripts/make_meshes.py chute OUT.stl [--length L --width W --height H --angle DEG --cells N]
   scripts/make_meshes.py silo OUT.stl [--radius R --height H --corrugations C --amplitude A
                                        --segments N --layers K]
   scripts/make_meshes.py plane OUT.stl [--size LX LY --cells NX NY --random SEED]
@@ -127,6 +130,46 @@ def hopper(radius, height, orifice, segments, rings, layers=4):
     return fix_winding(tris, lambda m, n: (n[2] > 0) if abs(m[2]) < 1e-12 else (n[0] * m[0] + n[1] * m[1] < 0))
 
 
+def cone(outlet, radius, cone_height, height, segments, rings, layers):
+    """A conical hopper with an open outlet: a cone (axis z) from the outlet
+    circle of radius `outlet` at z = 0 up to radius `radius` at z =
+    cone_height, in `rings` bands, then a vertical cylinder up to z =
+    height in `layers` bands (none when height <= cone_height); open at
+    the outlet and at the top. 2 x segments x (rings + layers) facets,
+    normals into the hopper (towards the axis)."""
+    tris = []
+    zs = [(outlet + (radius - outlet) * j / rings, cone_height * j / rings) for j in range(rings + 1)]
+    if height > cone_height:
+        zs += [(radius, cone_height + (height - cone_height) * j / layers) for j in range(1, layers + 1)]
+    for k in range(segments):
+        t0, t1 = 2 * math.pi * k / segments, 2 * math.pi * (k + 1) / segments
+        c0, s0, c1, s1 = math.cos(t0), math.sin(t0), math.cos(t1), math.sin(t1)
+        for (ra, za), (rb, zb) in zip(zs, zs[1:]):
+            quad(tris, (ra * c0, ra * s0, za), (ra * c1, ra * s1, za), (rb * c1, rb * s1, zb), (rb * c0, rb * s0, zb))
+    return fix_winding(tris, lambda m, n: n[0] * m[0] + n[1] * m[1] < 0)
+
+
+def chute(length, width, height, angle, cells):
+    """An open chute: a flat floor `width` wide and `length` long between two
+    vertical side walls `height` high, open at both ends and on top,
+    falling along +x at `angle` degrees below the horizontal (the top end
+    at the origin, the centre line on y = 0). Each of the three faces in
+    `cells` squares along the length. Normals into the chute (up off the
+    floor, towards the centre line on the sides)."""
+    tris = []
+    h = 0.5 * width
+    for i in range(cells):
+        xa, xb = length * i / cells, length * (i + 1) / cells
+        quad(tris, (xa, -h, 0.0), (xb, -h, 0.0), (xb, h, 0.0), (xa, h, 0.0))  # floor
+        quad(tris, (xa, -h, 0.0), (xa, -h, height), (xb, -h, height), (xb, -h, 0.0))  # side y = -w/2
+        quad(tris, (xa, h, 0.0), (xb, h, 0.0), (xb, h, height), (xa, h, height))  # side y = +w/2
+    tris = fix_winding(tris, lambda m, n: (n[2] > 0) if abs(m[2]) < 1e-12 else (n[1] * m[1] < 0))
+    a = math.radians(angle)
+    ca, sa = math.cos(a), math.sin(a)
+    # tilt about y: x' = x cos a + z sin a, z' = -x sin a + z cos a (down along +x)
+    return [tuple((p[0] * ca + p[2] * sa, p[1], -p[0] * sa + p[2] * ca) for p in t) for t in tris]
+
+
 def silo(radius, height, corrugations, amplitude, segments, layers):
     """A silo: a cylinder (axis z, z in [0, height]) whose radius is
     radius + amplitude cos(corrugations theta) (vertical corrugations, as
@@ -194,15 +237,19 @@ def box(lo, hi, cells):
 
 def main(argv):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("kind", choices=["drum", "hopper", "silo", "plane", "box", "examples"])
+    ap.add_argument("kind", choices=["drum", "hopper", "cone", "chute", "silo", "plane", "box", "examples"])
     ap.add_argument("out")
     ap.add_argument("--radius", type=float)
-    ap.add_argument("--length", type=float, default=0.1)
+    ap.add_argument("--length", type=float)
     ap.add_argument("--height", type=float)
+    ap.add_argument("--outlet", type=float, default=0.009, help="cone: outlet radius")
+    ap.add_argument("--cone-height", type=float, default=0.035, help="cone: height of the conical part")
+    ap.add_argument("--width", type=float, default=0.05, help="chute: floor width")
+    ap.add_argument("--angle", type=float, default=30.0, help="chute: inclination, degrees")
     ap.add_argument("--orifice", type=float, default=0.03)
     ap.add_argument("--segments", type=int, default=48)
-    ap.add_argument("--rings", type=int, default=4)
-    ap.add_argument("--layers", type=int, default=12)
+    ap.add_argument("--rings", type=int)
+    ap.add_argument("--layers", type=int)
     ap.add_argument("--corrugations", type=int, default=24)
     ap.add_argument("--amplitude", type=float, default=0.004)
     ap.add_argument("--size", type=float, nargs=2, default=[0.2, 0.2])
@@ -212,11 +259,20 @@ def main(argv):
     ap.add_argument("--max", type=float, nargs=3, default=[0.1, 0.1, 0.1])
     a = ap.parse_args(argv)
     if a.kind == "drum":
-        write_stl(a.out, drum(a.radius or 0.1, a.length, a.segments), "drum")
+        write_stl(a.out, drum(a.radius or 0.1, a.length or 0.1, a.segments), "drum")
     elif a.kind == "hopper":
-        write_stl(a.out, hopper(a.radius or 0.1, a.height or 0.3, a.orifice, a.segments, a.rings, a.layers), "hopper")
+        write_stl(a.out, hopper(a.radius or 0.1, a.height or 0.3, a.orifice, a.segments, a.rings or 4, a.layers or 12), "hopper")
+    elif a.kind == "cone":
+        # defaults: the hopper of issue 30 (outlet 9 mm, cone to 30 mm at
+        # 35 mm, cylinder to 60 mm; 48 segments, 2 + 2 bands: 384 facets)
+        write_stl(a.out, cone(a.outlet, a.radius or 0.03, a.cone_height, a.height or 0.06, a.segments,
+                              a.rings or 2, a.layers or 2), "cone")
+    elif a.kind == "chute":
+        cells = a.cells or [10]
+        write_stl(a.out, chute(a.length or 0.5, a.width, a.height or 0.03, a.angle, cells[0]),
+                  "chute")
     elif a.kind == "silo":
-        write_stl(a.out, silo(a.radius or 0.06, a.height or 0.25, a.corrugations, a.amplitude, a.segments, a.layers),
+        write_stl(a.out, silo(a.radius or 0.06, a.height or 0.25, a.corrugations, a.amplitude, a.segments, a.layers or 12),
                   "silo")
     elif a.kind == "plane":
         cells = a.cells or [8, 8]
