@@ -19,6 +19,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "core/duration.h"
 #include "grid/grid.h"
 #include "io/output.h"
 #include "io/scene.h"
@@ -361,10 +362,16 @@ void sd_check_time(const sd_scene *s, sd_world *w, size_t total, long steps, sd_
     t->threads = sd_world_threads(tw);
     sd_error err;
     memset(&err, 0, sizeof err);
-    double t0 = sd_check_now(), psteps = 0;
-    long limit = steps < 200 ? steps : 200;
-    while (t->steps < limit && (t->steps < 2 || sd_check_now() - t0 < 0.25)) {
+    double t0 = sd_check_now(), psteps = 0, plain_seconds = 0, plain_psteps = 0;
+    long limit = steps < 200 ? steps : 200, plain = 0;
+    for (;;) {
+        /* enough: 0.25 s of steps that did not insert (at least 2); when
+         * every step inserts, 2 steps and 1 s in all */
+        double spent = sd_check_now() - t0;
+        if (t->steps >= limit || (plain >= 2 && plain_seconds >= 0.25) || (plain < 2 && t->steps >= 2 && spent >= 1.0))
+            break;
         size_t before = sd_world_particle_count(tw);
+        double s0 = sd_check_now();
         if (sd_world_step(tw, 1, &err) != SD_OK) {
             char buf[400];
             sd_error_format(&err, buf, sizeof buf);
@@ -372,18 +379,132 @@ void sd_check_time(const sd_scene *s, sd_world *w, size_t total, long steps, sd_
             t->ok = 0;
             break;
         }
-        psteps += 0.5 * (double)(before + sd_world_particle_count(tw));
+        double dts = sd_check_now() - s0, ps = 0.5 * (double)(before + sd_world_particle_count(tw));
+        psteps += ps;
         t->steps++;
+        if (sd_world_particle_count(tw) > before) { /* an insertion placed particles in this step */
+            t->insert_steps++;
+            t->insert_seconds += dts;
+        } else {
+            plain++;
+            plain_seconds += dts;
+            plain_psteps += ps;
+        }
     }
     t->seconds = sd_check_now() - t0;
     if (!t->bed && sd_world_particle_count(tw) > t->particles) /* an insertion's first particles went in */
         t->particles = sd_world_particle_count(tw);
-    if (t->steps > 0 && psteps > 0)
+    sd_stats st;
+    sd_world_stats(tw, &st);
+    t->contacts = st.contacts + st.wall_contacts;
+    if (plain > 0 && plain_psteps > 0) /* the placement once, the steps scaled */
+        t->estimate = plain_seconds / plain_psteps * (double)total * (double)steps + t->insert_seconds;
+    else if (t->steps > 0 && psteps > 0)
         t->estimate = t->seconds / psteps * (double)total * (double)steps;
     else if (t->steps > 0)
         t->estimate = t->seconds / (double)t->steps * (double)steps;
     if (tw != w)
         sd_world_destroy(tw);
+}
+
+int sd_check_print_time(FILE *f, const sd_world *w, const sd_check_trial *t, size_t total, long steps,
+                        size_t poured)
+{
+    char left[32];
+    sd_duration_format(t->estimate, left, sizeof left);
+    fprintf(f,
+            "run time     %sabout %s on %d thread%s (timed trial: %ld steps of %s%zu particles in %.3g s",
+            poured ? "at most " : "", left, t->threads, t->threads == 1 ? "" : "s", t->steps,
+            t->bed ? "a bed of the pour's " : "", t->particles, t->seconds);
+    fprintf(f, ", scaled to %ld steps of %zu particles%s", steps, total, poured ? " with every poured sphere in" : "");
+    if (t->insert_steps) /* placement is paid once per particle, not per step */
+        fprintf(f, "; %ld of its steps placed inserted particles, in %.3g s, counted once", t->insert_steps,
+                t->insert_seconds);
+    fprintf(f, "; rough, within a factor of 2-3)\n");
+    /* what the first steps cannot see: the particles added later, the
+     * contacts of a bed that settles, mesh walls reached later */
+    size_t meshes = 0;
+    for (size_t k = 0; k < sd_world_wall_count(w); ++k) {
+        sd_mesh_info mi;
+        meshes += sd_world_get_mesh(w, (int)k, &mi) == SD_OK;
+    }
+    int fewer = !t->bed && t->particles < total, loose = (double)t->contacts < 0.5 * (double)t->particles;
+    if (t->steps < steps && (fewer || loose || meshes)) { /* else the trial was the whole run */
+        fprintf(f, "untimed      the trial ran the first %ld steps with %zu", t->steps, t->particles);
+        if (fewer)
+            fprintf(f, " of the %zu particles (the rest come later)", total);
+        else
+            fprintf(f, " particles");
+        fprintf(f, " and %ld contacts", t->contacts);
+        fprintf(f, "; not timed:%s%s%s%s", fewer ? " the particles added later" : "",
+                loose ? (fewer ? "," : "") : "", loose ? " the contacts of a settled bed" : "",
+                meshes ? ((fewer || loose) ? ", mesh-wall contacts" : " mesh-wall contacts") : "");
+        if (meshes)
+            fprintf(f, " (%zu mesh wall%s)", meshes, meshes == 1 ? "" : "s");
+        fprintf(f, ": the run may take longer than this estimate\n");
+    }
+    int n = 0;
+    /* the shown value is compared, so the text and the warning agree */
+    if (sd_duration_shown(t->estimate) > 600.0) {
+        fprintf(f,
+                "warning      the run is estimated at %s, more than 10 minutes: try it first with --steps N "
+                "(a short run), or more --threads\n",
+                left);
+        n++;
+    }
+    return n;
+}
+
+/* The scaled copies of template `name` that insertions made (named
+ * NAME_iIeEsK by sd_world_add_insertion): one per size class. */
+static size_t sd_check_size_classes(const sd_world *w, const char *name)
+{
+    char prefix[64];
+    int len = snprintf(prefix, sizeof prefix, "%.40s_i", name);
+    size_t n = 0;
+    for (size_t k = 0; k < sd_world_shape_count(w); ++k) {
+        sd_shape_info sk;
+        if (sd_world_get_shape(w, k, &sk) != SD_OK || !sk.name || strncmp(sk.name, prefix, (size_t)len) != 0)
+            continue;
+        /* the rest is IeEsK: digits, 'e', digits, 's', digits */
+        const char *p = sk.name + len;
+        int ok = 1;
+        for (int part = 0; part < 3 && ok; ++part) {
+            const char *d = p;
+            while (*p >= '0' && *p <= '9')
+                ++p;
+            ok = p > d && (part == 2 ? *p == 0 : *p == (part == 0 ? 'e' : 's'));
+            if (ok && part < 2)
+                ++p;
+        }
+        n += ok;
+    }
+    return n;
+}
+
+void sd_check_shapes_text(const sd_scene *s, const sd_world *w, char *buf, size_t size)
+{
+    size_t n = 0, used = 0; /* the composites' element shapes and checkpoint copies are hidden */
+    for (size_t k = 0; k < s->shape_count; ++k)
+        n += !s->shapes[k].hidden;
+    int wrote = snprintf(buf, size, "%zu shape%s", n, n == 1 ? "" : "s");
+    used = wrote > 0 ? (size_t)wrote : 0;
+    int listed = 0;
+    for (size_t k = 0; k < s->shape_count && used + 1 < size; ++k) {
+        const char *name = s->shapes[k].name;
+        size_t classes = s->shapes[k].hidden ? 0 : sd_check_size_classes(w, name);
+        if (classes < 2)
+            continue;
+        if (n == 1)
+            wrote = snprintf(buf + used, size - used, " in %zu sizes", classes);
+        else
+            wrote = snprintf(buf + used, size - used, "%s%s in %zu sizes", listed ? ", " : " (", name, classes);
+        used += wrote > 0 ? (size_t)wrote : 0;
+        used = used < size ? used : size; /* cut: the loop ends */
+        listed++;
+    }
+    if (listed && n > 1 && used + 1 < size)
+        snprintf(buf + used, size - used, ")");
 }
 
 /* gravity that is 9.81 m/s^2 written in another unit */

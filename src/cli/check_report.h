@@ -52,9 +52,12 @@ typedef struct sd_check_trial {
     int ok;                /* 0: the trial run failed (msg says why) */
     char msg[512];
     long steps;            /* steps timed */
-    size_t particles;      /* particles of the world timed */
+    size_t particles;      /* particles of the world timed (at the trial's end) */
     int bed;               /* 1: a bed of poured spheres was timed, not the scene's world */
     double seconds;        /* wall time of the timed steps */
+    long insert_steps;     /* of those, steps that inserted particles (their placement timed apart) */
+    double insert_seconds; /* s, the wall time of those steps */
+    long contacts;         /* particle and wall contacts at the trial's end */
     double estimate;       /* s, the whole run */
     int threads;
 } sd_check_trial;
@@ -62,8 +65,24 @@ typedef struct sd_check_trial {
 /* Times a few steps (about 0.25 s of work, at least 2 steps) of w, or of
  * a bed of the pour's spheres in the scene's walls when the scene pours,
  * and scales the time per particle-step to the run: `total` particles for
- * `steps` steps. w is stepped (the caller only destroys it afterwards). */
+ * `steps` steps. Steps that insert particles are timed apart: their
+ * placement is a cost of the particles inserted, not of every step, so it
+ * is added once rather than scaled. w is stepped (the caller only destroys
+ * it afterwards). */
 void sd_check_time(const sd_scene *s, sd_world *w, size_t total, long steps, sd_check_trial *t);
+
+/* The run time lines of the report from a trial that ran (t->ok): the
+ * estimate, what the trial covered, and what it did not time (particles
+ * the insertions or the pour add later, the contacts of a settled bed,
+ * mesh walls), where the run may take longer. `total` and `steps` as for
+ * sd_check_time; poured: the scene pours. Returns the warnings printed. */
+int sd_check_print_time(FILE *f, const sd_world *w, const sd_check_trial *t, size_t total, long steps,
+                        size_t poured);
+
+/* The shapes a scene's particles take, as the user wrote them (scaled
+ * copies of a template for size classes are one shape): "1 shape in 4
+ * sizes", "3 shapes (rod in 2 sizes)", "0 shapes". */
+void sd_check_shapes_text(const sd_scene *s, const sd_world *w, char *buf, size_t size);
 
 /* Prints a "warning" line for each value that looks like a unit mistake
  * (the scene's values are SI) and returns how many. tc is the shortest

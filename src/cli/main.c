@@ -23,6 +23,7 @@
 
 #include "cli/check_report.h"
 #include "cli/commands.h"
+#include "core/duration.h"
 #ifdef SHAPEDEM_CLI_MPI
 #include "cli/mpi_run.h"
 #endif
@@ -247,18 +248,6 @@ static int sd_cmd_info(const sd_cli *c)
     return 0;
 }
 
-static void sd_format_duration(double s, char *buf, size_t size)
-{
-    if (!(s >= 0) || s > 1e7)
-        snprintf(buf, size, "--");
-    else if (s < 60)
-        snprintf(buf, size, "%.0fs", s);
-    else if (s < 3600)
-        snprintf(buf, size, "%dm%02ds", (int)(s / 60), (int)s % 60);
-    else
-        snprintf(buf, size, "%dh%02dm", (int)(s / 3600), ((int)s % 3600) / 60);
-}
-
 /* The per-stage table of `run --profile` (sd_profile): seconds, share of
  * the stages' sum, calls, and the mean per call. */
 static void sd_print_profile(const sd_world *w)
@@ -355,7 +344,7 @@ static int sd_cmd_run(const sd_cli *c)
             double rate = pr.particle_steps_per_second;
             char left[32];
             double left_ps = (double)sd_world_particle_count(w) * (double)(pr.steps - pr.done);
-            sd_format_duration(rate > 0 ? left_ps / rate : -1, left, sizeof left);
+            sd_duration_format(rate > 0 ? left_ps / rate : -1, left, sizeof left);
             fprintf(stderr, "\rstep %ld/%ld  t = %.6g s  %5.1f%%  %.3g particle-steps/s  %s left   ", pr.done,
                     pr.steps, pr.time, pr.steps ? 100.0 * (double)pr.done / (double)pr.steps : 100.0, rate, left);
             fflush(stderr);
@@ -476,8 +465,9 @@ static int sd_cmd_check(const sd_cli *c)
         cnt.rmin = n ? fmin(cnt.rmin, ins.rmin) : ins.rmin;
         cnt.rmax = fmax(cnt.rmax, ins.rmax);
     }
-    printf("particles    %zu: %zu spheres, %zu bodies of %zu shapes", n, n - nshape, nshape,
-           sd_world_shape_count(w));
+    char shapes[256]; /* as the user wrote them: size classes are one shape */
+    sd_check_shapes_text(scene, w, shapes, sizeof shapes);
+    printf("particles    %zu: %zu spheres, %zu bodies of %s", n, n - nshape, nshape, shapes);
     if (cnt.poured)
         printf(", and %zu spheres the pour inserts: %zu in all", cnt.poured, total);
     if (ins.count)
@@ -563,21 +553,8 @@ static int sd_cmd_check(const sd_cli *c)
                memory / 1048576.0, total ? memory / (double)total : 0.0,
                now > n ? "scaled from the trial's" : "the trial inserted none: the start's only");
     }
-    if (tr.ok && tr.steps > 0) {
-        char left[32];
-        sd_format_duration(tr.estimate, left, sizeof left);
-        printf("run time     %sabout %s on %d thread%s (timed trial: %ld steps of %s%zu particles in %.3g s, "
-               "scaled to %ld steps%s; rough, within a factor of 2-3)\n",
-               cnt.poured ? "at most " : "", left, tr.threads, tr.threads == 1 ? "" : "s", tr.steps,
-               tr.bed ? "a bed of the pour's " : "", tr.particles, tr.seconds, steps,
-               cnt.poured ? " with every poured sphere in" : "");
-        if (tr.estimate > 600.0) {
-            printf("warning      the run is estimated at %s, more than 10 minutes: try it first with --steps N "
-                   "(a short run), or more --threads\n",
-                   left);
-            warnings++;
-        }
-    }
+    if (tr.ok && tr.steps > 0)
+        warnings += sd_check_print_time(stdout, w, &tr, total, steps, cnt.poured);
     if (!tr.ok) {
         printf("run time     unknown: %s\n", tr.msg);
         printf("check: the scene loads, but its run fails in the first steps\n");

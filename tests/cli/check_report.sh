@@ -5,7 +5,12 @@
 #  - the output size against the bytes a short run actually writes;
 #  - the run-time line from the timed trial is there and positive;
 #  - a scene written in millimetres warns about radius, dt and gravity, and
-#    no shipped example gets a unit warning.
+#    no shipped example gets a unit warning;
+#  - shapes are counted as the user wrote them: one template inserted in 4
+#    size classes is "1 shape in 4 sizes", not 5 shapes (issue 31);
+#  - the run time says what its trial did not time (the particles inserted
+#    later, a settled bed's contacts, mesh walls), and its 10-minute warning
+#    comes exactly when the printed estimate is above 10m00s (issue 31).
 # No timing is asserted: only that the estimate is there and positive.
 set -u
 bin="$1"
@@ -96,6 +101,49 @@ for scene in "$root"/examples/*.yaml; do
     rc=$?
     check "$(basename "$scene"): check exits 0 with no unit warning" \
         "$([[ $rc == 0 && $(grep -c '^warning .*SI' <<<"$out") == 0 ]] && echo 1 || echo 0)"
+done
+
+# 6. shapes as written: one template, 4 size classes (5 templates in the world)
+cat >sizes.yaml <<'EOF'
+simulation: {dt: 1.0e-6, steps: 100000, gravity: [0, 0, -9.81]}
+materials:
+  - {name: glass, density: 2500, youngs_modulus: 1.0e7}
+shapes:
+  - {name: brick, type: box, size: [0.002, 0.003, 0.004]}
+walls:
+  - {name: tray, type: box, min: [0, 0, 0], max: [0.03, 0.03, 0.03], open: [zmax], material: glass}
+insert:
+  - name: fill
+    region: box
+    min: [0.002, 0.002, 0.005]
+    max: [0.028, 0.028, 0.028]
+    count: 20
+    mix: [{material: glass, shape: brick, distribution: uniform, radius: {min: 0.0012, max: 0.0016}, size_classes: 4}]
+EOF
+out=$("$bin" check sizes.yaml --threads 1)
+echo "     $(grep '^particles' <<<"$out" | cut -c1-90)"
+check "one template in 4 size classes: 'bodies of 1 shape in 4 sizes'" \
+    "$(grep -c '^particles .* bodies of 1 shape in 4 sizes, and 20 particles the insertions add' <<<"$out")"
+echo "     $(grep '^untimed' <<<"$out")"
+check "the trial (200 of 100000 steps) says the settled bed's contacts were not timed" \
+    "$(grep -c '^untimed .*first [0-9]* steps .*not timed:.* the contacts of a settled bed: the run may take longer' <<<"$out")"
+
+# 7. a mesh scene: the mesh-wall contacts are named as untimed
+out=$("$bin" check "$root/examples/mesh-hopper.yaml" --threads 1)
+echo "     $(grep '^untimed' <<<"$out")"
+check "mesh-hopper: the untimed line names the mesh-wall contacts" \
+    "$(grep -c '^untimed .*mesh-wall contacts (1 mesh wall)' <<<"$out")"
+
+# 8. the 10-minute warning agrees with the printed estimate (whatever the
+# load makes it): warned exactly when the estimate shows more than 10m00s
+for scene in sizes.yaml "$root/examples/mesh-hopper.yaml" "$root/examples/mesh-drum.yaml"; do
+    out=$("$bin" check "$scene" --threads 1)
+    shown=$(sed -n 's/^run time *\(at most \)*about \([^ ]*\) on.*/\2/p' <<<"$out")
+    secs=$(awk -v d="$shown" 'BEGIN { s = 0; if (d ~ /h/) { split(d, a, "h"); s = 3600 * a[1] + 60 * a[2] }
+        else if (d ~ /m/) { split(d, a, "m"); s = 60 * a[1] + a[2] } else s = d + 0; print s }')
+    warned=$(grep -c '^warning .*more than 10 minutes' <<<"$out")
+    check "$(basename "$scene"): estimate $shown ($secs s), 10-minute warning $warned: warned iff above 600 s" \
+        "$([[ -n $shown && (($secs -gt 600 && $warned == 1) || ($secs -le 600 && $warned == 0)) ]] && echo 1 || echo 0)"
 done
 
 finish check_report
