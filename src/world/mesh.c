@@ -436,12 +436,66 @@ static size_t sd_bin_triangle(const sd_mesh_store *s, sd_real h, sd_vec3 o, uint
     return m;
 }
 
+/* An upper bound on the (cell, triangle) entries sd_bin_triangle makes at
+ * cell edge h, without visiting the cells: the cell columns of the
+ * triangle's box across its dominant normal axis, times the cells one
+ * column can hold (the plane rises by at most (|n_u| + |n_v|) / |n_x| <= 2
+ * cell edges across a column, so at most 4 cells), counted in double so a
+ * huge footprint cannot overflow. */
+static double sd_bin_estimate(const sd_mesh_store *s, sd_real h, sd_vec3 o)
+{
+    double total = 0;
+    for (size_t t = 0; t < s->m.triangle_count; ++t) {
+        const uint32_t *tr = s->m.triangles[t];
+        sd_vec3 a = s->m.vertices[tr[0]], b = s->m.vertices[tr[1]], c = s->m.vertices[tr[2]];
+        sd_vec3 lo = sd_v3_min(a, sd_v3_min(b, c)), hi = sd_v3_max(a, sd_v3_max(b, c));
+        sd_vec3 n = sd_v3_cross(sd_v3_sub(b, a), sd_v3_sub(c, a));
+        sd_real an[3] = {sd_fabs(n.x), sd_fabs(n.y), sd_fabs(n.z)};
+        int ax = an[0] >= an[1] && an[0] >= an[2] ? 0 : (an[1] >= an[2] ? 1 : 2); /* as sd_bin_triangle */
+        double cells[3];
+        for (int k = 0; k < 3; ++k)
+            cells[k] = (double)(sd_mesh_cell_of(sd_comp(hi, k), sd_comp(o, k), h) -
+                                sd_mesh_cell_of(sd_comp(lo, k), sd_comp(o, k), h) + 1);
+        total += cells[(ax + 1) % 3] * cells[(ax + 2) % 3] * fmin(cells[ax], 4.0);
+    }
+    return total;
+}
+
+/* The most entries the bins of a mesh of n triangles may hold: 2^20, or 8
+ * per triangle for large meshes (12 bytes each kept, 28 while sorting). A
+ * mesh whose triangles are large against the particles (a CAD floor of two
+ * triangles under millimetre grains, a mesh left in millimetres) would
+ * otherwise need one entry per cell of its area: its cells are made
+ * coarser instead. A query stays right at any cell edge (it visits every
+ * cell its box touches and keeps the triangles within reach, in triangle
+ * order), only slower where a cell holds many triangles. */
+static double sd_bin_cap(size_t n) { return fmax(1048576.0, 8.0 * (double)n); }
+
 static sd_status sd_mesh_bin(sd_mesh_store *s, sd_real h)
 {
-    /* the key range is 2^21 cells per axis: coarsen for huge meshes */
+    /* the key range is 2^21 cells per axis: coarsen for huge meshes (and
+     * for a cell edge that is not a positive finite number, as a forged
+     * checkpoint may hold) */
     sd_real span = sd_v3_norm(sd_v3_sub(s->bb_hi, s->bb_lo));
-    if (span / h > (sd_real)(SD_MESH_KEY_BIAS - 2))
+    int coarse = 0;
+    if (!(h > 0) || !(span / h <= (sd_real)(SD_MESH_KEY_BIAS - 2))) {
         h = span / (sd_real)(SD_MESH_KEY_BIAS - 2);
+        coarse = 1;
+    }
+    if (!(h > 0) || !isfinite((double)h))
+        return SD_ERR_INPUT;
+    /* bound the entries: the count falls as 1/h^2 for large triangles, so
+     * a step of sqrt(estimate / cap) lands near the cap; doubling after a
+     * few steps ends the loop whatever the mesh */
+    double cap = sd_bin_cap(s->m.triangle_count);
+    for (int it = 0; it < 200; ++it) {
+        double est = sd_bin_estimate(s, h, s->bb_lo);
+        if (est <= cap)
+            break;
+        double f = it < 8 ? 1.05 * sqrt(est / cap) : 2.0;
+        h = (sd_real)((double)h * fmax(f, 1.05));
+        coarse = 1;
+    }
     sd_vec3 o = s->bb_lo;
     size_t total = 0;
     for (size_t t = 0; t < s->m.triangle_count; ++t)
@@ -469,6 +523,7 @@ static sd_status sd_mesh_bin(sd_mesh_store *s, sd_real h)
     s->entry_tri = tris;
     s->entry_count = m;
     s->h = h;
+    s->coarse = coarse;
     s->origin = o;
     return SD_OK;
 }
@@ -484,12 +539,10 @@ sd_status sd_world_meshes_bins(sd_world *w, sd_real h_min)
          * facets per query beyond the particle's neighbourhood */
         if (s->h >= h_min && s->h <= SD_R(4.0) * h_min)
             continue;
-        if (s->h >= h_min && s->entry_count > 0 && s->h > SD_R(4.0) * h_min) {
-            /* keep a coarse grid that was clamped by the key range */
-            sd_real span = sd_v3_norm(sd_v3_sub(s->bb_hi, s->bb_lo));
-            if (span / s->h >= (sd_real)(SD_MESH_KEY_BIAS - 3))
-                continue;
-        }
+        /* keep a grid made coarser than asked (key range, entry cap):
+         * binning again at a finer edge would be made as coarse again */
+        if (s->coarse && s->h >= h_min && s->entry_count > 0)
+            continue;
         sd_status st = sd_mesh_bin(s, SD_R(2.0) * h_min);
         if (st != SD_OK)
             return st;
@@ -502,8 +555,10 @@ sd_status sd_world_meshes_resumed(sd_world *w)
 {
     for (size_t k = 0; k < w->mesh_count; ++k) {
         sd_mesh_store *s = &w->meshes[k];
-        if (!(s->h > 0))
+        if (s->h == 0)
             continue; /* never binned: the next rebuild bins it */
+        /* any other edge is binned now (sd_mesh_bin bounds a forged one):
+         * a mesh left unbinned would be invisible until the next rebuild */
         sd_status st = sd_mesh_bin(s, s->h);
         if (st != SD_OK)
             return st;

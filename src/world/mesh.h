@@ -22,6 +22,7 @@ typedef struct sd_mesh_store {
     sd_vec3 bb_lo, bb_hi;      /* m, mesh frame bounding box */
     /* facet bins (dynamics/meshwall.h) */
     sd_real h;                 /* m, cell edge, 0 before the first rebuild */
+    int coarse;                /* 1: h was made coarser than asked (key range, entry cap) */
     sd_vec3 origin;
     size_t entry_count;
     uint64_t *entry_key;
