@@ -102,7 +102,9 @@ static void sd_movie_name(const char *out, long k, char *buf, size_t size)
         snprintf(buf, size, "%.*s_%06ld.png", (int)n, out, k);
 }
 
-static int sd_render_one(const char *frame, const char *field, sd_render_def *d, int view_given, const char *png)
+/* say: print what the picture shows (one picture; a movie says it once) */
+static int sd_render_one(const char *frame, const char *field, sd_render_def *d, int view_given, const char *png,
+                         int say)
 {
     sd_render_frame f;
     sd_error err;
@@ -115,6 +117,11 @@ static int sd_render_one(const char *frame, const char *field, sd_render_def *d,
         fprintf(stderr, "shapedem: render: %s has no shapes file: shaped particles are drawn as their bounding "
                         "spheres (write output.formats: [vtk, csv, shapes])\n", frame);
     s = sd_render_png(&f, d, png, &err);
+    if (s == SD_OK && say) {
+        char what[1024];
+        sd_render_describe(&f, d, what, sizeof what);
+        printf("wrote %s: %s\n", png, what);
+    }
     sd_render_frame_free(&f);
     if (s != SD_OK) {
         int rc = sd_cli_fail_input(&err);
@@ -155,7 +162,7 @@ static int sd_render_movie(const char *pvd, const char *field, sd_render_def *d,
     char name[SD_RENDER_PATH_MAX + 32];
     for (size_t k = 0; k < n && !rc; ++k) {
         sd_movie_name(out, (long)k, name, sizeof name);
-        rc = sd_render_one(paths + SD_RENDER_PATH_MAX * k, field, d, view_given, name);
+        rc = sd_render_one(paths + SD_RENDER_PATH_MAX * k, field, d, view_given, name, k + 1 == n);
     }
     sd_free(paths);
     if (rc)
@@ -279,7 +286,7 @@ int sd_cmd_render(int argc, char **argv)
     if (movie)
         return sd_render_movie(in, field, &d, view_given, out, fps);
     if (!is_pvd)
-        return sd_render_one(in, field, &d, view_given, out);
+        return sd_render_one(in, field, &d, view_given, out, 1);
     char *paths;
     size_t n;
     sd_error err;
@@ -292,7 +299,7 @@ int sd_cmd_render(int argc, char **argv)
                         "last)\n", in, frame, n, n - 1);
         return 2;
     }
-    int rc = sd_render_one(paths + SD_RENDER_PATH_MAX * (size_t)i, field, &d, view_given, out);
+    int rc = sd_render_one(paths + SD_RENDER_PATH_MAX * (size_t)i, field, &d, view_given, out, 1);
     sd_free(paths);
     return rc;
 }

@@ -396,6 +396,7 @@ sd_status sd_vtk_write_walls(FILE *fp, const sd_world *w, double plane_side, sd_
             npts, ncells);
     fprintf(fp, "      <CellData Scalars=\"wall\" Vectors=\"force\">\n");
     sd_vtk_array_decl(fp, "        ", "Int32", "wall", 1, ncells, 4, &off);
+    sd_vtk_array_decl(fp, "        ", "Int32", "kind", 1, ncells, 4, &off);
     sd_vtk_array_decl(fp, "        ", "Float64", "force", 3, ncells, 8, &off);
     fprintf(fp, "      </CellData>\n      <Points>\n");
     sd_vtk_array_decl(fp, "        ", "Float64", "position", 3, npts, 8, &off);
@@ -409,10 +410,14 @@ sd_status sd_vtk_write_walls(FILE *fp, const sd_world *w, double plane_side, sd_
     b.fp = fp;
     b.used = 0;
     b.failed = 0;
-    /* Pass 0: wall index per cell; 1: force per cell; 2: points;
-     * 3: connectivity; 4: offsets. */
-    for (int pass = 0; pass < 5; ++pass) {
-        uint64_t bytes = pass == 0 ? (uint64_t)ncells * 4u
+    /* Pass 0: wall index per cell; K: wall kind per cell (0 plane, 1 box,
+     * 2 mesh, 3 drum: a reader frames the bounded ones); 1: force per cell;
+     * 2: points; 3: connectivity; 4: offsets. */
+    enum { SD_PASS_KIND = 5 };
+    static const int order[6] = {0, SD_PASS_KIND, 1, 2, 3, 4}; /* the header's order */
+    for (int o = 0; o < 6; ++o) {
+        int pass = order[o];
+        uint64_t bytes = pass == 0 || pass == SD_PASS_KIND ? (uint64_t)ncells * 4u
                        : pass == 1 ? (uint64_t)ncells * 24u
                        : pass == 2 ? (uint64_t)npts * 24u
                        : pass == 3 ? (uint64_t)nconn * 8u
@@ -428,6 +433,8 @@ sd_status sd_vtk_write_walls(FILE *fp, const sd_world *w, double plane_side, sd_
             for (size_t k = 0; k < cells; ++k) {
                 if (pass == 0) {
                     sd_bin_i32(&b, (int32_t)i);
+                } else if (pass == SD_PASS_KIND) {
+                    sd_bin_i32(&b, (int32_t)wi.kind);
                 } else if (pass == 1) {
                     sd_bin_v3(&b, wi.force);
                 } else if (pass == 3 && mesh) {

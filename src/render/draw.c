@@ -7,8 +7,10 @@
  * (cos el sin az, -cos el cos az, sin el) for azimuth az and elevation el
  * (front: az = el = 0, the camera on -y looking along +y); screen right
  * r = z x c normalised (x when looking straight down), up u = c x r. The
- * picture fits the particles (and the walls too with fit_walls) with a 4 %
- * margin.
+ * picture fits the particles (and the bounded walls too with fit_walls: a
+ * plane's square stands for an infinite plane and is never fitted) with a
+ * 4 % margin. A field's colour bar names its unit; a categorical field
+ * (shape, material indices) gets a legend of names instead of a scale.
  */
 #define _POSIX_C_SOURCE 200809L
 
@@ -165,9 +167,23 @@ static void sd_cam_fit(sd_cam *cam, const sd_render_frame *f, int fit_walls, dou
         sd_grow(&y0, &y1, sy - r);
         sd_grow(&y0, &y1, sy + r);
     }
-    for (size_t k = 0; (fit_walls || !(x0 <= x1)) && k < f->wall_point_count; ++k) {
-        sd_grow(&x0, &x1, sd_dot(f->wall_points + 3 * k, cam->r));
-        sd_grow(&y0, &y1, sd_dot(f->wall_points + 3 * k, cam->u));
+    /* the bounded walls (boxes, drums, meshes); a plane's square only when
+     * there is nothing else to frame: it is as big as the particles make it
+     * and it stays wherever the plane has moved to */
+    int nothing = !(x0 <= x1);
+    for (int pass = 0; pass < 2; ++pass) {
+        int64_t start = 0;
+        for (size_t k = 0; (fit_walls || nothing) && k < f->wall_cell_count; ++k) {
+            int64_t end = f->wall_ends[k];
+            if (pass == 1 || !f->wall_fit || f->wall_fit[k])
+                for (int64_t j = start; j < end; ++j) {
+                    sd_grow(&x0, &x1, sd_dot(f->wall_points + 3 * f->wall_conn[j], cam->r));
+                    sd_grow(&y0, &y1, sd_dot(f->wall_points + 3 * f->wall_conn[j], cam->u));
+                }
+            start = end;
+        }
+        if (x0 <= x1)
+            break; /* else only planes: frame them after all */
     }
     if (!(x0 <= x1)) { /* nothing to draw */
         x0 = y0 = -1.0;
@@ -210,16 +226,76 @@ static int sd_item_cmp(const void *a, const void *b)
     return x->k < y->k ? -1 : x->k > y->k; /* ties by index: the same pixels every time */
 }
 
-static double sd_norm01(const sd_render_def *d, double lo, double hi, double v)
+/* The colour position of value v: by category for a categorical field
+ * (the same colour for an index in every frame), else linear in [lo, hi]. */
+static double sd_norm01(const sd_render_frame *f, double lo, double hi, double v)
 {
-    (void)d;
+    if (f->categorical)
+        return sd_render_category_t(f, v);
     return hi > lo ? (v - lo) / (hi - lo) : 0.5;
 }
 
-static void sd_draw_colorbar(cairo_t *cr, const sd_render_def *d, const char *field, double lo, double hi, int x0)
+/* The title over the bar or legend: the field and its unit, "speed (m/s)". */
+static void sd_draw_title(cairo_t *cr, const sd_render_frame *f, double x, double y)
+{
+    char title[96];
+    snprintf(title, sizeof title, "%s%s%s%s", f->field, f->unit[0] ? " (" : "", f->unit, f->unit[0] ? ")" : "");
+    cairo_move_to(cr, x, y);
+    cairo_show_text(cr, title);
+}
+
+/* A categorical field's legend: a swatch and the name of each category the
+ * frame holds, in index order, as many as fit (then "+ K more"). */
+static void sd_draw_legend(cairo_t *cr, const sd_render_def *d, const sd_render_frame *f, int x0)
+{
+    double fs = fmax(9.0, fmin(13.0, d->height / 40.0)), row = fs + 6.0, top = 0.12 * d->height;
+    double x = x0 + 8.0, y = top, bottom = 0.95 * d->height;
+    size_t shown = 0, present = 0;
+    for (size_t c = 0; c < f->category_count; ++c) {
+        double v = (double)f->category_first + (double)c;
+        int here = 0;
+        for (size_t k = 0; k < f->sphere_count && !here; ++k)
+            here = f->sphere_value[k] == v;
+        for (size_t k = 0; k < f->cell_count && !here; ++k)
+            here = f->cell_value[k] == v;
+        if (!here)
+            continue;
+        present++;
+        if (y + 2.0 * row > bottom)
+            continue;
+        double rgb[3];
+        sd_render_colormap(d->colormap, sd_render_category_t(f, v), rgb);
+        cairo_set_source_rgb(cr, rgb[0], rgb[1], rgb[2]);
+        cairo_rectangle(cr, x, y, fs, fs);
+        cairo_fill(cr);
+        cairo_set_source_rgb(cr, 0.2, 0.2, 0.2);
+        cairo_move_to(cr, x + fs + 5.0, y + fs - 1.0);
+        cairo_show_text(cr, f->names[c]);
+        y += row;
+        shown++;
+    }
+    if (present > shown) {
+        char more[48];
+        snprintf(more, sizeof more, "+ %zu more", present - shown);
+        cairo_set_source_rgb(cr, 0.2, 0.2, 0.2);
+        cairo_move_to(cr, x, y + fs - 1.0);
+        cairo_show_text(cr, more);
+    }
+}
+
+static void sd_draw_colorbar(cairo_t *cr, const sd_render_def *d, const sd_render_frame *f, double lo, double hi,
+                             int x0)
 {
     int h = d->height;
+    cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+    cairo_set_font_size(cr, fmax(9.0, fmin(13.0, h / 40.0)));
     double top = 0.12 * h, bot = 0.88 * h, bw = 16.0;
+    cairo_set_source_rgb(cr, 0.2, 0.2, 0.2);
+    sd_draw_title(cr, f, x0 + 4.0, top - 10.0);
+    if (f->categorical) { /* indices are names, not a scale */
+        sd_draw_legend(cr, d, f, x0);
+        return;
+    }
     double x = x0 + 10.0;
     /* one linear gradient through 33 samples of the map: no seams between steps */
     cairo_pattern_t *g = cairo_pattern_create_linear(0.0, bot, 0.0, top);
@@ -236,8 +312,6 @@ static void sd_draw_colorbar(cairo_t *cr, const sd_render_def *d, const char *fi
     cairo_set_line_width(cr, 1.0);
     cairo_rectangle(cr, x + 0.5, top + 0.5, bw - 1.0, bot - top - 1.0);
     cairo_stroke(cr);
-    cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
-    cairo_set_font_size(cr, fmax(9.0, fmin(13.0, h / 40.0)));
     char buf[64];
     for (int k = 0; k <= 4; ++k) {
         double v = lo + (hi - lo) * k / 4.0, y = bot - (bot - top) * k / 4.0;
@@ -245,8 +319,6 @@ static void sd_draw_colorbar(cairo_t *cr, const sd_render_def *d, const char *fi
         cairo_move_to(cr, x + bw + 4.0, y + 4.0);
         cairo_show_text(cr, buf);
     }
-    cairo_move_to(cr, x0 + 4.0, top - 10.0);
-    cairo_show_text(cr, field);
 }
 
 sd_status sd_render_png(const sd_render_frame *f, const sd_render_def *d, const char *png, sd_error *err)
@@ -359,7 +431,7 @@ sd_status sd_render_png(const sd_render_frame *f, const sd_render_def *d, const 
         if (items[q].k >= 0) {
             size_t k = (size_t)items[q].k;
             int64_t s0 = k ? f->ends[k - 1] : 0, s1 = f->ends[k];
-            sd_render_colormap(d->colormap, sd_norm01(d, lo, hi, f->cell_value[k]), rgb);
+            sd_render_colormap(d->colormap, sd_norm01(f, lo, hi, f->cell_value[k]), rgb);
             for (int64_t j = s0; j < s1; ++j) {
                 double x, y;
                 sd_cam_px(&cam, f->points + 3 * f->conn[j], &x, &y);
@@ -394,7 +466,7 @@ sd_status sd_render_png(const sd_render_frame *f, const sd_render_def *d, const 
             size_t k = (size_t)(-1 - items[q].k);
             double x, y, r = cam.scale * f->radii[k];
             sd_cam_px(&cam, f->centres + 3 * k, &x, &y);
-            sd_render_colormap(d->colormap, sd_norm01(d, lo, hi, f->sphere_value[k]), rgb);
+            sd_render_colormap(d->colormap, sd_norm01(f, lo, hi, f->sphere_value[k]), rgb);
             /* a sphere lit like the cells: bright toward the light, darker at the rim */
             cairo_pattern_t *pat = cairo_pattern_create_radial(x - 0.3 * r, y - 0.35 * r, 0.05 * r, x, y, r);
             cairo_pattern_add_color_stop_rgb(pat, 0.0, fmin(1.0, rgb[0] * 1.15 + 0.08), fmin(1.0, rgb[1] * 1.15 + 0.08),
@@ -412,7 +484,7 @@ sd_status sd_render_png(const sd_render_frame *f, const sd_render_def *d, const 
     sd_free(items);
     cairo_reset_clip(cr);
     if (bar)
-        sd_draw_colorbar(cr, d, f->field, lo, hi, d->width - bar);
+        sd_draw_colorbar(cr, d, f, lo, hi, d->width - bar);
     cairo_destroy(cr);
 
     char tmp[SD_RENDER_PATH_MAX + 16];

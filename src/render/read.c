@@ -388,6 +388,8 @@ void sd_render_frame_free(sd_render_frame *f)
     sd_free(f->wall_points);
     sd_free(f->wall_conn);
     sd_free(f->wall_ends);
+    sd_free(f->wall_fit);
+    sd_free(f->names);
     memset(f, 0, sizeof *f);
 }
 
@@ -453,8 +455,202 @@ static sd_status sd_rd_walls(const char *path, sd_render_frame *out, sd_error *e
         out->wall_point_count = f.npts;
         out->wall_cell_count = f.ncells;
     }
+    /* each cell's wall kind (0 plane, 1 box, 2 mesh, 3 drum), written since
+     * issue 31; older files lack it and fit every wall */
+    double *kind = NULL;
+    size_t nk = 0;
+    if (s == SD_OK)
+        s = sd_rd_array(&f, "CellData", "kind", 1, &kind, &nk, NULL, err);
+    if (s == SD_OK && kind && nk != f.ncells)
+        s = sd_rd_fail(path, err, "the walls' kind array is not one per cell");
+    if (s == SD_OK && kind) {
+        out->wall_fit = sd_malloc(nk ? nk : 1);
+        if (!out->wall_fit)
+            s = sd_error_set(err, SD_ERR_MEMORY, path, 0, "", "out of memory");
+        for (size_t k = 0; s == SD_OK && k < nk; ++k)
+            out->wall_fit[k] = kind[k] != 0.0;
+    }
+    sd_free(kind);
     sd_free(f.bytes);
     return s;
+}
+
+/* The names of a FieldData String array (`shape_names`, `material_names`:
+ * each name's bytes in decimal, each ended by a 0, docs/output.md) into
+ * *names (*count of them, at most max_count; 63 bytes each, bytes that are
+ * not printable ASCII shown as '?'). *names NULL when the file has none. */
+static sd_status sd_rd_string_array(const sd_vtkfile *f, const char *array, size_t max_count, char (**names)[64],
+                                    size_t *count, sd_error *err)
+{
+    *names = NULL;
+    *count = 0;
+    const char *b = f->bytes, *hend = f->bytes + f->head;
+    for (const char *t = strstr(b, "<Array "); t && t < hend; t = strstr(t + 1, "<Array ")) {
+        const char *tend = strchr(t, '>');
+        char nm[80], buf[40];
+        size_t n;
+        if (!tend || tend >= hend || !sd_rd_attr(t, tend, "Name", nm, sizeof nm) || strcmp(nm, array))
+            continue;
+        if (!sd_rd_attr(t, tend, "type", buf, sizeof buf) || strcmp(buf, "String") ||
+            !sd_rd_attr(t, tend, "NumberOfTuples", buf, sizeof buf) || !sd_rd_size(buf, &n))
+            return sd_rd_fail(f->path, err, "a field-data name array is not a String array with a count");
+        if (n > max_count)
+            n = max_count;
+        char(*v)[64] = sd_calloc(n ? n : 1, sizeof *v);
+        if (!v)
+            return sd_error_set(err, SD_ERR_MEMORY, f->path, 0, "", "out of memory");
+        const char *p = tend + 1, *close = strstr(p, "</Array>");
+        if (!close || close > hend)
+            close = hend;
+        size_t k = 0, len = 0;
+        while (k < n && p < close) {
+            while (p < close && (*p == ' ' || *p == '\n' || *p == '\r' || *p == '\t'))
+                ++p;
+            if (p >= close)
+                break;
+            char *e;
+            long c = strtol(p, &e, 10);
+            if (e == p || e > close || c < 0 || c > 255) {
+                sd_free(v);
+                return sd_rd_fail(f->path, err, "a field-data name array holds something other than bytes");
+            }
+            p = e;
+            if (c == 0) {
+                ++k;
+                len = 0;
+            } else if (len < 63) {
+                v[k][len++] = c >= 32 && c < 127 ? (char)c : '?';
+            }
+        }
+        *names = v;
+        *count = k;
+        return SD_OK;
+    }
+    return SD_OK;
+}
+
+/* The units of the particle fields a frame carries (docs/output.md's
+ * table of particles_NNNNNN.vtu, io/vtk_bin.h's SD_VTK_POINT_FIELDS): the
+ * reader takes any file, so the table is kept here, by name. */
+#define SD_RENDER_FIELD_UNITS(X)                                                                                       \
+    X("speed", "m/s", 0)                                                                                               \
+    X("velocity", "m/s", 0)                                                                                            \
+    X("radius", "m", 0)                                                                                                \
+    X("angular_velocity", "rad/s", 0)                                                                                  \
+    X("force", "N", 0)                                                                                                 \
+    X("shape", "", 1)                                                                                                  \
+    X("material", "", 1)
+
+const char *sd_render_field_unit(const char *field, int *categorical)
+{
+    static const struct {
+        const char *name, *unit;
+        int categorical;
+    } table[] = {
+#define SD_X_UNIT(n, u, c) {n, u, c},
+        SD_RENDER_FIELD_UNITS(SD_X_UNIT)
+#undef SD_X_UNIT
+    };
+    for (size_t k = 0; k < sizeof table / sizeof table[0]; ++k)
+        if (!strcmp(field, table[k].name)) {
+            if (categorical)
+                *categorical = table[k].categorical;
+            return table[k].unit;
+        }
+    if (categorical)
+        *categorical = 0;
+    return "";
+}
+
+/* The largest number of categories a legend names; a field with more
+ * indices than that is not a category (and a forged count is bounded). */
+#define SD_RENDER_CATEGORIES_MAX 4096
+
+/* A categorical field's names: the frame's own field data, else (a shapes
+ * file, which carries none) its particles sibling's; indices without a name
+ * get "shape K" / "material K". */
+static sd_status sd_rd_categories(sd_render_frame *out, const char *path, const char *particles, sd_error *err)
+{
+    out->category_first = !strcmp(out->field, "shape") ? -1 : 0;
+    char array[80];
+    snprintf(array, sizeof array, "%s_names", out->field);
+    char(*names)[64] = NULL;
+    size_t count = 0;
+    const char *from[2] = {path, particles};
+    for (int k = 0; k < 2 && !names; ++k) {
+        if (!from[k] || !from[k][0] || !sd_rd_exists(from[k]))
+            continue;
+        sd_vtkfile f;
+        sd_status s = sd_rd_open(from[k], &f, err);
+        if (s == SD_OK)
+            s = sd_rd_string_array(&f, array, SD_RENDER_CATEGORIES_MAX, &names, &count, err);
+        sd_free(f.bytes);
+        if (s != SD_OK && k == 0)
+            return s;
+    }
+    /* every index the frame uses gets a name: indices 0 .. need - 1 */
+    double lo, hi;
+    sd_render_frame_range(out, &lo, &hi);
+    if (!(lo >= (double)out->category_first) || !(hi < (double)SD_RENDER_CATEGORIES_MAX)) {
+        sd_free(names); /* not indices: drawn as a scale */
+        out->categorical = 0;
+        return SD_OK;
+    }
+    size_t need = hi >= 0.0 && (size_t)hi + 1 > count ? (size_t)hi + 1 : count;
+    size_t total = need + (out->category_first < 0);
+    char(*all)[64] = sd_calloc(total ? total : 1, sizeof *all);
+    if (!all) {
+        sd_free(names);
+        return sd_error_set(err, SD_ERR_MEMORY, path, 0, "", "out of memory");
+    }
+    size_t j = 0;
+    if (out->category_first < 0)
+        snprintf(all[j++], 64, "sphere");
+    for (size_t k = 0; k < need; ++k, ++j) {
+        if (k < count && names[k][0])
+            memcpy(all[j], names[k], 64);
+        else
+            snprintf(all[j], 64, "%.40s %zu", out->field, k);
+    }
+    sd_free(names);
+    out->names = all;
+    out->category_count = total;
+    return SD_OK;
+}
+
+double sd_render_category_t(const sd_render_frame *f, double v)
+{
+    double n = (double)f->category_count;
+    return n > 1 ? (v - (double)f->category_first) / (n - 1.0) : 0.5;
+}
+
+void sd_render_describe(const sd_render_frame *f, const sd_render_def *d, char *buf, size_t size)
+{
+    size_t n = f->sphere_count, used = 0;
+    for (size_t k = 0; k < f->cell_count; ++k) /* a particle's cells are consecutive */
+        n += k == 0 || f->cell_id[k] != f->cell_id[k - 1];
+    int w = snprintf(buf, size, "%zu particle%s coloured by %s", n, n == 1 ? "" : "s", f->field);
+    used = w > 0 && (size_t)w < size ? (size_t)w : size - 1;
+    if (!f->categorical) {
+        double lo = d->lo, hi = d->hi;
+        if (!d->fixed_range)
+            sd_render_frame_range(f, &lo, &hi);
+        snprintf(buf + used, size - used, ", %.4g .. %.4g%s%s", lo, hi, f->unit[0] ? " " : "", f->unit);
+        return;
+    }
+    /* the categories present, in index order, with their counts */
+    for (size_t c = 0; c < f->category_count && used + 1 < size; ++c) {
+        double v = (double)f->category_first + (double)c;
+        size_t m = 0;
+        for (size_t k = 0; k < f->sphere_count; ++k)
+            m += f->sphere_value[k] == v;
+        for (size_t k = 0; k < f->cell_count; ++k)
+            m += f->cell_value[k] == v && (k == 0 || f->cell_id[k] != f->cell_id[k - 1]);
+        if (!m)
+            continue;
+        w = snprintf(buf + used, size - used, "%s%s (%zu)", used && buf[used - 1] == ')' ? ", " : ": ", f->names[c], m);
+        used = w > 0 && used + (size_t)w < size ? used + (size_t)w : size - 1;
+    }
 }
 
 sd_status sd_render_frame_load(const char *path, const char *field, sd_render_frame *out, sd_error *err)
@@ -485,6 +681,13 @@ sd_status sd_render_frame_load(const char *path, const char *field, sd_render_fr
     }
     if (s == SD_OK && (is_particles || is_shapes) && sd_rd_exists(walls))
         s = sd_rd_walls(walls, out, err);
+    snprintf(out->unit, sizeof out->unit, "%s", sd_render_field_unit(field, &out->categorical));
+    if (s == SD_OK && out->categorical) {
+        char particles[SD_RENDER_PATH_MAX] = "";
+        if (is_shapes)
+            sd_rd_sibling(path, "shapes_", "particles_", ".vtu", particles, sizeof particles);
+        s = sd_rd_categories(out, is_shapes ? "" : path, particles, err);
+    }
     if (s != SD_OK) {
         sd_render_frame_free(out);
         return s;

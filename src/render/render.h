@@ -44,8 +44,19 @@ typedef struct sd_render_frame {
     double *wall_points;
     size_t wall_cell_count, wall_conn_count;
     int64_t *wall_conn, *wall_ends;
+    unsigned char *wall_fit; /* per wall cell: 1 when it bounds the scene (a box, a drum, a mesh), 0 for
+                                a plane's square (drawn, never fitted: it is as big as the particles make it
+                                and stays where the plane moves); NULL: the file does not say (all fit) */
     int planar;            /* every point in z = 0: a planar (2D) run */
     char field[64];        /* the field drawn ("speed" = |velocity|) */
+    char unit[16];         /* its unit ("m/s", "m", "N", ...; "" for a pure number) */
+    /* a categorical field (shape, material): the values are indices, the
+     * legend names them; category_first is the smallest index (-1 for
+     * shape: a plain sphere), names[k] the name of index category_first + k */
+    int categorical;
+    int category_first;
+    size_t category_count;
+    char (*names)[64];
     char source[SD_RENDER_PATH_MAX]; /* the file the particles came from */
 } sd_render_frame;
 
@@ -66,6 +77,17 @@ sd_status sd_render_pvd_list(const char *pvd, char **paths, size_t *count, sd_er
 /* The smallest and largest value of the frame's field (0, 0 when empty). */
 void sd_render_frame_range(const sd_render_frame *f, double *lo, double *hi);
 
+/* The unit of a particle field of the frames (docs/output.md's table):
+ * "m/s" for speed and velocity, "m", "rad/s", "N", or "" (ids, indices,
+ * orientations); categorical (shape, material) says the values are indices
+ * of names, drawn as a legend rather than a colour scale. */
+const char *sd_render_field_unit(const char *field, int *categorical);
+
+/* The colour position (0 .. 1 on the map) of category value v of f: the
+ * categories spread evenly over the map, so that an index keeps its colour
+ * in every frame of a run. */
+double sd_render_category_t(const sd_render_frame *f, double v);
+
 #define SD_RENDER_COLORMAPS(X)                                                                                         \
     X(SD_CMAP_VIRIDIS, "viridis")                                                                                      \
     X(SD_CMAP_COOLWARM, "coolwarm")                                                                                    \
@@ -83,12 +105,17 @@ typedef struct sd_render_def {
     double azimuth, elevation; /* degrees: the camera's direction from the scene (front: 0, 0) */
     int colormap;           /* sd_render_cmap */
     int colorbar;           /* draw the colour bar with the field's name and range */
-    int fit_walls;          /* fit the walls into the picture too (else the particles only) */
+    int fit_walls;          /* fit the bounded walls (boxes, drums, meshes; never planes) into the picture
+                               too (else the particles only) */
     int fixed_range;        /* use lo, hi rather than the frame's range */
     double lo, hi;
 } sd_render_def;
 
 sd_render_def sd_render_def_default(void);
+/* What a picture of f with d shows, in one line for the user: "12
+ * particles coloured by speed, 0 .. 0.31 m/s" or "12 particles coloured by
+ * shape: sphere (3), cube (9)". */
+void sd_render_describe(const sd_render_frame *f, const sd_render_def *d, char *buf, size_t size);
 /* Named views: front (looking along +y, z up), top (looking down, y up),
  * iso (from +x... -y, +z at 45 and 35.26 degrees); 0 and the angles set,
  * or -1 for an unknown name. */

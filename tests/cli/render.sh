@@ -9,6 +9,9 @@
 #    picture moved one pixel, and above TOL for the picture drawn with
 #    another colour map (gray; coolwarm);
 #  - a frames.pvd --movie writes one numbered PNG per frame;
+#  - a categorical field (shape, material) is drawn with a legend naming
+#    its values, a scale with its unit, and render says what it drew;
+#  - --fit all frames the bounded walls, not a plane that moved away;
 #  - bad input (a file that is not a frame, a missing file, a bad --size, a
 #    field the frame lacks, --frame past the end) is one line on stderr
 #    naming the file or option, exit 2, and no picture.
@@ -72,6 +75,39 @@ check "reference picture: MAD $same < $TOL" "$(lt "$same" $TOL)"
 check "reference picture moved one pixel: MAD $shift1 < $TOL (passes)" "$(lt "$shift1" $TOL)"
 check "reference picture in the gray map: MAD $gray > $TOL (fails)" "$(lt $TOL "$gray")"
 check "reference picture in the coolwarm map: MAD $warm > $TOL (fails)" "$(lt $TOL "$warm")"
+
+# A categorical field gets a legend of names, not a colour scale (issue 31):
+# simple.yaml's 3 spheres, cube and rod by shape; the bar's column holds the
+# three swatches' colours only (a scale's gradient holds hundreds).
+"$bin" render "$tmp/simple/frames.pvd" -o "$tmp/shape.png" --field shape >"$tmp/shape.out" 2>&1
+rc=$?
+legend=$("$py" "$mad" colours "$tmp/shape.png" 710)
+echo "     $(head -1 "$tmp/shape.out"); legend column colours (10 px or more, all): $legend"
+check "--field shape: exit $rc, the names and counts of the shapes" \
+    "$([[ $rc == 0 ]] && grep -q 'coloured by shape: sphere (3), cube (1), rod (1)$' "$tmp/shape.out" && echo 1 || echo 0)"
+check "--field shape: a legend of 3 swatches (got '$legend'), not a gradient" "$([[ $legend == "3 3" ]] && echo 1 || echo 0)"
+"$bin" render "$tmp/simple/frames.pvd" -o "$tmp/speed.png" >"$tmp/speed.out" 2>&1
+scale=$("$py" "$mad" colours "$tmp/speed.png" 710)
+check "--field speed: a colour scale (got '$scale' colours, more than 100) in m/s" \
+    "$([[ ${scale#* } -gt 100 ]] && grep -q 'coloured by speed, .* m/s$' "$tmp/speed.out" && echo 1 || echo 0)"
+"$bin" render "$tmp/simple/frames.pvd" -o "$tmp/force.png" --field force >"$tmp/force.out" 2>&1
+"$bin" render "$tmp/simple/frames.pvd" -o "$tmp/mat.png" --field material >"$tmp/mat.out" 2>&1
+check "--field force names N, --field material names the material" \
+    "$(grep -q 'coloured by force, .* N$' "$tmp/force.out" && grep -q 'coloured by material: glass (5)$' "$tmp/mat.out" &&
+        echo 1 || echo 0)"
+
+# --fit all frames the bounded walls, not a plane that moved away (issue
+# 31): simple.yaml with a lid plane moving up 0.34 m in 10 steps; the
+# particles (the coloured pixels) keep most of the picture's width.
+sed -e 's/steps: 1$/steps: 10/' -e 's/  every: 1$/  every: 10/' \
+    -e 's/^\(  - {name: tray.*\)$/\1\n  - {name: lid, type: plane, point: [0, 0, 0.01], normal: [0, 0, -1], velocity: [0, 0, 34000], material: glass}/' \
+    "$root/tests/render/simple.yaml" >"$tmp/lid.yaml"
+"$bin" run "$tmp/lid.yaml" -o "$tmp/lid" --quiet >/dev/null
+"$bin" render "$tmp/lid/frames.pvd" -o "$tmp/lid.png" --fit all --no-colorbar --size 200x150 >/dev/null
+read -r x0 _ x1 _ <<<"$("$py" "$mad" extent "$tmp/lid.png")"
+echo "     particles drawn from x = $x0 to $x1 of 200"
+check "--fit all with a plane 0.34 m away: the particles span $((x1 - x0)) of 200 px (at least 80)" \
+    "$([[ $((x1 - x0)) -ge 80 ]] && echo 1 || echo 0)"
 
 # A particle frame under another name (no siblings to look for): spheres, and a note.
 cp "$tmp/simple/particles_000000.vtu" "$tmp/a.vtu"

@@ -4,7 +4,9 @@
  *
  * Input: byte 0 chooses the file (0: particles_000000.vtu, 1:
  * shapes_000000.vtp, 2: frames.pvd, 3: walls_000000.vtp next to a shapes
- * file that is the same bytes) and the field (bit 2: "id", else "speed");
+ * file that is the same bytes) and the field (bit 2: "id", or with bit 3
+ * "shape", a categorical field whose names the reader takes from the
+ * file's field data; else "speed");
  * the rest is the file. Besides the sanitizers, it checks render.h's
  * invariant: on SD_OK every connectivity index names a point, the cell
  * ends rise to the connectivity's end, every drawn value is there; on an
@@ -42,7 +44,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (size < 1)
         return 0;
     int kind = data[0] & 3;
-    const char *field = (data[0] & 4) ? "id" : "speed";
+    const char *field = (data[0] & 4) ? ((data[0] & 8) ? "shape" : "id") : "speed";
     static const char *names[4] = {"particles_000000.vtu", "shapes_000000.vtp", "frames.pvd", "walls_000000.vtp"};
     char path[1024], other[1024];
     sd_fuzz_write(names[kind], data + 1, size - 1, path, sizeof path);
@@ -76,6 +78,16 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     SD_FUZZ_CHECK(f.sphere_count == 0 || (f.centres && f.radii && f.sphere_value));
     double lo, hi;
     sd_render_frame_range(&f, &lo, &hi);
+    if (f.categorical) { /* every index drawn has a name (a legend entry) */
+        SD_FUZZ_CHECK(f.names != NULL && f.category_count > 0);
+        SD_FUZZ_CHECK(lo >= f.category_first && hi < (double)f.category_first + (double)f.category_count);
+        for (size_t k = 0; k < f.category_count; ++k)
+            SD_FUZZ_CHECK(memchr(f.names[k], 0, sizeof f.names[k]) != NULL);
+        char what[512];
+        sd_render_def d = sd_render_def_default();
+        sd_render_describe(&f, &d, what, sizeof what);
+        SD_FUZZ_CHECK(memchr(what, 0, sizeof what) != NULL);
+    }
     sd_render_frame_free(&f);
     if (kind == 3)
         remove(other);

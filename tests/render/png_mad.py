@@ -2,6 +2,12 @@
 """png_mad.py — what tests/cli/render.sh asks of a PNG, with the standard library only.
 
     png_mad.py size FILE            prints "WIDTH HEIGHT" (exit 2 if FILE is not a PNG)
+    png_mad.py colours FILE X0      prints "A B": of the coloured pixels (not grey: channels
+                                    more than 40 apart) in columns X0 and right of it, A the
+                                    colours covering 10 pixels or more, B all colours (a
+                                    legend's few swatches, or a colour scale's gradient)
+    png_mad.py extent FILE          prints "X0 Y0 X1 Y1", the box of the coloured pixels
+                                    (walls are grey, the particles coloured)
     png_mad.py mad A B [--shift N]  prints the mean absolute difference of A and B over
                                     every pixel and channel (0-255) after a 3x3 box blur of
                                     each, B moved N pixels to the right first (its first
@@ -81,8 +87,32 @@ def blur(rows, w, h):
     return out
 
 
+def coloured(rgb):
+    return max(rgb) - min(rgb) > 40
+
+
 def main(argv):
     try:
+        if len(argv) == 4 and argv[1] == "colours":
+            w, h, rows = read_png(argv[2])
+            count = {}
+            for row in rows:
+                for x in range(int(argv[3]), w):
+                    rgb = tuple(row[3 * x:3 * x + 3])
+                    if coloured(rgb):
+                        count[rgb] = count.get(rgb, 0) + 1
+            print(sum(1 for n in count.values() if n >= 10), len(count))
+            return 0
+        if len(argv) == 3 and argv[1] == "extent":
+            w, h, rows = read_png(argv[2])
+            xs, ys = [], []
+            for y, row in enumerate(rows):
+                for x in range(w):
+                    if coloured(tuple(row[3 * x:3 * x + 3])):
+                        xs.append(x)
+                        ys.append(y)
+            print(*(min(xs), min(ys), max(xs), max(ys)) if xs else (0, 0, 0, 0))
+            return 0
         if len(argv) == 3 and argv[1] == "size":
             w, h, _ = read_png(argv[2])
             print(w, h)
