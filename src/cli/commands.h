@@ -9,6 +9,8 @@ int sd_cli_fail_input(const sd_error *err);
 int sd_cmd_shape(int argc, char **argv);
 /* `shapedem shape fit-fourier` (cli/fit_fourier.c) */
 int sd_cmd_fit_fourier(int argc, char **argv);
+/* `shapedem info` (cli/info_cmd.c): a checkpoint's summary or its particles as CSV */
+int sd_cmd_info(int argc, char **argv);
 /* `shapedem render` (cli/render_cmd.c, src/render/) */
 int sd_cmd_render(int argc, char **argv);
 

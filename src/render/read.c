@@ -718,6 +718,83 @@ void sd_render_frame_range(const sd_render_frame *f, double *lo, double *hi)
     *hi = b;
 }
 
+/* ---- particles handed over as arrays (a checkpoint's) -------------------- */
+
+sd_status sd_render_frame_particles(const sd_render_particles *p, const char *field, sd_render_frame *out,
+                                    sd_error *err)
+{
+    memset(out, 0, sizeof *out);
+    const char *src = p->source ? p->source : "";
+    snprintf(out->field, sizeof out->field, "%s", field);
+    snprintf(out->source, sizeof out->source, "%s", src);
+    /* the field: a vector by its magnitude, as from a frame's arrays */
+    const double *vec = NULL;
+    int which = 0; /* 1 radius, 2 id, 3 shape, 4 material */
+    if (!strcmp(field, "speed") || !strcmp(field, "velocity"))
+        vec = p->v;
+    else if (!strcmp(field, "angular_velocity"))
+        vec = p->w;
+    else if (!strcmp(field, "force"))
+        vec = p->f;
+    else if (!strcmp(field, "radius"))
+        which = 1;
+    else if (!strcmp(field, "id"))
+        which = 2;
+    else if (!strcmp(field, "shape"))
+        which = 3;
+    else if (!strcmp(field, "material"))
+        which = 4;
+    else
+        return sd_error_set(err, SD_ERR_INPUT, src, 0, "--field",
+                            "the checkpoint has no field '%s' (it has: speed, velocity, radius, angular_velocity, "
+                            "force, id, shape, material)", field);
+    size_t n = p->n;
+    out->centres = sd_malloc((n ? 3 * n : 1) * sizeof *out->centres);
+    out->radii = sd_malloc((n ? n : 1) * sizeof *out->radii);
+    out->sphere_value = sd_malloc((n ? n : 1) * sizeof *out->sphere_value);
+    if (!out->centres || !out->radii || !out->sphere_value) {
+        sd_render_frame_free(out);
+        return sd_error_set(err, SD_ERR_MEMORY, src, 0, "", "out of memory");
+    }
+    for (size_t k = 0; k < n; ++k) {
+        memcpy(out->centres + 3 * k, p->x + 3 * k, 3 * sizeof(double));
+        out->radii[k] = p->radius[k];
+        double val = 0.0;
+        if (vec)
+            val = sqrt(vec[3 * k] * vec[3 * k] + vec[3 * k + 1] * vec[3 * k + 1] + vec[3 * k + 2] * vec[3 * k + 2]);
+        else
+            val = which == 1 ? p->radius[k]
+                : which == 2 ? (double)p->id[k]
+                : which == 3 ? (double)p->shape[k]
+                             : (double)p->material[k];
+        out->sphere_value[k] = val;
+        if (p->shape[k] >= 0)
+            out->bounding_spheres = 1;
+    }
+    out->sphere_count = n;
+    int planar = n > 0;
+    for (size_t k = 0; planar && k < n; ++k)
+        planar = out->centres[3 * k + 2] == 0.0;
+    out->planar = planar;
+    snprintf(out->unit, sizeof out->unit, "%s", sd_render_field_unit(field, &out->categorical));
+    if (out->categorical) { /* the names the checkpoint keeps (scene/shape_names, scene/material_names) */
+        int shape = which == 3;
+        size_t count = shape ? p->shape_count : p->material_count;
+        out->category_first = shape ? -1 : 0;
+        out->category_count = count + (size_t)shape;
+        out->names = sd_calloc(out->category_count ? out->category_count : 1, sizeof *out->names);
+        if (!out->names) {
+            sd_render_frame_free(out);
+            return sd_error_set(err, SD_ERR_MEMORY, src, 0, "", "out of memory");
+        }
+        if (shape)
+            snprintf(out->names[0], 64, "sphere");
+        for (size_t k = 0; k < count; ++k)
+            snprintf(out->names[k + (size_t)shape], 64, "%s", shape ? p->shape_names[k] : p->material_names[k]);
+    }
+    return SD_OK;
+}
+
 /* ---- frames.pvd ---------------------------------------------------------- */
 
 sd_status sd_render_pvd_list(const char *pvd, char **paths, size_t *count, sd_error *err)

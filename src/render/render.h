@@ -69,6 +69,26 @@ typedef struct sd_render_frame {
 sd_status sd_render_frame_load(const char *path, const char *field, sd_render_frame *out, sd_error *err);
 void sd_render_frame_free(sd_render_frame *f);
 
+/* Particles handed over as arrays (a checkpoint's, io/ckpt_particles.h),
+ * drawn as spheres of their radius: per particle x (3), v (3), w (3), f
+ * (3), q (4), radius, id, shape (-1 a sphere) and material indices, each
+ * index within its list of names (64 bytes each, NUL-terminated). */
+typedef struct sd_render_particles {
+    size_t n;
+    const double *x, *v, *w, *f, *q, *radius;
+    const uint64_t *id;
+    const int32_t *shape, *material;
+    size_t shape_count, material_count;
+    const char (*shape_names)[64], (*material_names)[64];
+    const char *source; /* the file, for messages */
+} sd_render_particles;
+
+/* A frame of those particles with `field` (the names of a particle frame:
+ * speed, velocity, radius, angular_velocity, force, id, shape, material);
+ * SD_ERR_INPUT for another field (the message lists them). */
+sd_status sd_render_frame_particles(const sd_render_particles *p, const char *field, sd_render_frame *out,
+                                    sd_error *err);
+
 /* The particle files of a frames.pvd (part 0 of each DataSet, in order),
  * resolved against the .pvd's directory: *paths holds *count strings of
  * SD_RENDER_PATH_MAX bytes (sd_free it). */

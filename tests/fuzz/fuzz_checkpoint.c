@@ -14,6 +14,7 @@
 #include "core/alloc.h"
 #include "fuzz_util.h"
 #include "io/checkpoint.h"
+#include "io/ckpt_particles.h"
 #include "world/snapshot.h"
 
 #define SD_FUZZ_CHECK(c)                                                                                         \
@@ -59,6 +60,26 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         sd_snapshot_free(&again);
     }
     sd_free(buf);
+    /* the particle table of `info --csv` and `render CK.h5` (io/ckpt_particles.h):
+     * on SD_OK every row's indices name a template and a material */
+    sd_ckpt_particles p;
+    memset(&err, 0, sizeof err);
+    st = sd_ckpt_particles_take(&s, "fuzz.h5", &p, &err);
+    sd_fuzz_report("sd_ckpt_particles_take", st, &err);
+    SD_FUZZ_CHECK(s.n == 0 && s.items == NULL);
+    if (st == SD_OK) {
+        for (size_t k = 0; k < p.n; ++k)
+            SD_FUZZ_CHECK(p.shape[k] >= -1 && p.shape[k] < (int32_t)p.shape_count && p.material[k] >= 0 &&
+                          p.material[k] < (int32_t)p.material_count);
+        FILE *sink = fopen("/dev/null", "w");
+        if (sink) {
+            sd_ckpt_particles_print_csv(sink, &p, &err);
+            fclose(sink);
+        }
+    } else {
+        SD_FUZZ_CHECK(err.msg[0]);
+    }
+    sd_ckpt_particles_free(&p);
     sd_snapshot_free(&s);
     return 0;
 }
