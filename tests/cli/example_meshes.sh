@@ -36,6 +36,10 @@ done
 /usr/bin/python3 "$repo/scripts/make_meshes.py" chute "$tmp/flat.stl" --angle 0 >/dev/null
 # the normals: into the cone (towards the axis), up off the chute's floor,
 # towards its centre line on the sides (the tilt keeps y)
+# the benchmark's hopper (bench/scenes/meshes/cone-hopper.obj) is the cone's default
+/usr/bin/python3 "$repo/scripts/make_meshes.py" cone "$tmp/cone-hopper.obj" >/dev/null
+report "$(cmp -s "$tmp/cone-hopper.obj" "$repo/bench/scenes/meshes/cone-hopper.obj" && echo 1 || echo 0)" \
+    "bench/scenes/meshes/cone-hopper.obj" "the output of scripts/make_meshes.py cone"
 normals=$(/usr/bin/python3 - "$tmp/cone.stl" "$tmp/chute.stl" <<'PY'
 import math, struct, sys
 def facets(p):
