@@ -635,11 +635,12 @@ void sd_render_describe(const sd_render_frame *f, const sd_render_def *d, char *
         double lo = d->lo, hi = d->hi;
         if (!d->fixed_range)
             sd_render_frame_range(f, &lo, &hi);
-        snprintf(buf + used, size - used, ", %.4g .. %.4g%s%s", lo, hi, f->unit[0] ? " " : "", f->unit);
-        return;
+        w = snprintf(buf + used, size - used, ", %.4g .. %.4g%s%s", lo, hi, f->unit[0] ? " " : "", f->unit);
+        used = w > 0 && used + (size_t)w < size ? used + (size_t)w : size - 1;
     }
     /* the categories present, in index order, with their counts */
-    for (size_t c = 0; c < f->category_count && used + 1 < size; ++c) {
+    int listed = 0;
+    for (size_t c = 0; f->categorical && c < f->category_count && used + 1 < size; ++c) {
         double v = (double)f->category_first + (double)c;
         size_t m = 0;
         for (size_t k = 0; k < f->sphere_count; ++k)
@@ -648,9 +649,11 @@ void sd_render_describe(const sd_render_frame *f, const sd_render_def *d, char *
             m += f->cell_value[k] == v && (k == 0 || f->cell_id[k] != f->cell_id[k - 1]);
         if (!m)
             continue;
-        w = snprintf(buf + used, size - used, "%s%s (%zu)", used && buf[used - 1] == ')' ? ", " : ": ", f->names[c], m);
+        w = snprintf(buf + used, size - used, "%s%s (%zu)", listed++ ? ", " : ": ", f->names[c], m);
         used = w > 0 && used + (size_t)w < size ? used + (size_t)w : size - 1;
     }
+    if (f->not_finite && used + 1 < size)
+        snprintf(buf + used, size - used, "; %zu more not drawn (a position or radius not finite)", f->not_finite);
 }
 
 sd_status sd_render_frame_load(const char *path, const char *field, sd_render_frame *out, sd_error *err)
@@ -756,9 +759,15 @@ sd_status sd_render_frame_particles(const sd_render_particles *p, const char *fi
         sd_render_frame_free(out);
         return sd_error_set(err, SD_ERR_MEMORY, src, 0, "", "out of memory");
     }
+    size_t m = 0; /* spheres kept: a failed-NNNNNN.h5 may hold a state that is not finite */
     for (size_t k = 0; k < n; ++k) {
-        memcpy(out->centres + 3 * k, p->x + 3 * k, 3 * sizeof(double));
-        out->radii[k] = p->radius[k];
+        if (!isfinite(p->x[3 * k]) || !isfinite(p->x[3 * k + 1]) || !isfinite(p->x[3 * k + 2]) ||
+            !isfinite(p->radius[k])) {
+            out->not_finite++;
+            continue;
+        }
+        memcpy(out->centres + 3 * m, p->x + 3 * k, 3 * sizeof(double));
+        out->radii[m] = p->radius[k];
         double val = 0.0;
         if (vec)
             val = sqrt(vec[3 * k] * vec[3 * k] + vec[3 * k + 1] * vec[3 * k + 1] + vec[3 * k + 2] * vec[3 * k + 2]);
@@ -767,13 +776,13 @@ sd_status sd_render_frame_particles(const sd_render_particles *p, const char *fi
                 : which == 2 ? (double)p->id[k]
                 : which == 3 ? (double)p->shape[k]
                              : (double)p->material[k];
-        out->sphere_value[k] = val;
+        out->sphere_value[m++] = val;
         if (p->shape[k] >= 0)
             out->bounding_spheres = 1;
     }
-    out->sphere_count = n;
-    int planar = n > 0;
-    for (size_t k = 0; planar && k < n; ++k)
+    out->sphere_count = m;
+    int planar = m > 0;
+    for (size_t k = 0; planar && k < m; ++k)
         planar = out->centres[3 * k + 2] == 0.0;
     out->planar = planar;
     snprintf(out->unit, sizeof out->unit, "%s", sd_render_field_unit(field, &out->categorical));

@@ -39,6 +39,7 @@ typedef struct sd_render_frame {
     size_t sphere_count;
     double *centres, *radii, *sphere_value;
     int bounding_spheres;  /* some sphere stands for a shaped particle */
+    size_t not_finite;     /* particles left out: a position or radius not finite (a failed run's state) */
     /* walls, drawn as thin outlines */
     size_t wall_point_count;
     double *wall_points;
