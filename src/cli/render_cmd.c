@@ -11,8 +11,8 @@
 
 #include "cli/commands.h"
 #include "core/alloc.h"
+#include "cli/render_ckpt.h"
 #include "io/checkpoint.h"
-#include "io/ckpt_particles.h"
 #include "render/render.h"
 
 #include <errno.h>
@@ -31,11 +31,14 @@ static int sd_render_usage(FILE *f)
                "                       [--field NAME]\n"
                "                       [--view front|top|iso|AZ,EL] [--size WxH] [--colormap viridis|coolwarm|gray]\n"
                "                       [--range LO,HI] [--fit particles|all] [--no-colorbar] [--movie [--fps N]]\n"
+               "                       [--scene SCENE.yaml]\n"
                "\n"
                "  draws a frame's particles with their true shapes (the run's shapes_NNNNNN.vtp, written\n"
                "  with output.formats: [vtk, csv, shapes]; without it, spheres of each particle's radius),\n"
                "  coloured by a field, walls and meshes drawn thin; no display needed; a checkpoint\n"
                "  (checkpoint-NNNNNN.h5, failed-NNNNNN.h5) draws its particles as spheres, without walls\n"
+               "  --scene S     with a checkpoint: the scene that wrote it, whose world restored from the\n"
+               "                checkpoint is drawn with its true shapes and walls\n"
                "  --frame I     frame I of a frames.pvd (0 the first, -1 the last: the default)\n"
                "  --field NAME  speed (the default) or any particle array (vectors by magnitude)\n"
                "  --view V      front (along +y), top (down -z), iso, or AZ,EL in degrees (default iso;\n"
@@ -106,41 +109,26 @@ static void sd_movie_name(const char *out, long k, char *buf, size_t size)
         snprintf(buf, size, "%.*s_%06ld.png", (int)n, out, k);
 }
 
-/* A checkpoint's particles (io/ckpt_particles.h) as a frame of spheres:
- * the checkpoint holds no template geometry and its walls only as this
- * build's records. */
-static sd_status sd_render_load_checkpoint(const char *path, const char *field, sd_render_frame *f, sd_error *err)
-{
-    sd_ckpt_particles p;
-    sd_status s = sd_ckpt_particles_read(path, &p, err);
-    if (s == SD_OK) {
-        sd_render_particles rp = {.n = p.n, .x = p.x, .v = p.v, .w = p.w, .f = p.f, .q = p.q, .radius = p.radius,
-                                  .id = p.id, .shape = p.shape, .material = p.material,
-                                  .shape_count = p.shape_count, .material_count = p.material_count,
-                                  .shape_names = (const char(*)[64])p.shape_names,
-                                  .material_names = (const char(*)[64])p.material_names, .source = path};
-        s = sd_render_frame_particles(&rp, field, f, err);
-    }
-    sd_ckpt_particles_free(&p);
-    return s;
-}
-
 /* say: print what the picture shows (one picture; a movie says it once) */
+/* --scene SCENE.yaml: the scene a checkpoint's world is restored in (cli/render_ckpt.c) */
+static const char *sd_render_scene;
+
 static int sd_render_one(const char *frame, const char *field, sd_render_def *d, int view_given, const char *png,
                          int say)
 {
     sd_render_frame f;
     sd_error err;
     int ckpt = sd_checkpoint_is_file(frame);
-    sd_status s = ckpt ? sd_render_load_checkpoint(frame, field, &f, &err) : sd_render_frame_load(frame, field, &f, &err);
+    sd_status s = ckpt ? sd_render_load_checkpoint(frame, sd_render_scene, field, &f, &err)
+                       : sd_render_frame_load(frame, field, &f, &err);
     if (s != SD_OK)
         return sd_cli_fail_input(&err);
     if (!view_given && f.planar)
         sd_render_view("top", &d->azimuth, &d->elevation);
-    if (ckpt)
+    if (ckpt && !sd_render_scene)
         fprintf(stderr, "shapedem: render: %s is a checkpoint: its particles are drawn as spheres of their radius "
-                        "(a shaped particle's bounding sphere), without the walls (render a frame of the run for "
-                        "true shapes and walls)\n", frame);
+                        "(a shaped particle's bounding sphere), without the walls (--scene SCENE.yaml, the scene "
+                        "that wrote it, draws true shapes and walls)\n", frame);
     else if (f.bounding_spheres)
         fprintf(stderr, "shapedem: render: %s has no shapes file: shaped particles are drawn as their bounding "
                         "spheres (write output.formats: [vtk, csv, shapes])\n", frame);
@@ -280,6 +268,11 @@ int sd_cmd_render(int argc, char **argv)
                 return sd_render_bad("--fit needs particles or all, got '%s'", next ? next : "");
             d.fit_walls = !strcmp(next, "all");
             ++k;
+        } else if (!strcmp(a, "--scene")) {
+            if (!next || !next[0])
+                return sd_render_bad("%s needs the scene file that wrote the checkpoint", a);
+            sd_render_scene = next;
+            ++k;
         } else if (!strcmp(a, "--no-colorbar")) {
             d.colorbar = 0;
         } else if (!strcmp(a, "--movie")) {
@@ -309,6 +302,8 @@ int sd_cmd_render(int argc, char **argv)
                         "build time: install libcairo2-dev, scripts/deps.sh does it, and build again)\n");
         return 2;
     }
+    if (sd_render_scene && !sd_checkpoint_is_file(in))
+        return sd_render_bad("--scene goes with a checkpoint (.h5), not '%s'", in);
     int is_pvd = sd_ends_with(in, ".pvd");
     if (movie && !is_pvd)
         return sd_render_bad("--movie needs a frames.pvd, got '%s'", in);

@@ -8,10 +8,12 @@
 #    for bit (the frame's Float64 arrays read with Python's struct);
 #  - `shapedem render CK.h5` draws it (exit 0, a PNG of the asked size, the
 #    note that it draws spheres), coloured by shape with the names kept in
-#    the checkpoint;
+#    the checkpoint; with --scene (the scene that wrote it) the restored
+#    world is drawn with true shapes and walls: the picture of the frame of
+#    the same step, and no temporary file left;
 #  - bad input: a scene given to info --csv, a truncated checkpoint, a field
-#    the checkpoint lacks: one line on stderr, exit 2, nothing on stdout and
-#    no picture.
+#    the checkpoint lacks, --scene of another scene or with a frame: one line
+#    on stderr, exit 2, nothing on stdout and no picture.
 set -u
 bin="$1"
 root="$2"
@@ -82,6 +84,19 @@ check "render CK.h5: exit $rc, PNG $size (160 120), coloured by the shapes' name
     "$([[ $rc == 0 && $size == "160 120" ]] && grep -q 'coloured by shape: sphere (3), cube (1), rod (1)$' "$tmp/r.out" &&
         grep -q 'is a checkpoint: its particles are drawn as spheres' "$tmp/r.err" && echo 1 || echo 0)"
 
+# with the scene that wrote it: the restored world's true shapes and walls,
+# the same picture as the run's frame of step 20; no temporary left behind
+mkdir -p "$tmp/t"
+TMPDIR="$tmp/t" "$bin" render "$ck" --scene "$tmp/s.yaml" -o "$tmp/cks.png" --size 160x120 --fit all >/dev/null 2>"$tmp/cks.err"
+rc=$?
+"$bin" render "$tmp/run/particles_000002.vtu" -o "$tmp/frame.png" --size 160x120 --fit all >/dev/null 2>&1
+mad=$("$py" "$root/tests/render/png_mad.py" mad "$tmp/frame.png" "$tmp/cks.png" 2>&1)
+"$bin" render "$ck" -o "$tmp/cksph.png" --size 160x120 --fit all >/dev/null 2>&1
+sph=$("$py" "$root/tests/render/png_mad.py" mad "$tmp/frame.png" "$tmp/cksph.png" 2>&1)
+check "render CK.h5 --scene: exit $rc, the step-20 frame's picture (MAD $mad < 0.5; spheres only: $sph), no temporary left" \
+    "$([[ $rc == 0 && ! -s $tmp/cks.err && -z $(ls -A "$tmp/t") ]] &&
+        awk -v a="$mad" -v b="$sph" 'BEGIN { print (a + 0 < 0.5 && b + 0 > 0.5) ? 1 : 0 }' || echo 0)"
+
 # bad input: one line, exit 2, nothing on stdout, no picture
 bad() { # label, expected text, command...
     local label="$1" want="$2"
@@ -100,5 +115,8 @@ bad "info --csv of a truncated checkpoint" "cut.h5" info "$tmp/cut.h5" --csv
 bad "render of a truncated checkpoint" "cut.h5" render "$tmp/cut.h5" -o "$tmp/bad.png"
 bad "render a field the checkpoint lacks" "no field 'temperature'" render "$ck" -o "$tmp/bad.png" --field temperature
 bad "info --cvs (a typo)" "unknown option '--cvs'" info "$ck" --cvs
+sed 's/density: 2500/density: 2600/' "$tmp/s.yaml" >"$tmp/other.yaml"
+bad "render --scene with another scene" "written by another scene" render "$ck" --scene "$tmp/other.yaml" -o "$tmp/bad.png"
+bad "--scene with a frame" "--scene goes with a checkpoint" render "$tmp/run/particles_000002.vtu" --scene "$tmp/s.yaml" -o "$tmp/bad.png"
 
 finish checkpoint_look
