@@ -23,6 +23,7 @@
 
 #include "cli/check_report.h"
 #include "cli/commands.h"
+#include "cli/threads.h"
 #include "core/duration.h"
 #ifdef SHAPEDEM_CLI_MPI
 #include "cli/mpi_run.h"
@@ -72,7 +73,8 @@ static void sd_usage(FILE *f)
             "  help    this text; 'help scene' lists every scene key with unit and default\n"
             "\n"
             "  -o DIR       output directory\n"
-            "  --threads N  OpenMP threads (default: simulation.threads, else OMP_NUM_THREADS)\n"
+            "  --threads N  OpenMP threads (default: simulation.threads, else OMP_NUM_THREADS, else\n"
+            "               the cores not busy with other processes at the start)\n"
             "  --backend B  where the step runs: auto (a GPU when usable, else the CPU), cpu or\n"
             "               cuda (default: simulation.backend, else auto)\n"
             "  --steps N    run N steps instead of the scene's (short runs)\n"
@@ -204,8 +206,12 @@ static int sd_load_world_msg(const sd_cli *c, int device, sd_scene **scene, sd_w
     }
     int failed = sd_scene_load(c->scene, scene, &err) != SD_OK;
     if (!failed) {
+        sd_scene_info si;
+        sd_scene_get_info(*scene, &si);
         if (c->threads > 0)
             sd_scene_set_threads(*scene, (int)c->threads);
+        else if (si.threads == 0 && sd_threads_default() > 0) /* the free cores (cli/threads.c) */
+            sd_scene_set_threads(*scene, sd_threads_default());
         if (c->steps >= 0)
             sd_scene_set_steps(*scene, c->steps);
         sd_scene_set_backend(*scene, (sd_backend_kind)c->backend); /* SD_BACKEND_COUNT: the scene's */
@@ -316,6 +322,10 @@ static int sd_cmd_run(const sd_cli *c)
     signal(SIGTERM, sd_on_signal);
 
     int tty = !c->quiet && !c->bench && isatty(STDERR_FILENO);
+    char why[256]; /* how many threads and why (cli/threads.c), above the progress line */
+    sd_threads_describe(c->threads, info.threads, sd_world_threads(w), why, sizeof why);
+    if (tty)
+        fprintf(stderr, "shapedem: running on %s\n", why);
     size_t n = sd_world_particle_count(w);
     double last_print = 0;
     sd_run_progress pr;
@@ -480,7 +490,9 @@ static int sd_cmd_check(const sd_cli *c)
     sd_check_print_stop(stdout, scene);
     printf("contact      shortest estimated contact duration %.4g s (%.1f steps)\n", tc, tc / dt);
     printf("time step    %.4g s recommended; stability limit %.4g s\n", rec, tc / 5);
-    printf("threads      %d\n", sd_world_threads(w));
+    char why[256];
+    sd_threads_describe(c->threads, info.threads, sd_world_threads(w), why, sizeof why);
+    printf("threads      %s\n", why);
     if (c->ranks > 0) /* the MPI split, the grid of boxes by particle count (mpi/mpi.h) */
         sd_check_print_ranks(stdout, scene, w, c->ranks);
     printf("backend      %s (%s)\n", sd_world_backend(w), sd_world_backend_note(w));
@@ -611,6 +623,8 @@ int main(int argc, char **argv)
             return rc;
     }
 #endif
+    if (argc >= 2 && (!strcmp(argv[1], "run") || !strcmp(argv[1], "check")))
+        sd_threads_start(argc, argv); /* before any OpenMP region: may start the program again */
     if (argc >= 2 && (!strcmp(argv[1], "--version") || !strcmp(argv[1], "version"))) {
         printf("shapedem %s\n", SD_VERSION_STRING);
         return 0;

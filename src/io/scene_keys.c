@@ -136,7 +136,7 @@ const sd_scene_key sd_scene_keys[] = {
     {SD_SEC_SIMULATION, "seed", SD_KT_INT, SD_KR_NONNEG, NULL, ALL, 0, "", "1",
      "seed of every random choice (random generator, radii, velocity jitter)"},
     {SD_SEC_SIMULATION, "threads", SD_KT_INT, SD_KR_NONNEG, NULL, ALL, 0, "", "0",
-     "OpenMP threads, at most 1024; 0 = OMP_NUM_THREADS or all cores"},
+     "OpenMP threads, at most 1024; 0 = OMP_NUM_THREADS, else the cores not busy at the start"},
     {SD_SEC_SIMULATION, "contact_law", SD_KT_ENUM, SD_KR_ANY, SD_LAW_CHOICES, ALL, 0, "",
      "hertz_mindlin", "default contact law for every pair of materials"},
     {SD_SEC_SIMULATION, "skin", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "m", "0",
