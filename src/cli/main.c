@@ -212,6 +212,8 @@ static int sd_load_world_msg(const sd_cli *c, int device, sd_scene **scene, sd_w
             sd_scene_set_threads(*scene, (int)c->threads);
         else if (si.threads == 0 && sd_threads_default() > 0) /* the free cores (cli/threads.c) */
             sd_scene_set_threads(*scene, sd_threads_default());
+        else
+            sd_threads_scene(si.threads); /* more than the free cores: may start the program again */
         if (c->steps >= 0)
             sd_scene_set_steps(*scene, c->steps);
         sd_scene_set_backend(*scene, (sd_backend_kind)c->backend); /* SD_BACKEND_COUNT: the scene's */

@@ -24,9 +24,9 @@
  * (procs_running, this process's one thread left out), averaged over five
  * samples 10 ms apart: the instantaneous count, where the load average
  * trails a load that has just started or ended by a minute.
- * simulation.threads is read from the scene after this choice: a scene
- * asking for more threads than free cores keeps the spinning (set
- * OMP_WAIT_POLICY=passive). None of this changes results: the bits are
+ * simulation.threads is known only once the scene is read: a scene asking
+ * for more threads than free cores starts the program again then, before
+ * the world is built (sd_threads_scene). None of this changes results: the bits are
  * the same on any thread count (docs/physics.md, determinism). */
 #define _GNU_SOURCE /* sched_getaffinity, CPU_COUNT */
 
@@ -49,6 +49,7 @@ static struct {
     double busy; /* other runnable tasks at the start */
     int passive; /* OMP_WAIT_POLICY=passive set here */
     int applied; /* sd_threads_default gave the scene its count */
+    char **argv; /* main's, to start again with */
 } sd_plan;
 
 static int sd_threads_cores(void)
@@ -108,8 +109,29 @@ static long sd_threads_asked(int argc, char **argv)
     return env && *env ? strtol(env, NULL, 10) : 0;
 }
 
+/* Starts the program again waiting passively, when the user left the wait
+ * to us and it is not an MPI rank; returns when it did not. */
+static void sd_threads_restart(void)
+{
+    if (!sd_plan.argv || sd_plan.passive)
+        return;
+    if (getenv("OMP_WAIT_POLICY") || getenv("GOMP_SPINCOUNT"))
+        return; /* the user's choice */
+    if (getenv("OMPI_COMM_WORLD_SIZE") || getenv("PMI_SIZE"))
+        return; /* an MPI rank: not restarted under its launcher */
+    char plan[96];
+    snprintf(plan, sizeof plan, "%d %.2f 1", sd_plan.cores, sd_plan.busy);
+    if (setenv("OMP_WAIT_POLICY", "passive", 1) || setenv(SD_THREADS_ENV, plan, 1))
+        return;
+    execv("/proc/self/exe", sd_plan.argv);
+    /* could not start again: go on spinning, and say nothing set it */
+    unsetenv("OMP_WAIT_POLICY");
+    unsetenv(SD_THREADS_ENV);
+}
+
 void sd_threads_start(int argc, char **argv)
 {
+    sd_plan.argv = argv;
     const char *carried = getenv(SD_THREADS_ENV);
     if (carried && sscanf(carried, "%d %lf %d", &sd_plan.cores, &sd_plan.busy, &sd_plan.passive) == 3 &&
         sd_plan.cores >= 1) {
@@ -121,20 +143,14 @@ void sd_threads_start(int argc, char **argv)
     sd_plan.busy = sd_threads_busy();
     sd_plan.known = 1;
     long asked = sd_threads_asked(argc, argv);
-    if (asked <= 1 || asked <= sd_threads_free())
-        return; /* the default count, one thread, or enough free cores: libgomp's spinning */
-    if (getenv("OMP_WAIT_POLICY") || getenv("GOMP_SPINCOUNT"))
-        return; /* the user's choice */
-    if (getenv("OMPI_COMM_WORLD_SIZE") || getenv("PMI_SIZE"))
-        return; /* an MPI rank: not restarted under its launcher */
-    char plan[96];
-    snprintf(plan, sizeof plan, "%d %.2f 1", sd_plan.cores, sd_plan.busy);
-    if (setenv("OMP_WAIT_POLICY", "passive", 1) || setenv(SD_THREADS_ENV, plan, 1))
-        return;
-    execv("/proc/self/exe", argv);
-    /* could not start again: go on spinning, and say nothing set it */
-    unsetenv("OMP_WAIT_POLICY");
-    unsetenv(SD_THREADS_ENV);
+    if (asked > 1 && asked > sd_threads_free())
+        sd_threads_restart(); /* else the default count, one thread, or enough free cores: spinning */
+}
+
+void sd_threads_scene(int scene_threads)
+{
+    if (sd_plan.known && scene_threads > 1 && scene_threads > sd_threads_free())
+        sd_threads_restart();
 }
 
 int sd_threads_default(void)

@@ -13,6 +13,11 @@
  * Returns only when it did not start the program again. */
 void sd_threads_start(int argc, char **argv);
 
+/* The scene's simulation.threads (when no --threads overrides it), once
+ * the scene is read and before any OpenMP region: more than the free cores
+ * starts the program again waiting passively, as sd_threads_start does. */
+void sd_threads_scene(int scene_threads);
+
 /* The thread count a run uses when neither --threads, simulation.threads
  * nor OMP_NUM_THREADS says: the cores not busy with other processes at the
  * start, at least 1; 0 when OMP_NUM_THREADS is set (OpenMP's own default)

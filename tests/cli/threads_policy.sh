@@ -3,7 +3,7 @@
 # more threads than free cores wait passively (src/cli/threads.c, issue 31):
 #   - --threads 1, OMP_NUM_THREADS and the default each named as the reason;
 #     the default is all the cores or the free ones, with the count it names;
-#   - --threads above the cores: the program starts itself again with
+#   - --threads (or simulation.threads) above the cores: the program starts itself again with
 #     OMP_WAIT_POLICY=passive, seen in the environment of the running
 #     process (/proc/PID/environ), where libgomp reads it, and check says so;
 #   - a policy the user set (OMP_WAIT_POLICY, GOMP_SPINCOUNT) is kept.
@@ -64,6 +64,13 @@ wait "$pid" 2>/dev/null
 pid=""
 check "run --threads $over: the process runs with OMP_WAIT_POLICY=passive (saw '${seen:-nothing}')" \
     "$([[ $seen == OMP_WAIT_POLICY=passive ]] && echo 1 || echo 0)"
+
+# simulation.threads is read after the start: the scene's count restarts too
+sed -e "s#^simulation:#simulation:\n  threads: $over#" "$scene" >"$tmp/scene.yaml"
+"${clean[@]}" "$bin" check "$tmp/scene.yaml" >"$tmp/out" 2>&1
+echo "  $(line)"
+check "simulation.threads: $over on $cores cores: named, and the threads wait passively" \
+    "$([[ $(line) == *"$over threads (simulation.threads); waiting passively"* ]] && echo 1 || echo 0)"
 
 "${clean[@]}" OMP_WAIT_POLICY=active "$bin" check "$scene" --threads "$over" >"$tmp/out" 2>&1
 echo "  $(line)"
