@@ -396,8 +396,8 @@ sd_status sd_vtk_write_walls(FILE *fp, const sd_world *w, double plane_side, sd_
             npts, ncells);
     fprintf(fp, "      <CellData Scalars=\"wall\" Vectors=\"force\">\n");
     sd_vtk_array_decl(fp, "        ", "Int32", "wall", 1, ncells, 4, &off);
-    sd_vtk_array_decl(fp, "        ", "Int32", "kind", 1, ncells, 4, &off);
     sd_vtk_array_decl(fp, "        ", "Float64", "force", 3, ncells, 8, &off);
+    sd_vtk_array_decl(fp, "        ", "Int32", "kind", 1, ncells, 4, &off); /* issue 31: what render frames */
     fprintf(fp, "      </CellData>\n      <Points>\n");
     sd_vtk_array_decl(fp, "        ", "Float64", "position", 3, npts, 8, &off);
     fprintf(fp, "      </Points>\n      <Polys>\n");
@@ -410,11 +410,11 @@ sd_status sd_vtk_write_walls(FILE *fp, const sd_world *w, double plane_side, sd_
     b.fp = fp;
     b.used = 0;
     b.failed = 0;
-    /* Pass 0: wall index per cell; K: wall kind per cell (0 plane, 1 box,
-     * 2 mesh, 3 drum: a reader frames the bounded ones); 1: force per cell;
-     * 2: points; 3: connectivity; 4: offsets. */
+    /* Pass 0: wall index per cell; 1: force per cell; K: wall kind per
+     * cell (0 plane, 1 box, 2 mesh, 3 drum: a reader frames the bounded
+     * ones); 2: points; 3: connectivity; 4: offsets. */
     enum { SD_PASS_KIND = 5 };
-    static const int order[6] = {0, SD_PASS_KIND, 1, 2, 3, 4}; /* the header's order */
+    static const int order[6] = {0, 1, SD_PASS_KIND, 2, 3, 4}; /* the header's order */
     for (int o = 0; o < 6; ++o) {
         int pass = order[o];
         uint64_t bytes = pass == 0 || pass == SD_PASS_KIND ? (uint64_t)ncells * 4u

@@ -27,8 +27,9 @@ static void scene_path(char *buf, size_t n, const char *rel)
 }
 
 /* Reads the raw little-endian appended block of a walls .vtp written by
- * sd_vtk_write_walls: the points are the third array (wall, force,
- * position). Returns the number of points read into pts (x, y, z). */
+ * sd_vtk_write_walls: the points are the array named position, at the
+ * offset its DataArray tag gives. Returns the number of points read into
+ * pts (x, y, z). */
 static size_t read_wall_points(FILE *f, double **pts, size_t *polys)
 {
     fseek(f, 0, SEEK_END);
@@ -46,11 +47,9 @@ static size_t read_wall_points(FILE *f, double **pts, size_t *polys)
     if (np && app) {
         n = (size_t)strtoull(np + 16, NULL, 10);
         const unsigned char *p = (const unsigned char *)strchr(app, '_') + 1;
-        for (int arr = 0; arr < 2; ++arr) { /* skip wall and force: a u64 byte count, then the bytes */
-            uint64_t bytes = 0;
-            memcpy(&bytes, p, 8);
-            p += 8 + bytes;
-        }
+        const char *pos = strstr((const char *)b, "Name=\"position\"");
+        const char *off = pos ? strstr(pos, "offset=\"") : NULL;
+        p += off ? strtoull(off + 8, NULL, 10) : 0;
         uint64_t bytes = 0;
         memcpy(&bytes, p, 8);
         p += 8;
