@@ -10,7 +10,9 @@
  * checks, io/checkpoint.h) or lacks one of these columns is refused with a
  * message naming the file. The rows are the owned particles in storage
  * order (particles 0 .. particles/n - 1; a periodic run's images are not
- * listed), as the frame of the same step writes them.
+ * listed), as the frame of the same step writes them, but for positions
+ * in a periodic run: stored, not wrapped into the box as frames show them
+ * (a checkpoint does not keep the domain; the scene does).
  */
 #ifndef SD_IO_CKPT_PARTICLES_H
 #define SD_IO_CKPT_PARTICLES_H
