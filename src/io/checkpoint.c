@@ -584,9 +584,10 @@ sd_status sd_checkpoint_decode(const void *buf, size_t size, sd_snapshot *out, s
         sd_h5_fail(&r, "", "an HDF5 file, but not a shapedem checkpoint (no format attribute '" SD_CKPT_FORMAT "')");
     else if (!sd_h5_attr_read(f, "version", H5T_INTEGER, H5T_NATIVE_UINT32, &version))
         sd_h5_fail(&r, "", "a checkpoint without its format version");
-    else if (version != SD_SNAPSHOT_VERSION) {
+    else if (version < SD_SNAPSHOT_VERSION_OLDEST || version > SD_SNAPSHOT_VERSION) {
         r.st = sd_error_set(err, SD_ERR_INPUT, "", 0, "", "checkpoint format version %u; this shapedem (%s) reads "
-                            "version %u", version, SD_VERSION_STRING, SD_SNAPSHOT_VERSION);
+                            "versions %u to %u", version, SD_VERSION_STRING, SD_SNAPSHOT_VERSION_OLDEST,
+                            SD_SNAPSHOT_VERSION);
     } else if (!sd_h5_attr_read(f, "scene_hash", H5T_INTEGER, H5T_NATIVE_UINT64, &out->scene_hash) ||
                !sd_h5_attr_read(f, "checksum", H5T_INTEGER, H5T_NATIVE_UINT64, &checksum) ||
                !sd_h5_attr_read(f, "step", H5T_INTEGER, H5T_NATIVE_INT64, &step) ||

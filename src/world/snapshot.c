@@ -19,6 +19,7 @@
 #include "core/error.h"
 #include "world/mesh.h"
 #include "world/process.h"
+#include "world/restore_check.h"
 #include "world/solver.h"
 #include "world/view.h"
 #include "world/world.h"
@@ -565,7 +566,11 @@ static sd_status sd_snapshot_scene_items(const sd_world *w, sd_snapshot *s)
     }
     for (size_t k = 0; k < nm; ++k)
         snprintf((char *)mats->data + k * SD_SNAP_NAME, SD_SNAP_NAME, "%s", w->materials[k].name);
-    return SD_OK;
+    /* the scene hash's parts, so a refused restart names the part that
+     * differs (world/scene_hash.c) */
+    uint64_t part[SD_SCENE_PART_COUNT];
+    sd_world_scene_parts(w, part);
+    return sd_snapshot_add(s, "scene/parts", SD_ST_U64, SD_SCENE_PART_COUNT, 1, part) ? SD_OK : SD_ERR_MEMORY;
 }
 
 sd_status sd_world_snapshot(const sd_world *wc, sd_snapshot *s, sd_error *err)
@@ -611,6 +616,12 @@ static int sd_ref_cmp(const void *a, const void *b)
 
 sd_status sd_world_restore(sd_world *w, const sd_snapshot *s, sd_error *err)
 {
+    if (s->version == 2)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "", "checkpoint format version 2 (written by shapedem %s), "
+                            "whose scene hash leaves out mesh walls, drums, insertions and outlets: this shapedem "
+                            "restarts version %u only; restart it with the shapedem that wrote it, or start a new "
+                            "scene from its particles (a csv generator, docs/checkpoints.md)", s->writer,
+                            SD_SNAPSHOT_VERSION);
     if (s->version != SD_SNAPSHOT_VERSION)
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "", "checkpoint format version %u, this shapedem reads "
                             "version %u (written by shapedem %s)", s->version, SD_SNAPSHOT_VERSION, s->writer);
@@ -622,11 +633,19 @@ sd_status sd_world_restore(sd_world *w, const sd_snapshot *s, sd_error *err)
                             "scene is %dD on the %s solver", s->dimension, s->solver, w->dim2 ? 2 : 3,
                             w->solver->name);
     uint64_t h = sd_world_scene_hash(w);
-    if (s->scene_hash != h)
-        return sd_error_set(err, SD_ERR_INPUT, "", 0, "", "the checkpoint was written by another scene (scene hash "
-                            "%016llx, this scene's is %016llx: materials, shapes, walls, time step or another "
-                            "setting of the physics differ)", (unsigned long long)s->scene_hash,
-                            (unsigned long long)h);
+    if (s->scene_hash != h) {
+        /* name the parts that differ where the file lists them */
+        uint64_t part[SD_SCENE_PART_COUNT];
+        char what[512];
+        sd_world_scene_parts(w, part);
+        const sd_snap_item *it = sd_snapshot_find(s, "scene/parts");
+        if (!it || it->type != SD_ST_U64 || it->comps != SD_SCENE_PART_COUNT || it->count != 1 ||
+            sd_scene_parts_differ(it->data, part, what, sizeof what) == 0)
+            snprintf(what, sizeof what, "materials, shapes, walls, time step or another setting of the physics");
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "", "the checkpoint was written by another scene: %s differ "
+                            "(scene hash %016llx, this scene's is %016llx)", what,
+                            (unsigned long long)s->scene_hash, (unsigned long long)h);
+    }
     sd_state_table t;
     memset(&t, 0, sizeof t);
     t.saved = s;
@@ -659,103 +678,29 @@ sd_status sd_world_restore(sd_world *w, const sd_snapshot *s, sd_error *err)
                 ++b;
             }
         }
-        /* all checked: now copy (the sizes first were set by the listing) */
-        for (size_t k = 0, j = 0; st == SD_OK && k < t.n; ++k, ++j) {
-            while (sd_snap_is_scene(&s->items[j]))
-                ++j;
-            const sd_snap_item *it = &s->items[j];
-            if (t.refs[k].count)
-                sd_scatter_rows(&t.refs[k], it->data);
-        }
+    }
+    /* every real finite before the copy; the scene's definitions kept
+     * aside, then the copied values checked before any use (a checksum can
+     * be recomputed: it validates no content; world/restore_check.c) */
+    sd_restore_kept keep;
+    memset(&keep, 0, sizeof keep);
+    if (st == SD_OK)
+        st = sd_restore_check_items(s, err);
+    if (st == SD_OK && sd_restore_keep(w, &keep) != SD_OK)
+        st = sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory keeping the scene's walls");
+    /* all checked: now copy (the sizes first were set by the listing) */
+    for (size_t k = 0, j = 0; st == SD_OK && k < t.n; ++k, ++j) {
+        while (sd_snap_is_scene(&s->items[j]))
+            ++j;
+        const sd_snap_item *it = &s->items[j];
+        if (t.refs[k].count)
+            sd_scatter_rows(&t.refs[k], it->data);
     }
     sd_state_table_free(&t);
+    if (st == SD_OK)
+        st = sd_restore_check_world(w, &keep, err);
+    sd_restore_kept_free(&keep);
     if (st != SD_OK)
         return st;
     return w->solver->resumed(w, err);
-}
-
-/* ---- the scene's hash ------------------------------------------------------------ */
-
-static uint64_t sd_hash_f64(uint64_t h, double x)
-{
-    if (x == 0)
-        x = 0; /* -0 and 0 alike */
-    return sd_fnv1a(h, &x, sizeof x);
-}
-
-static uint64_t sd_hash_i64(uint64_t h, int64_t x) { return sd_fnv1a(h, &x, sizeof x); }
-
-static uint64_t sd_hash_str(uint64_t h, const char *s) { return sd_fnv1a(h, s ? s : "", s ? strlen(s) + 1 : 1); }
-
-static uint64_t sd_hash_v3d(uint64_t h, sd_v3d v)
-{
-    return sd_hash_f64(sd_hash_f64(sd_hash_f64(h, v.x), v.y), v.z);
-}
-
-uint64_t sd_world_scene_hash(const sd_world *w)
-{
-    const sd_world_def *d = &w->def;
-    uint64_t h = SD_FNV_BASIS;
-    /* field by field: struct padding never enters the hash */
-    h = sd_hash_i64(h, d->dimension);
-    h = sd_hash_f64(h, d->dt);
-    h = sd_hash_v3d(h, d->gravity);
-    h = sd_hash_i64(h, (int64_t)d->seed);
-    h = sd_hash_i64(h, d->law);
-    h = sd_hash_f64(h, d->skin);
-    h = sd_hash_i64(h, d->solver);
-    h = sd_hash_f64(h, d->local_damping);
-    h = sd_hash_i64(h, d->periodic);
-    h = sd_hash_v3d(h, d->domain_lo);
-    h = sd_hash_v3d(h, d->domain_hi);
-    h = sd_hash_i64(h, d->multi_contact);
-    h = sd_hash_i64(h, (int64_t)w->material_count);
-    for (size_t k = 0; k < w->material_count; ++k) {
-        const sd_material_def *m = &w->materials[k].def;
-        h = sd_hash_str(h, w->materials[k].name);
-        double v[] = {m->density, m->youngs_modulus, m->poisson_ratio, m->restitution, m->friction,
-                      m->rolling_friction, m->stiffness, m->tangential_stiffness_ratio, m->damping,
-                      m->volume_stiffness};
-        for (size_t j = 0; j < sizeof v / sizeof v[0]; ++j)
-            h = sd_hash_f64(h, v[j]);
-    }
-    h = sd_hash_i64(h, (int64_t)w->interaction_count);
-    for (size_t k = 0; k < w->interaction_count; ++k) {
-        const sd_interaction *it = &w->interactions[k];
-        double v[] = {it->def.restitution, it->def.friction, it->def.rolling_friction, it->def.stiffness,
-                      it->def.damping, it->def.volume_stiffness};
-        h = sd_hash_i64(sd_hash_i64(sd_hash_i64(h, it->a), it->b), it->def.law);
-        for (size_t j = 0; j < sizeof v / sizeof v[0]; ++j)
-            h = sd_hash_f64(h, v[j]);
-    }
-    /* templates: names, equal-volume radii, centres and the pools their
-     * geometry lives in (arrays of reals: no padding) */
-    h = sd_hash_i64(h, (int64_t)w->shape_count);
-    for (size_t k = 0; k < w->shape_count; ++k) {
-        h = sd_hash_str(h, w->shape_names[k]);
-        h = sd_hash_f64(h, (double)w->shape_req[k]);
-        h = sd_hash_f64(h, (double)w->shape_com[k].x);
-        h = sd_hash_f64(h, (double)w->shape_com[k].y);
-        h = sd_hash_f64(h, (double)w->shape_com[k].z);
-    }
-    h = sd_fnv1a(h, w->verts, w->vert_count * sizeof *w->verts);
-    h = sd_hash_i64(h, (int64_t)w->plane_count);
-    h = sd_hash_i64(h, (int64_t)w->shape2d_count);
-    for (size_t k = 0; k < w->shape2d_count; ++k)
-        h = sd_hash_str(h, w->shape2d_names[k]);
-    h = sd_fnv1a(h, w->pool2d, w->pool2d_count * sizeof *w->pool2d);
-    h = sd_hash_i64(h, (int64_t)w->wall_count);
-    for (size_t k = 0; k < w->wall_count; ++k) {
-        const sd_wall *wl = &w->walls[k];
-        const sd_wall_motion_def *m = &wl->motion;
-        h = sd_hash_str(h, wl->name);
-        h = sd_hash_i64(sd_hash_i64(sd_hash_i64(h, wl->kind), wl->material), (int64_t)wl->open_faces);
-        h = sd_hash_i64(h, wl->moving);
-        h = sd_hash_v3d(h, m->velocity);
-        double v[] = {m->move_start, m->move_end, m->servo_stress, m->servo_start, m->servo_end, m->servo_gain,
-                      m->servo_max_speed};
-        for (size_t j = 0; j < sizeof v / sizeof v[0]; ++j)
-            h = sd_hash_f64(h, v[j]);
-    }
-    return h;
 }

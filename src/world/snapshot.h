@@ -45,8 +45,14 @@
 
 /* The checkpoint format's version: a change of what is listed (a field
  * added, renamed or resized) makes old files unreadable by name or count
- * anyway; the version says so in one line. */
-#define SD_SNAPSHOT_VERSION 2
+ * anyway; the version says so in one line. Version 3: the scene hash
+ * covers mesh walls, drums, insertions and outlets, and scene/parts holds
+ * its parts (a version 2 file's hash means something else). */
+#define SD_SNAPSHOT_VERSION 3
+/* The oldest version read: its datasets are version 3's but scene/parts,
+ * so `shapedem info` and a new scene's csv generator still read it; only
+ * a restart refuses it (its hash means another thing). */
+#define SD_SNAPSHOT_VERSION_OLDEST 2
 
 /* Bytes of a name row of the scene/ items (template and material names,
  * zero-padded): what the world keeps, 63 characters and the NUL. */
@@ -149,10 +155,42 @@ sd_status sd_world_snapshot(const sd_world *w, sd_snapshot *s, sd_error *err);
  * The checksum is the reader's business (io/checkpoint.c). */
 sd_status sd_world_restore(sd_world *w, const sd_snapshot *s, sd_error *err);
 
-/* The hash of what the scene defines and a restart must share: the world
- * definition but for the thread count, the materials and interactions, the
- * shape templates and their pools, the walls' names, kinds, materials and
- * motions (not their positions, which move). */
+/* The scene's physics in parts (world/scene_hash.c), each hashed alone, so
+ * a refused restart or MPI rank can say which part differs: X(NAME, what
+ * it covers, as a message names it). */
+#define SD_SCENE_PARTS(X)                                                                                 \
+    X(SETTINGS, "the simulation settings (dimension, dt, gravity, seed, contact law, skin, solver, "       \
+                "local damping, periodic box, multi_contact)")                                              \
+    X(MATERIALS, "the materials or interactions")                                                          \
+    X(SHAPES, "the shape templates")                                                                       \
+    X(WALLS, "the walls (name, kind, material, geometry, motion, drum radius, length, centre, rpm)")        \
+    X(MESHES, "the mesh walls (file, scale, position, rotation, side, motion, rpm, axis, motion table)")     \
+    X(INSERTIONS, "the insertions (region, mix, size laws, count, mass, rate, start, velocity, attempts)")  \
+    X(OUTLETS, "the outlets (region, open_at, check_every)")
+
+enum {
+#define SD_X_PART(NAME, doc) SD_SCENE_##NAME,
+    SD_SCENE_PARTS(SD_X_PART)
+#undef SD_X_PART
+    SD_SCENE_PART_COUNT
+};
+
+/* The hash of each part of what the scene defines for the physics and a
+ * restart (or every MPI rank) must share; the output, analysis, start
+ * particles, thread count, backend and overlap guard are left out
+ * (scene_hash.c says why). */
+void sd_world_scene_parts(const sd_world *w, uint64_t part[SD_SCENE_PART_COUNT]);
+/* The FNV-1a 64 hash of the parts: the checkpoint's scene_hash. */
 uint64_t sd_world_scene_hash(const sd_world *w);
+/* The hash of the particles as built (every field of the owned ones, in
+ * storage order): with the parts, what every MPI rank compares with rank
+ * 0's before it splits the world (cli/mpi_run.c). */
+uint64_t sd_world_particles_hash(const sd_world *w);
+/* What part k covers (the SD_SCENE_PARTS text). */
+const char *sd_scene_part_doc(size_t k);
+/* The number of parts that differ between a and b; their texts, joined by
+ * ", ", in buf (truncated to size). */
+size_t sd_scene_parts_differ(const uint64_t a[SD_SCENE_PART_COUNT], const uint64_t b[SD_SCENE_PART_COUNT],
+                             char *buf, size_t size);
 
 #endif

@@ -399,6 +399,7 @@ static int sd_add_wall(sd_world *w, const sd_wall *proto, sd_error *err)
     w->walls = wl;
     wl[w->wall_count] = *proto;
     wl[w->wall_count].point_ref = proto->point;
+    wl[w->wall_count].geom0 = proto->geom;
     w->dirty = 1;
     w->prepared = 0;
     return (int)w->wall_count++;

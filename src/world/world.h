@@ -81,6 +81,7 @@ typedef struct sd_wall {
             int mesh;               /* mesh: index into the world's meshes (world/mesh.h) */
         };
     };
+    sd_wall_geom geom0;     /* the geometry as added: the scene hash's (geom moves; world/scene_hash.c) */
     int material;
     sd_vec3 force, torque;  /* on the wall, last step */
     /* motion (dynamics/servo.h, world/servo.c): prescribed or servo-controlled */

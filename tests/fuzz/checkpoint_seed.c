@@ -9,13 +9,17 @@
  * corpus/scene/biaxial-2d-small.yaml and tests/unit/scenes/restart-grid
  * .yaml: the cells solver in 3D with a polyhedron and in 2D with servo
  * walls, the grid solver with pour and outlet; small scenes, so the seeds
- * stay small (the HDF5 metadata dominate).
+ * stay small (the HDF5 metadata dominate). The name restore-base stands
+ * for restore_scene.h's scene, written into a temporary directory: the
+ * seed corpus/checkpoint/restore-base.h5 that fuzz_checkpoint restores.
  */
 #include <shapedem/scene.h>
 #include <shapedem/shapedem.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "restore_scene.h"
 
 int main(int argc, char **argv)
 {
@@ -29,11 +33,14 @@ int main(int argc, char **argv)
         memset(&err, 0, sizeof err);
         sd_scene *s = NULL;
         sd_world *w = NULL;
-        char msg[1024], out[4096];
-        const char *base = strrchr(argv[a], '/');
-        base = base ? base + 1 : argv[a];
+        char msg[1024], out[4096], made[1024];
+        const char *scene = argv[a];
+        if (strcmp(scene, "restore-base") == 0)
+            scene = sd_fuzz_restore_write(made, sizeof made);
+        const char *base = strrchr(scene, '/');
+        base = base ? base + 1 : scene;
         snprintf(out, sizeof out, "%s/%.*s.h5", argv[1], (int)strcspn(base, "."), base);
-        if (sd_scene_load(argv[a], &s, &err) != SD_OK || sd_scene_build(s, &w, &err) != SD_OK ||
+        if (sd_scene_load(scene, &s, &err) != SD_OK || sd_scene_build(s, &w, &err) != SD_OK ||
             sd_world_step(w, steps, &err) != SD_OK || sd_checkpoint_write(w, out, &err) != SD_OK) {
             sd_error_format(&err, msg, sizeof msg);
             fprintf(stderr, "checkpoint_seed: %s\n", msg);
