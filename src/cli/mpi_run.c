@@ -24,12 +24,36 @@
 #include "io/run.h"
 #include "io/scene.h"
 #include "mpi/mpi.h"
+#include "world/snapshot.h"
 
 struct sd_cli_mpi {
     sd_mpi *m;
     sd_mpi_drive d;
     int rank, size;
 };
+
+/* Every rank: its scene-built world against rank 0's (issue 31): the
+ * scene hash's parts and the start particles, so a stale or edited copy
+ * of the scene on one node (another gravity, density, dt) is refused
+ * before anything runs or is written; 0, or 2 with msg filled. */
+static int sd_cli_mpi_same_scene(const sd_world *w, int rank, int size, char *msg, size_t msize)
+{
+    uint64_t mine[SD_SCENE_PART_COUNT + 1], first[SD_SCENE_PART_COUNT + 1];
+    sd_world_scene_parts(w, mine);
+    mine[SD_SCENE_PART_COUNT] = sd_world_particles_hash(w);
+    memcpy(first, mine, sizeof first);
+    MPI_Bcast(first, SD_SCENE_PART_COUNT + 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+    if (memcmp(first, mine, sizeof mine) == 0)
+        return 0;
+    char what[512];
+    if (sd_scene_parts_differ(first, mine, what, sizeof what) == 0)
+        snprintf(what, sizeof what, "the start particles");
+    snprintf(msg, msize, "its scene differs from rank 0's (%s differ; the scene files must be the same on every "
+             "rank, docs/mpi.md)", what);
+    (void)rank;
+    (void)size;
+    return 2;
+}
 
 /* Every rank: did any fail? The lowest rank that did prints its message
  * (rank 0's as the serial program would; another's with its rank), and
@@ -68,6 +92,8 @@ int sd_cli_mpi_begin(const void *cli, sd_cli_load_fn load, const char *restart, 
     /* rank r of a node takes CUDA device r mod the node's devices (when
      * the scene's backend is cuda; chosen as the world is created) */
     int rc = sd_cli_mpi_agree(load(cli, sd_mpi_local_rank(), scene, &w, msg, sizeof msg), msg, rank, size);
+    if (rc == 0)
+        rc = sd_cli_mpi_agree(sd_cli_mpi_same_scene(w, rank, size, msg, sizeof msg), msg, rank, size);
     if (rc == 0 && (*scene)->output.checkpoint_minutes > 0) {
         /* a checkpoint makes every rank rebuild at the next step: at a
          * step count, the bits do not depend on the wall clock */
