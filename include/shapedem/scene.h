@@ -148,12 +148,14 @@ const char *sd_run_last_checkpoint(const sd_run *r);
 long sd_run_steps_to_output(const sd_run *r);
 
 typedef struct sd_run_progress {
-    long done, steps;             /* steps run, steps of the run */
+    long done, steps;             /* the world's step now, and the run's end step */
     double time;                  /* s, simulated time of the world */
     double wall_seconds;          /* of stepping only */
     double particle_steps_per_second;
     int threads;
     int stopped;                  /* simulation.stop_when was met: steps is where it stopped */
+    long first;                   /* the step the run started at (a restart: its checkpoint's);
+                                   * done - first steps ran */
 } sd_run_progress;
 
 void sd_run_get_progress(const sd_run *r, sd_run_progress *out);

@@ -20,16 +20,17 @@
 #include "shape/fourier.h"
 #include "shape/outline.h"
 
-static int sd_fit_usage(void)
+/* The usage: on stdout for --help (0), else on stderr (2). */
+static int sd_fit_usage(FILE *f)
 {
-    fprintf(stderr,
+    fprintf(f,
             "usage: shapedem shape fit-fourier OUTLINE.csv [--order N] [--directions M] [--beta B]\n"
             "  OUTLINE.csv  closed outline, one 'x,y' point (m) per line ('#' comments, optional header)\n"
             "  --order N       Fourier order, 0..%d (default 8)\n"
             "  --directions M  support directions sampled (default 720)\n"
             "  --beta B        coefficient-reduction factor in (0, %g] (default 0.9)\n",
             SD_SHAPE2D_MAX_ORDER, (double)SD_FOURIER_BETA_MAX);
-    return 2;
+    return f == stdout ? 0 : 2;
 }
 
 static int sd_fit_num(const char *opt, const char *v, double *out)
@@ -60,8 +61,11 @@ static int sd_fit_int(const char *opt, const char *v, int *out)
 
 int sd_cmd_fit_fourier(int argc, char **argv)
 {
+    for (int k = 3; k < argc; ++k)
+        if (!strcmp(argv[k], "--help") || !strcmp(argv[k], "-h"))
+            return sd_fit_usage(stdout);
     if (argc < 4 || argv[3][0] == '-')
-        return sd_fit_usage();
+        return sd_fit_usage(stderr);
     const char *path = argv[3];
     sd_fourier_fit_opts o = sd_fourier_fit_opts_default();
     for (int k = 4; k < argc; ++k) {

@@ -8,6 +8,7 @@
 #define _POSIX_C_SOURCE 200809L
 
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <signal.h>
 #include <stdio.h>
@@ -32,12 +33,21 @@
 #define SD_STR(x) #x
 #define SD_XSTR(x) SD_STR(x) /* a macro's value as a string literal */
 
-static volatile sig_atomic_t sd_interrupted;
+volatile sig_atomic_t sd_cli_interrupted;
 
-static void sd_on_signal(int sig)
+/* The first SIGINT/SIGTERM asks the run to stop after the step in
+ * progress (with a final checkpoint); a second one, for a run that does
+ * not get there (a step that does not end), ends the process at once with
+ * the signal's default action, as SIGKILL would: the files written so far
+ * stay complete (each replaced atomically, CSV rows flushed whole). */
+void sd_cli_on_signal(int sig)
 {
-    (void)sig;
-    sd_interrupted = 1;
+    if (sd_cli_interrupted) {
+        signal(sig, SIG_DFL);
+        raise(sig);
+        return;
+    }
+    sd_cli_interrupted = 1;
 }
 
 static size_t sd_peak_rss(void)
@@ -51,10 +61,11 @@ static size_t sd_peak_rss(void)
 static void sd_usage(FILE *f)
 {
     fprintf(f,
-            "usage: shapedem run SCENE.yaml [-o DIR] [--threads N] [--steps N] [--quiet] [--bench NAME]\n"
-            "                  [--profile] [--restart CHECKPOINT.h5] [--backend auto|cpu|cuda]\n"
+            "usage: shapedem run SCENE.yaml [-o DIR] [--threads N] [--steps N | --until-step S | --until-time T]\n"
+            "                  [--restart CHECKPOINT.h5] [--backend auto|cpu|cuda] [--quiet] [--profile]\n"
+            "                  [--bench NAME]\n"
             "       shapedem info CHECKPOINT.h5 [--csv]\n"
-            "       shapedem check SCENE.yaml [--threads N] [--ranks N]\n"
+            "       shapedem check SCENE.yaml [--threads N] [--ranks N] [--steps N | --until-step S | --until-time T]\n"
             "       shapedem shape info KIND --size X[,Y,Z] [--rounding R] [--margin M] [--density RHO]\n"
             "       shapedem shape info SCENE.yaml\n"
             "       shapedem shape fit-fourier OUTLINE.csv [--order N] [--directions M] [--beta B]\n"
@@ -66,26 +77,75 @@ static void sd_usage(FILE *f)
             "  run     simulate the scene; writes frames.pvd (VTK), stats.csv and summary.txt\n"
             "          to DIR (default: output.directory of the scene, else out/<scene name>)\n"
             "  check   validate the scene and print what it would simulate\n"
+            "  info    what a checkpoint holds (step, time, particles, datasets); --csv: its particles\n"
             "  shape fit-fourier  fit a convex Fourier-series support function ([Huang 2021]) to a\n"
             "          closed outline; prints coefficients, convexity, reduction, coverage\n"
-            "  render  draw a frame's particles with their true shapes into a PNG, headless;\n"
-            "          'render --help' lists its options\n"
+            "  render  draw a frame's particles with their true shapes into a PNG, headless\n"
             "  help    this text; 'help scene' lists every scene key with unit and default\n"
             "\n"
-            "  -o DIR       output directory\n"
-            "  --threads N  OpenMP threads (default: simulation.threads, else OMP_NUM_THREADS, else\n"
-            "               the cores not busy with other processes at the start)\n"
-            "  --backend B  where the step runs: auto (a GPU when usable, else the CPU), cpu or\n"
-            "               cuda (default: simulation.backend, else auto)\n"
-            "  --steps N    run N steps instead of the scene's (short runs)\n"
-            "  --quiet      no progress line and no summary on the terminal\n"
-            "  --bench NAME write no files; print one JSON line of timings for case NAME\n"
-            "  --profile    print the wall time of each stage of the step at the end\n"
-            "  --ranks N    check: how the MPI split would share the particles over N ranks\n"
-            "               (the grid of boxes, each rank's box and particles)\n"
-            "  --restart F  continue the run of checkpoint F (written by this scene) bit for bit;\n"
-            "               SIGINT/SIGTERM write a final checkpoint (docs/checkpoints.md)\n"
-            "  info F.h5    what a checkpoint holds (step, time, particles, datasets); --csv: its particles\n");
+            "  'shapedem COMMAND --help' prints the options of each command.\n");
+}
+
+/* The options of run and check, as `run --help` prints them. */
+static void sd_usage_run_options(FILE *f, int run)
+{
+    fprintf(f,
+            "  --threads N     OpenMP threads (default: simulation.threads, else OMP_NUM_THREADS, else\n"
+            "                  the cores not busy with other processes at the start)\n"
+            "  --steps N       run N steps instead of the scene's steps:; on a restart, N more steps\n"
+            "                  from the checkpoint's step\n"
+            "  --until-step S  run until step S, counted from the start of the run (on a restart too);\n"
+            "                  refused when the checkpoint is past it\n"
+            "  --until-time T  run until the simulated time T s (the first step at or after it;\n"
+            "                  absolute as --until-step)\n");
+    if (!run) {
+        fprintf(f, "  --ranks N       how the MPI split would share the particles over N ranks\n"
+                   "                  (the grid of boxes, each rank's box and particles)\n");
+        return;
+    }
+    fprintf(f,
+            "  -o DIR          output directory (default: output.directory of the scene, else\n"
+            "                  out/<scene name>)\n"
+            "  --restart F     continue the run of checkpoint F (written by this scene) bit for bit;\n"
+            "                  without --steps or --until-*, up to the scene's steps: (docs/checkpoints.md)\n"
+            "  --backend B     where the step runs: auto (a GPU when usable, else the CPU), cpu or\n"
+            "                  cuda (default: simulation.backend, else auto)\n"
+            "  --quiet         no progress line and no summary on the terminal\n"
+            "  --bench NAME    write no files; print one JSON line of timings for case NAME\n"
+            "  --profile       print the wall time of each stage of the step at the end\n"
+            "\n"
+            "  SIGINT/SIGTERM (Ctrl-C) stop the run after the step in progress, write a final checkpoint\n"
+            "  and print the command that continues it; exit status 130.\n");
+}
+
+/* `shapedem COMMAND --help`: that command's usage, on stdout. */
+static void sd_usage_command(FILE *f, const char *cmd)
+{
+    if (!strcmp(cmd, "run")) {
+        fprintf(f, "usage: shapedem run SCENE.yaml [-o DIR] [--threads N] [--steps N | --until-step S | "
+                   "--until-time T]\n"
+                   "                    [--restart CHECKPOINT.h5] [--backend auto|cpu|cuda] [--quiet] [--profile]\n"
+                   "                    [--bench NAME]\n"
+                   "\n"
+                   "  simulates the scene; writes frames.pvd (VTK), stats.csv and summary.txt to DIR\n"
+                   "\n");
+        sd_usage_run_options(f, 1);
+    } else if (!strcmp(cmd, "check")) {
+        fprintf(f, "usage: shapedem check SCENE.yaml [--threads N] [--ranks N] [--steps N | --until-step S | "
+                   "--until-time T]\n"
+                   "\n"
+                   "  validates the scene and prints what it would simulate: particles, time step, output,\n"
+                   "  memory, and a run time from a short timed trial; writes nothing\n"
+                   "\n");
+        sd_usage_run_options(f, 0);
+    } else if (!strcmp(cmd, "help")) {
+        fprintf(f, "usage: shapedem help [scene [--markdown]]\n"
+                   "\n"
+                   "  help            the commands\n"
+                   "  help scene      every scene key with its unit and default (--markdown: as a table)\n");
+    } else {
+        sd_usage(f);
+    }
 }
 
 int sd_cli_fail_input(const sd_error *err)
@@ -111,7 +171,12 @@ typedef struct sd_cli {
     const char *bench;
     const char *restart;  /* --restart: the checkpoint to continue */
     long threads;
-    long steps;
+    long steps;           /* --steps: that many steps (more, on a restart); -1 not given */
+    long until_step;      /* --until-step: the absolute end step; -1 not given */
+    double until_time;    /* --until-time: the absolute end time, s; < 0 not given */
+    int help;             /* --help or -h: the command's usage */
+    int argc;             /* the command line, for the interrupt's hint (sd_cli_continue) */
+    char **argv;
     long ranks;           /* check --ranks: the MPI split to report, 0 none */
     int backend;          /* --backend: an sd_backend_kind, SD_BACKEND_COUNT when not given */
     int quiet;
@@ -136,10 +201,15 @@ static int sd_parse_args(int argc, char **argv, sd_cli *c)
     memset(c, 0, sizeof *c);
     c->threads = -1;
     c->steps = -1;
+    c->until_step = -1;
+    c->until_time = -1;
     c->backend = SD_BACKEND_COUNT;
+    c->argc = argc;
+    c->argv = argv;
     if (argc < 2)
         return sd_usage_error("%s", "no command given");
     c->command = argv[1];
+    int ends = 0; /* how many of --steps, --until-step, --until-time */
     for (int k = 2; k < argc; ++k) {
         const char *a = argv[k];
         const char *next = k + 1 < argc ? argv[k + 1] : NULL;
@@ -165,6 +235,25 @@ static int sd_parse_args(int argc, char **argv, sd_cli *c)
             if (!next || sd_parse_long(next, 0, &c->steps))
                 return sd_usage_error("--steps needs a whole number >= 0, got '%s'", next ? next : "");
             ++k;
+            ++ends;
+        } else if (!strcmp(a, "--until-step")) {
+            if (!next || sd_parse_long(next, 0, &c->until_step))
+                return sd_usage_error("--until-step needs a whole number >= 0 (a step number), got '%s'",
+                                      next ? next : "");
+            ++k;
+            ++ends;
+        } else if (!strcmp(a, "--until-time")) {
+            char *end;
+            double t = next ? strtod(next, &end) : -1;
+            if (!next || end == next || *end || !(t >= 0) || !isfinite(t))
+                return sd_usage_error("--until-time needs a time in seconds >= 0 (the simulated time to run to), "
+                                      "got '%s'",
+                                      next ? next : "");
+            c->until_time = t;
+            ++k;
+            ++ends;
+        } else if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            c->help = 1;
         } else if (!strcmp(a, "--bench")) {
             if (!next)
                 return sd_usage_error("%s needs a case name", a);
@@ -187,6 +276,8 @@ static int sd_parse_args(int argc, char **argv, sd_cli *c)
             return sd_usage_error("unexpected argument '%s'", a);
         }
     }
+    if (ends > 1 && !c->help)
+        return sd_usage_error("%s", "give one of --steps, --until-step and --until-time: each says where the run ends");
     return 0;
 }
 
@@ -214,8 +305,6 @@ static int sd_load_world_msg(const sd_cli *c, int device, sd_scene **scene, sd_w
             sd_scene_set_threads(*scene, sd_threads_default());
         else
             sd_threads_scene(si.threads); /* more than the free cores: may start the program again */
-        if (c->steps >= 0)
-            sd_scene_set_steps(*scene, c->steps);
         sd_scene_set_backend(*scene, (sd_backend_kind)c->backend); /* SD_BACKEND_COUNT: the scene's */
         sd_scene_set_device(*scene, device);
         failed = sd_scene_build(*scene, world, &err) != SD_OK;
@@ -242,6 +331,110 @@ static int sd_load_world(const sd_cli *c, sd_scene **scene, sd_world **world)
     if (rc)
         fprintf(stderr, "shapedem: %s\n", msg);
     return rc;
+}
+
+/* Where the run ends, as the scene's steps (the absolute end step the run
+ * reads): --steps N is N steps from where the world is (a restart: N more
+ * after its checkpoint's step), --until-step and --until-time are
+ * absolute, and without them the scene's steps: stands. An end before the
+ * world's step is refused (msg, 2) before any file is touched: running to
+ * it would cut the CSV series and frames of the later steps (issue 31). */
+static int sd_cli_end_step(const sd_cli *c, sd_scene *scene, const sd_world *w, char *msg, size_t size)
+{
+    long now = sd_world_step_count(w), end;
+    double t = sd_world_time(w), dt = sd_world_dt(w);
+    char asked[128];
+    if (c->steps >= 0) {
+        if (c->steps > LONG_MAX - now) {
+            snprintf(msg, size, "--steps %ld: from step %ld that passes the largest step number", c->steps, now);
+            return 2;
+        }
+        end = now + c->steps;
+        snprintf(asked, sizeof asked, "--steps %ld", c->steps);
+    } else if (c->until_step >= 0) {
+        end = c->until_step;
+        snprintf(asked, sizeof asked, "--until-step %ld", end);
+    } else if (c->until_time >= 0) {
+        /* the first step at or after the time, with a rounding allowance so
+         * that a time printed from a step's gives that step */
+        double n = (c->until_time - t) / dt;
+        n = n > -1e-9 ? ceil(n - 1e-9) : floor(n);
+        if (!(n < 9e18 - (double)now)) {
+            snprintf(msg, size, "--until-time %.10g: at dt = %.4g s that is past the largest step number",
+                     c->until_time, dt);
+            return 2;
+        }
+        end = now + (long)n;
+        snprintf(asked, sizeof asked, "--until-time %.10g s", c->until_time);
+    } else {
+        end = sd_scene_steps(scene);
+        snprintf(asked, sizeof asked, "the scene's steps: %ld", end);
+    }
+    if (end < now) {
+        snprintf(msg, size, "%s: %s ends the run at step %ld, before the checkpoint's step %ld (t = %.6g s) where it "
+                 "starts; nothing was run or written. --steps N runs N more steps from there; --until-step S and "
+                 "--until-time T end at step S or time T",
+                 c->restart ? c->restart : c->scene, asked, end, now, t);
+        return 2;
+    }
+    sd_scene_set_steps(scene, end);
+    return 0;
+}
+
+/* A word of a shell command, quoted where the shell would split or expand it. */
+static void sd_cli_shell_word(char *buf, size_t size, const char *word)
+{
+    size_t n = strlen(buf);
+    int plain = word[0] != 0;
+    for (const char *p = word; *p && plain; ++p)
+        plain = strchr("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-+=/.,:@%", *p) != NULL;
+    if (plain) {
+        snprintf(buf + n, size > n ? size - n : 0, " %s", word);
+        return;
+    }
+    if (n + 3 < size) {
+        buf[n++] = ' ';
+        buf[n++] = '\'';
+    }
+    for (const char *p = word; *p && n + 6 < size; ++p) {
+        if (*p == '\'') { /* 'it'\''s' */
+            memcpy(buf + n, "'\\''", 4);
+            n += 4;
+        } else
+            buf[n++] = *p;
+    }
+    if (n + 1 < size)
+        buf[n++] = '\'';
+    buf[n < size ? n : size - 1] = 0;
+}
+
+/* The command that continues an interrupted run from checkpoint ckpt: the
+ * command line as given, with --restart ckpt, -o the directory written
+ * (given or not, so the frames and rows go on in it) and the end as an
+ * absolute --until-step (a --steps N given would count N more from the
+ * checkpoint), every other option kept. Followed literally it finishes
+ * the run the user started. */
+static void sd_cli_continue(const sd_cli *c, const char *ckpt, const char *dir, long end, char *buf, size_t size)
+{
+    buf[0] = 0;
+    snprintf(buf, size, "%s", c->argv[0]);
+    for (int k = 1; k < c->argc; ++k) {
+        const char *a = c->argv[k];
+        if (!strcmp(a, "-o") || !strcmp(a, "--output") || !strcmp(a, "--restart") || !strcmp(a, "--steps") ||
+            !strcmp(a, "--until-step") || !strcmp(a, "--until-time")) {
+            ++k; /* replaced below */
+            continue;
+        }
+        sd_cli_shell_word(buf, size, a);
+    }
+    char num[32];
+    sd_cli_shell_word(buf, size, "-o");
+    sd_cli_shell_word(buf, size, dir);
+    sd_cli_shell_word(buf, size, "--until-step");
+    snprintf(num, sizeof num, "%ld", end);
+    sd_cli_shell_word(buf, size, num);
+    sd_cli_shell_word(buf, size, "--restart");
+    sd_cli_shell_word(buf, size, ckpt);
 }
 
 /* The per-stage table of `run --profile` (sd_profile): seconds, share of
@@ -308,20 +501,27 @@ static int sd_cmd_run(const sd_cli *c)
     else
         sd_scene_output_directory(scene, dir, sizeof dir);
     sd_run *run = NULL;
-    if (sd_run_open(scene, w, c->bench ? NULL : dir, &run, &err) != SD_OK) {
+    char msg[1200];
+    rc = sd_cli_end_step(c, scene, w, msg, sizeof msg); /* --steps, --until-*: before any file */
+    if (!rc && sd_run_open(scene, w, c->bench ? NULL : dir, &run, &err) != SD_OK) {
+        sd_error_format(&err, msg, sizeof msg);
+        rc = 2;
+    }
+    if (rc) {
 #ifdef SHAPEDEM_CLI_MPI
         sd_cli_mpi_end(mp, NULL, NULL, 0);
         sd_cli_mpi_free(mp);
 #endif
         sd_world_destroy(w);
         sd_scene_free(scene);
-        return sd_cli_fail_input(&err);
+        fprintf(stderr, "shapedem: %s\n", msg);
+        return 2;
     }
 #ifdef SHAPEDEM_CLI_MPI
     sd_cli_mpi_run(mp, run);
 #endif
-    signal(SIGINT, sd_on_signal);
-    signal(SIGTERM, sd_on_signal);
+    signal(SIGINT, sd_cli_on_signal);
+    signal(SIGTERM, sd_cli_on_signal);
 
     int tty = !c->quiet && !c->bench && isatty(STDERR_FILENO);
     char why[256]; /* how many threads and why (cli/threads.c), above the progress line */
@@ -333,20 +533,38 @@ static int sd_cmd_run(const sd_cli *c)
     sd_run_progress pr;
     int failed = sd_run_advance(run, 0, &err) != SD_OK; /* the frame and the stats row of step 0 */
     sd_run_get_progress(run, &pr);
-    while (!failed && pr.done < pr.steps && !sd_interrupted) {
+    /* steps per advance: up to the next output, but no longer than about
+     * 0.1-0.4 s of stepping at the rate so far, so that an interrupt is acted
+     * on within a fraction of a second (chunks change no bit: io/run.c) */
+    long chunk_max = 1;
+    while (!failed && pr.done < pr.steps && !sd_cli_interrupted) {
         long chunk = sd_run_steps_to_output(run);
-        if (tty && chunk > 200)
-            chunk = 200; /* keep the progress line alive */
+        if (chunk > chunk_max)
+            chunk = chunk_max;
+        double wall0 = pr.wall_seconds;
+        long done0 = pr.done;
         failed = sd_run_advance(run, chunk, &err) != SD_OK;
         sd_run_get_progress(run, &pr);
+        double took = pr.wall_seconds - wall0;
+        if (pr.done > done0 && took < 0.1 && chunk == chunk_max && chunk_max < LONG_MAX / 2)
+            chunk_max *= 2;
+        else if (took > 0.4 && chunk_max > 1)
+            chunk_max /= 2;
         if (tty && (pr.wall_seconds - last_print > 0.5 || pr.done == pr.steps)) {
             last_print = pr.wall_seconds;
             double rate = pr.particle_steps_per_second;
             char left[32];
             double left_ps = (double)sd_world_particle_count(w) * (double)(pr.steps - pr.done);
+            long total = pr.steps - pr.first, ran = pr.done - pr.first;
             sd_duration_format(rate > 0 ? left_ps / rate : -1, left, sizeof left);
-            fprintf(stderr, "\rstep %ld/%ld  t = %.6g s  %5.1f%%  %.3g particle-steps/s  %s left   ", pr.done,
-                    pr.steps, pr.time, pr.steps ? 100.0 * (double)pr.done / (double)pr.steps : 100.0, rate, left);
+            /* a restart: the world's step and end step, and the steps this run made of its own */
+            if (pr.first > 0)
+                fprintf(stderr, "\rstep %ld/%ld (%ld of %ld since the restart)  t = %.6g s  %5.1f%%  %.3g "
+                        "particle-steps/s  %s left   ", pr.done, pr.steps, ran, total, pr.time,
+                        total ? 100.0 * (double)ran / (double)total : 100.0, rate, left);
+            else
+                fprintf(stderr, "\rstep %ld/%ld  t = %.6g s  %5.1f%%  %.3g particle-steps/s  %s left   ", pr.done,
+                        pr.steps, pr.time, total ? 100.0 * (double)ran / (double)total : 100.0, rate, left);
             fflush(stderr);
         }
     }
@@ -354,9 +572,9 @@ static int sd_cmd_run(const sd_cli *c)
         fputc('\n', stderr);
     /* SIGINT/SIGTERM: a final checkpoint where the run stopped (the loop
      * stops between chunks, so the world is between steps) */
-    char ckpt[1100] = "";
+    char ckpt[1100] = "", again[4096] = "";
     sd_status ckpt_st = SD_OK;
-    if (sd_interrupted && !failed && !c->bench) {
+    if (sd_cli_interrupted && !failed && !c->bench) {
         sd_error cerr0;
         memset(&cerr0, 0, sizeof cerr0);
         ckpt_st = sd_run_checkpoint(run, &cerr0);
@@ -364,8 +582,15 @@ static int sd_cmd_run(const sd_cli *c)
             char buf[1024];
             sd_error_format(&cerr0, buf, sizeof buf);
             fprintf(stderr, "shapedem: the final checkpoint failed: %s\n", buf);
-        } else
+        } else {
             snprintf(ckpt, sizeof ckpt, "%s", sd_run_last_checkpoint(run));
+            char *at = again;
+#ifdef SHAPEDEM_CLI_MPI
+            if (sd_cli_mpi_size(mp) > 1) /* the same ranks again (any count continues the bits) */
+                at += snprintf(again, sizeof again, "mpirun -np %d ", sd_cli_mpi_size(mp));
+#endif
+            sd_cli_continue(c, ckpt, dir, pr.steps, at, sizeof again - (size_t)(at - again));
+        }
     }
     size_t peak_memory = sd_memory_peak(), peak_rss = sd_peak_rss();
     if (failed) {
@@ -390,15 +615,17 @@ static int sd_cmd_run(const sd_cli *c)
     if (c->bench) {
         printf("{\"case\":\"%s\",\"particles\":%zu,\"steps\":%ld,\"threads\":%d,\"wall_s\":%.6f,\"psps\":%.6g,"
                "\"peak_rss_mib\":%.2f,\"peak_alloc_mib\":%.2f}\n",
-               c->bench, n, pr.done, pr.threads, pr.wall_seconds, pr.particle_steps_per_second,
+               c->bench, n, pr.done - pr.first, pr.threads, pr.wall_seconds, pr.particle_steps_per_second,
                (double)peak_rss / 1048576.0, (double)peak_memory / 1048576.0);
     } else if (!c->quiet) {
         sd_stats st;
         sd_world_stats(w, &st);
         /* the count at the end, as summary.txt (a pour starts from none) */
         printf("shapedem: %zu particles, %ld steps (t = %.6g s) in %.2f s: %.3g particle-steps/s on %d thread%s\n",
-               sd_world_particle_count(w), pr.done, sd_world_time(w), pr.wall_seconds, pr.particle_steps_per_second,
-               pr.threads, pr.threads == 1 ? "" : "s");
+               sd_world_particle_count(w), pr.done - pr.first, sd_world_time(w), pr.wall_seconds,
+               pr.particle_steps_per_second, pr.threads, pr.threads == 1 ? "" : "s");
+        if (pr.first > 0) /* the steps above are this run's, from the checkpoint's */
+            printf("          restarted at step %ld, now at step %ld\n", pr.first, pr.done);
         printf("          kinetic energy %.6g J, %ld contacts, max overlap %.3g %% of radius; output in %s\n",
                st.kinetic_translational + st.kinetic_rotational, st.contacts, 100 * st.max_overlap_ratio, dir);
         printf("          backend %s (%s)\n", sd_world_backend(w), sd_world_backend_note(w));
@@ -426,10 +653,10 @@ static int sd_cmd_run(const sd_cli *c)
 #endif
     sd_world_destroy(w);
     sd_scene_free(scene);
-    if (sd_interrupted) {
+    if (sd_cli_interrupted) {
         if (ckpt_st == SD_OK && ckpt[0])
             fprintf(stderr, "shapedem: interrupted at step %ld; the files written so far are complete; "
-                    "continue with --restart %s\n", pr.done, ckpt);
+                    "continue with: %s\n", pr.done, again);
         else
             fprintf(stderr, "shapedem: interrupted at step %ld; the files written so far are complete\n", pr.done);
         return 130;
@@ -443,6 +670,12 @@ static int sd_cmd_check(const sd_cli *c)
     sd_scene *scene = NULL;
     sd_world *w = NULL;
     int rc = sd_load_world(c, &scene, &w);
+    char msg[1200];
+    if (!rc && (rc = sd_cli_end_step(c, scene, w, msg, sizeof msg)) != 0) { /* --steps, --until-* */
+        fprintf(stderr, "shapedem: %s\n", msg);
+        sd_world_destroy(w);
+        sd_scene_free(scene);
+    }
     if (rc)
         return rc;
     size_t mem = sd_memory_in_use() - mem0;
@@ -513,7 +746,9 @@ static int sd_cmd_check(const sd_cli *c)
     /* output: frames at step 0, every `every` steps and at the end; stats
      * rows at step 0 and every stats_every steps (io/run.c) */
     long steps = info.steps, every = info.frame_every, stats_every = info.stats_every;
-    long frames = 1 + steps / every + (steps % every != 0), rows = 1 + steps / stats_every;
+    long frames = steps / every + (steps % every != 0), rows = steps / stats_every;
+    frames += frames < LONG_MAX; /* and step 0's; steps: up to LONG_MAX is accepted */
+    rows += rows < LONG_MAX;
     sd_check_print_output(stdout, scene, est, total, frames, rows, (double)steps * dt, cnt.poured);
     int warnings = 0;
     if (dt > rec) {
@@ -645,6 +880,10 @@ int main(int argc, char **argv)
     int rc = sd_parse_args(argc, argv, &c);
     if (rc)
         return rc;
+    if (c.help) { /* COMMAND --help: its usage (an unknown command: the commands) */
+        sd_usage_command(stdout, c.command);
+        return 0;
+    }
     if (!strcmp(c.command, "run"))
         return sd_cmd_run(&c);
     if (!strcmp(c.command, "check"))

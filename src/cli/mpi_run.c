@@ -19,6 +19,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "cli/commands.h"
 #include "cli/mpi_run.h"
 #include "core/alloc.h"
 #include "io/run.h"
@@ -152,9 +153,11 @@ int sd_cli_mpi_begin(const void *cli, sd_cli_load_fn load, const char *restart, 
     mp->d = (sd_mpi_drive){m, w, g};
     if (rank != 0) {
         /* the job's end comes from rank 0 (mpirun sends SIGTERM to every
-         * rank: rank 0 writes its final checkpoint and then ends the run) */
-        signal(SIGINT, SIG_IGN);
-        signal(SIGTERM, SIG_IGN);
+         * rank: rank 0 writes its final checkpoint and then ends the run);
+         * a signal sent to this rank alone reaches rank 0 with the steps */
+        sd_mpi_drive_watch(&sd_cli_interrupted);
+        signal(SIGINT, sd_cli_on_signal);
+        signal(SIGTERM, sd_cli_on_signal);
         sd_mpi_follow(m, w);
         sd_scene_free(*scene);
         *scene = NULL;
@@ -182,6 +185,7 @@ int sd_cli_mpi_begin(const void *cli, sd_cli_load_fn load, const char *restart, 
 
 void sd_cli_mpi_run(sd_cli_mpi *mp, sd_run *run)
 {
+    sd_mpi_drive_watch(&sd_cli_interrupted);
     sd_run_set_stepper(run, sd_mpi_drive_step, &mp->d);
     sd_run_set_checkpoint_writer(run, sd_mpi_drive_write, &mp->d);
 }
@@ -195,6 +199,8 @@ void sd_cli_mpi_end(sd_cli_mpi *mp, sd_run *run, char *note, size_t size)
     if (note)
         snprintf(note, size, "%s", buf);
 }
+
+int sd_cli_mpi_size(const sd_cli_mpi *mp) { return mp->size; }
 
 const sd_world *sd_cli_mpi_part(const sd_cli_mpi *mp) { return mp->d.w; }
 

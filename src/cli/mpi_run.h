@@ -25,11 +25,15 @@ typedef struct sd_cli_mpi sd_cli_mpi;
  * steps to the end and return their exit status. */
 int sd_cli_mpi_begin(const void *cli, sd_cli_load_fn load, const char *restart, sd_scene **scene, sd_world **view,
                      sd_cli_mpi **out);
-/* Rank 0: the run steps the ranks (io/run.h's stepper). */
+/* Rank 0: the run steps the ranks (io/run.h's stepper); its interrupt flag
+ * (sd_cli_interrupted) is also set by a signal to any other rank, whose
+ * handler sets that rank's (sd_mpi_drive_watch). */
 void sd_cli_mpi_run(sd_cli_mpi *mp, sd_run *run);
 /* Rank 0: the followers stop; the ranks' summary lines go to the run
  * (when not NULL) and into note. */
 void sd_cli_mpi_end(sd_cli_mpi *mp, sd_run *run, char *note, size_t size);
+/* The number of ranks. */
+int sd_cli_mpi_size(const sd_cli_mpi *mp);
 /* Rank 0's part of the world (its profile). */
 const sd_world *sd_cli_mpi_part(const sd_cli_mpi *mp);
 /* Rank 0's part freed, MPI_Finalize. */

@@ -217,15 +217,19 @@ int sd_cmd_shape(int argc, char **argv)
 {
     if (argc >= 3 && !strcmp(argv[2], "fit-fourier"))
         return sd_cmd_fit_fourier(argc, argv);
-    if (argc < 4 || strcmp(argv[2], "info") != 0) {
-        fprintf(stderr, "usage: shapedem shape info KIND --size X[,Y,Z] [--rounding R] [--margin M] [--scale S] "
+    int help = 0; /* shape --help, shape info --help: the usage on stdout, exit 0 */
+    for (int k = 2; k < argc; ++k)
+        help |= !strcmp(argv[k], "--help") || !strcmp(argv[k], "-h");
+    if (help || argc < 4 || strcmp(argv[2], "info") != 0) {
+        fprintf(help ? stdout : stderr, "usage: shapedem shape info KIND --size X[,Y,Z] [--rounding R] [--margin M] [--scale S] "
                         "[--density RHO]\n       shapedem shape info PRESET --size D|--edge A [--sides N] "
                         "[--faces N|--vertex-count N] [--seed S]\n         (PRESET: tetrahedron, cube, octahedron, "
                         "dodecahedron, icosahedron, prism, polycylinder, random)\n"
                         "       shapedem shape info MESH.obj|MESH.stl [--scale S] [--rounding R|--margin M]\n"
                         "         [--nonconvex reject|hull] [--density RHO]\n"
-                        "       shapedem shape info SCENE.yaml\n");
-        return 2;
+                        "       shapedem shape info SCENE.yaml\n"
+                        "       shapedem shape fit-fourier OUTLINE.csv [--order N] [--directions M] [--beta B]\n");
+        return help ? 0 : 2;
     }
     const char *what = argv[3];
     size_t len = strlen(what);

@@ -12,11 +12,12 @@
 
 #include <stddef.h>
 
-/* s rounded to what sd_duration_format shows (s; negative, NaN or beyond
- * 1e7 s: -1, shown as "--"). */
+/* s rounded to what sd_duration_format shows (s; negative, NaN or
+ * infinite: -1, shown as "--"). */
 double sd_duration_shown(double s);
 
-/* "--", "45s", "10m00s" or "2h05m" for s seconds (rounded as above). */
+/* "--", "45s", "10m00s", "2h05m", "12 days" or "3.2e+04 years" for s
+ * seconds (rounded as above). */
 void sd_duration_format(double s, char *buf, size_t size);
 
 #endif

@@ -726,8 +726,10 @@ static void sd_output_summary_text(FILE *fp, const sd_output *o, const sd_world 
         fprintf(fp, "particles: %zu\n", sd_world_particle_count(w));
         fprintf(fp, "walls: %zu\n", sd_world_wall_count(w));
     }
-    if (sum)
+    if (sum) {
         fprintf(fp, "steps_run: %ld\n", sum->steps);
+        fprintf(fp, "start_step: %ld\n", sum->first); /* a restart's checkpoint step, else 0 */
+    }
     if (w) {
         fprintf(fp, "step: %ld\n", sd_world_step_count(w));
         fprintf(fp, "time_step_s: %.10g\n", sd_world_dt(w));

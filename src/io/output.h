@@ -27,7 +27,7 @@ typedef struct sd_output_def {
 } sd_output_def;
 
 typedef struct sd_run_summary {
-    long steps;               /* steps run */
+    long steps;               /* steps run (a restart: since its checkpoint) */
     double wall_seconds;      /* of stepping only */
     double particle_steps_per_second;
     int threads;
@@ -35,6 +35,7 @@ typedef struct sd_run_summary {
     size_t peak_rss;          /* bytes, process peak resident set */
     const char *stop;         /* simulation.stop_when: what happened, NULL or "" when not given */
     const char *note;         /* more lines (each ended by '\n'), NULL none: a decomposed run's ranks */
+    long first;               /* the step the run started at (a restart: its checkpoint's) */
 } sd_run_summary;
 
 sd_status sd_output_open(const sd_output_def *def, const sd_world *w, sd_output **out, sd_error *err);

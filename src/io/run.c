@@ -16,8 +16,9 @@
  * threshold: steps becomes done there, so that row is the last, with the
  * closing frame and analysis rows the end of a run gets.
  *
- * Invariant: done counts the steps the world has taken under this run,
- * never more than steps; after an error (failed) the run takes no further
+ * Invariant: done is the world's step, from first (its step at the open:
+ * 0, or a restart's) to steps (the end step, never before first), so
+ * done - first steps ran; after an error (failed) the run takes no further
  * step and writes nothing but the summary.
  */
 #define _POSIX_C_SOURCE 200809L
@@ -43,6 +44,7 @@ struct sd_run {
     sd_output *out;              /* NULL: a run without files */
     char dir[SD_SCENE_PATH_MAX + 16];
     long steps, every, stats_every, done;
+    long first;                  /* the world's step at the open: steps run = done - first */
     int started, failed;
     int resumed;                 /* a restored world: the CSV series go on from its step */
     double stepping;             /* s of wall time inside sd_world_step */
@@ -169,8 +171,19 @@ sd_status sd_run_open(const sd_scene *s, sd_world *w, const char *dir, sd_run **
     r->asked_steps = r->steps;
     if (s->stop_given)
         snprintf(r->stop, sizeof r->stop, "not met (not checked yet: after %.6g s)", s->stop_after);
-    /* a restarted world (sd_checkpoint_restore) continues the schedule */
-    r->done = sd_world_step_count(w) < r->steps ? sd_world_step_count(w) : r->steps;
+    /* a restarted world (sd_checkpoint_restore) continues the schedule;
+     * one already past the end is refused before a file is touched: the
+     * CSV series and frames would be cut back to the end step, and the
+     * output of the steps after it lost (issue 31) */
+    if (sd_world_step_count(w) > r->steps) {
+        long at = sd_world_step_count(w), end = r->steps;
+        sd_free(r);
+        return sd_error_set(err, SD_ERR_INPUT, s->path, 0, "steps",
+                            "the world is at step %ld, past the run's end step %ld: nothing to run, and nothing "
+                            "written",
+                            at, end);
+    }
+    r->done = r->first = sd_world_step_count(w);
     r->resumed = r->done > 0;
     r->ckpt_every = s->output.checkpoint_every;
     r->ckpt_seconds = 60.0 * s->output.checkpoint_minutes;
@@ -361,6 +374,7 @@ void sd_run_get_progress(const sd_run *r, sd_run_progress *out)
 {
     memset(out, 0, sizeof *out);
     out->done = r->done;
+    out->first = r->first;
     out->steps = r->steps;
     out->time = sd_world_time(r->w);
     out->wall_seconds = r->stepping;
@@ -405,7 +419,8 @@ sd_status sd_run_close(sd_run *r, sd_error *err)
     if (r->out) {
         sd_run_summary sum;
         memset(&sum, 0, sizeof sum);
-        sum.steps = r->done;
+        sum.steps = r->done - r->first;
+        sum.first = r->first;
         sum.wall_seconds = r->stepping;
         sum.particle_steps_per_second = r->stepping > 0 ? r->psteps / r->stepping : 0;
         sum.threads = sd_world_threads(r->w);

@@ -191,6 +191,8 @@ struct sd_scene {
                                      one axis: slabs along it; else [px, py, pz] */
     int mpi_split_line;           /* its line, 0 when absent */
     int dt_line;                  /* line of simulation.dt, for errors */
+    int backend_line;             /* line of simulation.backend, 0 when absent */
+    int backend_cli;              /* 1: the backend was set by the command line (sd_scene_set_backend) */
     /* simulation.stop_when (io/run.c): the run ends at the first stats row
      * at or after stop_after s whose kinetic energy is below stop_ke_below J
      * or, when stop_speed_below > 0, whose mean particle speed is below it */

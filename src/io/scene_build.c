@@ -738,6 +738,15 @@ sd_status sd_scene_build(const sd_scene *s, sd_world **out, sd_error *err)
     *out = NULL;
     sd_error_clear(err);
     sd_status st = sd_world_create(&s->world, &w, err);
+    if (st != SD_OK && !strcmp(err->key, "simulation.backend")) {
+        /* the backend refused: blame where the choice was made, the
+         * command line's --backend or the scene's backend: line */
+        if (s->backend_cli) {
+            snprintf(err->key, sizeof err->key, "--backend %s", sd_backend_kind_name(s->world.backend));
+            return st;
+        }
+        return sd_where(err, st, s, s->backend_line > 0 ? s->backend_line : s->simulation_line, "");
+    }
     if (st != SD_OK)
         return sd_where(err, st, s, s->simulation_line, "simulation");
     st = sd_build(s, w, &sp, err);

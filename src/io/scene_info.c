@@ -18,8 +18,10 @@ void sd_scene_set_threads(sd_scene *s, int threads)
 
 void sd_scene_set_backend(sd_scene *s, sd_backend_kind backend)
 {
-    if (backend >= 0 && backend < SD_BACKEND_COUNT)
+    if (backend >= 0 && backend < SD_BACKEND_COUNT) {
         s->world.backend = backend;
+        s->backend_cli = 1; /* a refusal names the option, not the scene (io/scene_build.c) */
+    }
 }
 
 void sd_scene_set_device(sd_scene *s, int device)

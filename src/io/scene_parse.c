@@ -208,8 +208,10 @@ static sd_status sd_parse_simulation(sd_parse *p, yaml_node_t *root)
         s->world.solver = v.choice == 1 ? SD_SOLVER_GRID : SD_SOLVER_CELLS;
     /* choices in SD_BACKENDS order: auto, cpu, cuda (the device is probed
      * when the world is built: world/backend.c) */
-    if (sd_yaml_get(&p->y, sim, SD_SEC_SIMULATION, "backend", path, &v))
+    if (sd_yaml_get(&p->y, sim, SD_SEC_SIMULATION, "backend", path, &v)) {
         s->world.backend = (sd_backend_kind)v.choice;
+        s->backend_line = v.line;
+    }
     /* periodic boundaries (world/rebuild.c): choices x, y, z in the order
      * of SD_PERIODIC_X, _Y, _Z */
     if (sd_yaml_get(&p->y, sim, SD_SEC_SIMULATION, "periodic", path, &v) && v.mask) {

@@ -93,6 +93,11 @@ void sd_mpi_drive_time(sd_world *w)
     w->comm = &sd_drive_time.table;
 }
 
+/* The interrupt flag this process watches (sd_mpi_drive_watch), NULL none. */
+static volatile sig_atomic_t *sd_drive_stop;
+
+void sd_mpi_drive_watch(volatile sig_atomic_t *flag) { sd_drive_stop = flag; }
+
 /* One command: what, how many steps (a WRITE: the path's length), and a
  * WRITE's way (1: every rank into the file, 0: rank 0 from the view). */
 static void sd_drive_bcast(long long *cmd)
@@ -108,7 +113,8 @@ static void sd_drive_bcast(long long *cmd)
  * message naming that rank. Splitting a call into runs changes no bit of
  * the state (io/run.c). Any other failure comes from inside a step, where
  * the other ranks wait in an exchange: that rank ends the job
- * (sd_mpi_fail). */
+ * (sd_mpi_fail). The same reduction carries the interrupt flags
+ * (sd_mpi_drive_watch): any rank's is every rank's after it. */
 static sd_status sd_drive_steps(sd_mpi *m, sd_world *w, long n, sd_error *err)
 {
     int rank = sd_mpi_rank(m), size = sd_mpi_size(m);
@@ -120,8 +126,11 @@ static sd_status sd_drive_steps(sd_mpi *m, sd_world *w, long n, sd_error *err)
         sd_status st = sd_world_step(w, run, err);
         if (st != SD_OK && w->step != end)
             sd_mpi_fail(m, "step", st, err);
-        int me = st != SD_OK ? rank : size, low = size;
-        MPI_Allreduce(&me, &low, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+        int me[2] = {st != SD_OK ? rank : size, sd_drive_stop && *sd_drive_stop ? -1 : 0}, all[2];
+        MPI_Allreduce(me, all, 2, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+        int low = all[0];
+        if (all[1] < 0 && sd_drive_stop)
+            *sd_drive_stop = 1;
         if (low == size) {
             n -= run;
             continue;

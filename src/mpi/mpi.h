@@ -64,6 +64,7 @@
 #define SD_MPI_MPI_H
 
 #include <shapedem/shapedem.h>
+#include <signal.h>
 
 /* ---- the split (mpi/decomp.c: no MPI in it) --------------------------------- */
 
@@ -262,6 +263,10 @@ sd_status sd_mpi_drive_write(void *drive, const char *path, sd_error *err);
 void sd_mpi_drive_time(sd_world *w);
 /* Ranks other than 0: follow rank 0's commands until it ends the run. */
 void sd_mpi_follow(sd_mpi *m, sd_world *w);
+/* Every rank: flag (a signal handler's) is ORed over the ranks after each
+ * run of steps (sd_mpi_drive_step), so a signal sent to any rank sets it
+ * on rank 0 too, where the run stops at its next output chunk; NULL none. */
+void sd_mpi_drive_watch(volatile sig_atomic_t *flag);
 /* Collective: this rank's index among the ranks of its node (those that
  * share memory, MPI_COMM_TYPE_SHARED, in world-rank order): the device
  * slot of its world (sd_world_def.device, sd_scene_set_device), so that

@@ -148,7 +148,7 @@ check "with an insertion of its own, whose copies take the next free names (exit
     echo "output: {every: 100, checkpoint_every: 50}"
 } >"$tmp/again.yaml"
 (cd "$tmp" && "$exe" run again.yaml -o again1 --steps 100 --threads 1 >/dev/null 2>&1 &&
-    "$exe" run again.yaml -o again2 --steps 100 --threads 2 --restart again1/checkpoint-000050.h5 >/dev/null 2>&1)
+    "$exe" run again.yaml -o again2 --until-step 100 --threads 2 --restart again1/checkpoint-000050.h5 >/dev/null 2>&1)
 sum1=$(cd "$tmp" && "$exe" info again1/checkpoint-000100.h5 2>&1 | grep '^checksum')
 sum2=$(cd "$tmp" && "$exe" info again2/checkpoint-000100.h5 2>&1 | grep '^checksum')
 check "restarted at step 50 on 2 threads, its step-100 checkpoint is the straight run's ($sum1 / $sum2)" \

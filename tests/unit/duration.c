@@ -28,7 +28,13 @@ int main(void)
     check_text(5399.0, "1h30m");  /* 1h29m59s to the minute shown */
     check_text(-1.0, "--");
     check_text(NAN, "--");
-    check_text(2e7, "--");
+    check_text(INFINITY, "--");
+    /* beyond three days in days, beyond a year in years (issue 31: a
+     * scene of steps: 9223372036854775807 printed "about --") */
+    check_text(255600.0, "71h00m");
+    check_text(2e7, "231 days");
+    check_text(1e12, "3.17e+04 years");
+    CHECK(sd_duration_shown(1e12) > 600.0); /* and the 10-minute warning still sees it */
     /* the 10-minute warning of `check` compares the shown value */
     CHECK(!(sd_duration_shown(600.4) > 600.0)); /* "10m00s" is not more than 10 minutes */
     CHECK(sd_duration_shown(600.6) > 600.0);    /* "10m01s" is */

@@ -465,7 +465,7 @@ static void test_run(const char *root)
     }
 
     printf("checking: summary.txt is written on close\n");
-    sd_run_summary sum = {15, 0.5, 240.0, 1, 1 << 20, 1 << 22, NULL, NULL};
+    sd_run_summary sum = {15, 0.5, 240.0, 1, 1 << 20, 1 << 22, NULL, NULL, 0};
     CHECK_OK(sd_output_close(o, w, &sum, &err), err);
     char *summary = read_all(path_join(path, sizeof path, dir, "summary.txt"), NULL);
     CHECK(summary && strstr(summary, "particles: 8\n") && strstr(summary, "steps_run: 15\n") &&
