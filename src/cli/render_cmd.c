@@ -5,7 +5,10 @@
  * option) is one line on stderr naming the file or option, exit status 2,
  * and no picture written; a movie's frames share one colour range (the
  * range over all frames, unless --range gives one), so colours mean the
- * same value in every picture.
+ * same value in every picture; a picture is written only over a regular
+ * file that is none of the files it is drawn from (a FIFO, a device node,
+ * a link or the input frame under -o is refused, exit 2, before anything
+ * is written: sd_fs_check_output, as the run's own outputs).
  */
 #define _POSIX_C_SOURCE 200809L
 
@@ -13,6 +16,8 @@
 #include "core/alloc.h"
 #include "cli/render_ckpt.h"
 #include "io/checkpoint.h"
+#include "io/fsutil.h"
+#include "io/output.h"
 #include "render/render.h"
 
 #include <errno.h>
@@ -109,13 +114,109 @@ static void sd_movie_name(const char *out, long k, char *buf, size_t size)
         snprintf(buf, size, "%.*s_%06ld.png", (int)n, out, k);
 }
 
-/* say: print what the picture shows (one picture; a movie says it once) */
 /* --scene SCENE.yaml: the scene a checkpoint's world is restored in (cli/render_ckpt.c) */
 static const char *sd_render_scene;
 
-static int sd_render_one(const char *frame, const char *field, sd_render_def *d, int view_given, const char *png,
-                         int say)
+/* The frame's sibling of another part (particles_N.vtu -> shapes_N.vtp,
+ * walls_N.vtp), "" for a name of no such series. */
+static void sd_render_sibling(const char *frame, const char *from, const char *to, char *buf, size_t size)
 {
+    const char *slash = strrchr(frame, '/');
+    const char *base = slash ? slash + 1 : frame;
+    size_t dir = (size_t)(base - frame), n = strlen(from);
+    buf[0] = 0;
+    if (strncmp(base, from, n) != 0 || strlen(base) < n + 4)
+        return;
+    snprintf(buf, size, "%.*s%s%.*s.vtp", (int)dir, frame, to, (int)(strlen(base) - n - 4), base + n);
+}
+
+/* The files pictures are drawn from, which none may replace: the
+ * collection, its frames (or the one frame) and their siblings. */
+typedef struct sd_render_inputs {
+    const char **path;
+    size_t n;
+    char *buf;
+} sd_render_inputs;
+
+/* frames: n paths of SD_RENDER_PATH_MAX bytes each; pvd may be NULL;
+ * --scene's file (a checkpoint's) is one too. */
+static int sd_render_inputs_make(const char *pvd, const char *frames, size_t n, sd_render_inputs *in)
+{
+    size_t bytes = pvd ? strlen(pvd) + 1 : 0;
+    for (size_t k = 0; k < n; ++k)
+        bytes += 4 * (strlen(frames + SD_RENDER_PATH_MAX * k) + 16);
+    in->n = 0;
+    in->path = sd_malloc((4 * n + 2) * sizeof *in->path);
+    in->buf = sd_malloc(bytes ? bytes : 1);
+    if (!in->path || !in->buf) {
+        sd_free(in->path);
+        sd_free(in->buf);
+        fprintf(stderr, "shapedem: render: out of memory\n");
+        return 1;
+    }
+    char *at = in->buf;
+    if (sd_render_scene)
+        in->path[in->n++] = sd_render_scene;
+    if (pvd) {
+        in->path[in->n++] = at;
+        at += snprintf(at, strlen(pvd) + 1, "%s", pvd) + 1;
+    }
+    static const char *const sib[3][2] = {{"particles_", "shapes_"}, {"particles_", "walls_"}, {"shapes_", "walls_"}};
+    for (size_t k = 0; k < n; ++k) {
+        const char *f = frames + SD_RENDER_PATH_MAX * k;
+        size_t len = strlen(f) + 16;
+        in->path[in->n++] = at;
+        at += snprintf(at, len, "%s", f) + 1;
+        for (int j = 0; j < 3; ++j) {
+            sd_render_sibling(f, sib[j][0], sib[j][1], at, len);
+            if (at[0]) {
+                in->path[in->n++] = at;
+                at += strlen(at) + 1;
+            }
+        }
+    }
+    return 0;
+}
+
+static void sd_render_inputs_free(sd_render_inputs *in)
+{
+    sd_free(in->path);
+    sd_free(in->buf);
+}
+
+/* A picture's path (and render/draw.c's temporary beside it, written
+ * first) may be replaced: not a FIFO, device, link or directory, and none
+ * of the inputs (sd_fs_check_output, as the run's own outputs). */
+static int sd_render_check_out(const char *png, const sd_render_inputs *in)
+{
+    /* nor a file of a run's output directory (its marker there) under a
+     * name the run writes: a frame, frames.pvd, a CSV series, a checkpoint */
+    const char *slash = strrchr(png, '/');
+    char marker[SD_RENDER_PATH_MAX + 32];
+    snprintf(marker, sizeof marker, "%.*s.shapedem-output", slash ? (int)(slash - png + 1) : 0, png);
+    if (sd_output_is_run_name(slash ? slash + 1 : png) && sd_fs_is_regular_file(marker)) {
+        fprintf(stderr, "shapedem: %s: -o: a run's own output file (its directory has %s): the picture would "
+                        "replace it; choose another name\n", png, marker);
+        return 2;
+    }
+    char tmp[SD_RENDER_PATH_MAX + 16];
+    snprintf(tmp, sizeof tmp, "%s.tmp", png);
+    sd_error err;
+    memset(&err, 0, sizeof err);
+    if (sd_fs_check_output(png, "-o", in->path, in->n, &err) != SD_OK ||
+        sd_fs_check_output(tmp, "-o", in->path, in->n, &err) != SD_OK)
+        return sd_cli_fail_input(&err);
+    return 0;
+}
+
+/* say: print what the picture shows (one picture; a movie says it once);
+ * in: the files no picture may replace (sd_render_check_out) */
+static int sd_render_one(const char *frame, const char *field, sd_render_def *d, int view_given, const char *png,
+                         int say, const sd_render_inputs *in)
+{
+    int rc = sd_render_check_out(png, in);
+    if (rc)
+        return rc;
     sd_render_frame f;
     sd_error err;
     int ckpt = sd_checkpoint_is_file(frame);
@@ -140,7 +241,7 @@ static int sd_render_one(const char *frame, const char *field, sd_render_def *d,
     }
     sd_render_frame_free(&f);
     if (s != SD_OK) {
-        int rc = sd_cli_fail_input(&err);
+        rc = sd_cli_fail_input(&err);
         return s == SD_ERR_INPUT ? rc : 1;
     }
     return 0;
@@ -175,11 +276,18 @@ static int sd_render_movie(const char *pvd, const char *field, sd_render_def *d,
         d->lo = lo;
         d->hi = hi;
     }
-    char name[SD_RENDER_PATH_MAX + 32];
+    char name[SD_RENDER_PATH_MAX + 32], mp4[SD_RENDER_PATH_MAX + 32];
+    sd_render_inputs in;
+    int made = !rc && (rc = sd_render_inputs_make(pvd, paths, n, &in)) == 0;
     for (size_t k = 0; k < n && !rc; ++k) {
         sd_movie_name(out, (long)k, name, sizeof name);
-        rc = sd_render_one(paths + SD_RENDER_PATH_MAX * k, field, d, view_given, name, k + 1 == n);
+        rc = sd_render_one(paths + SD_RENDER_PATH_MAX * k, field, d, view_given, name, k + 1 == n, &in);
     }
+    sd_movie_name(out, -1, mp4, sizeof mp4);
+    if (!rc && sd_on_path("ffmpeg")) /* ffmpeg -y replaces what is there */
+        rc = sd_render_check_out(mp4, &in);
+    if (made)
+        sd_render_inputs_free(&in);
     sd_free(paths);
     if (rc)
         return rc;
@@ -188,10 +296,9 @@ static int sd_render_movie(const char *pvd, const char *field, sd_render_def *d,
         printf("no ffmpeg on the PATH: no MP4\n");
         return 0;
     }
-    char pattern[SD_RENDER_PATH_MAX + 32], mp4[SD_RENDER_PATH_MAX + 32], rate[16];
+    char pattern[SD_RENDER_PATH_MAX + 32], rate[16];
     snprintf(pattern, sizeof pattern, "%.*s_%%06d.png", (int)(strlen(out) - (sd_ends_with(out, ".png") ? 4 : 0)),
              out);
-    sd_movie_name(out, -1, mp4, sizeof mp4);
     snprintf(rate, sizeof rate, "%d", fps);
     /* even sizes: the yuv420p that players expect halves the chroma */
     char *argv[] = {"ffmpeg", "-y", "-loglevel", "error", "-framerate", rate, "-i", pattern, "-vf",
@@ -309,8 +416,14 @@ int sd_cmd_render(int argc, char **argv)
         return sd_render_bad("--movie needs a frames.pvd, got '%s'", in);
     if (movie)
         return sd_render_movie(in, field, &d, view_given, out, fps);
-    if (!is_pvd)
-        return sd_render_one(in, field, &d, view_given, out, 1);
+    if (!is_pvd) {
+        sd_render_inputs ins;
+        if (sd_render_inputs_make(NULL, in, 1, &ins))
+            return 1;
+        int rc = sd_render_one(in, field, &d, view_given, out, 1, &ins);
+        sd_render_inputs_free(&ins);
+        return rc;
+    }
     char *paths;
     size_t n;
     sd_error err;
@@ -323,7 +436,12 @@ int sd_cmd_render(int argc, char **argv)
                         "last)\n", in, frame, n, n - 1);
         return 2;
     }
-    int rc = sd_render_one(paths + SD_RENDER_PATH_MAX * (size_t)i, field, &d, view_given, out, 1);
+    sd_render_inputs ins; /* every frame of the collection: none may become the picture */
+    int rc = sd_render_inputs_make(in, paths, n, &ins);
+    if (!rc) {
+        rc = sd_render_one(paths + SD_RENDER_PATH_MAX * (size_t)i, field, &d, view_given, out, 1, &ins);
+        sd_render_inputs_free(&ins);
+    }
     sd_free(paths);
     return rc;
 }

@@ -93,7 +93,40 @@ const char *sd_fs_not_regular(const char *path)
         return "a symbolic link";
     if (S_ISDIR(st.st_mode))
         return "a directory";
+    if (S_ISFIFO(st.st_mode))
+        return "a FIFO";
+    if (S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode))
+        return "a device node";
+    if (S_ISSOCK(st.st_mode))
+        return "a socket";
     return "not a regular file";
+}
+
+int sd_fs_same_file(const char *a, const char *b)
+{
+    struct stat sa, sb;
+    return a && b && stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+}
+
+sd_status sd_fs_check_output(const char *path, const char *option, const char *const *inputs, size_t n,
+                             sd_error *err)
+{
+    struct stat st;
+    if (lstat(path, &st) != 0)
+        return SD_OK; /* nothing there: a new file */
+    const char *what = sd_fs_not_regular(path);
+    if (what)
+        return sd_error_set(err, SD_ERR_INPUT, path, 0, option,
+                            "it is %s, not a regular file: shapedem writes a new file or over a regular one, never "
+                            "over a link, a directory, a FIFO or a device; choose another name",
+                            what);
+    for (size_t k = 0; k < n; ++k)
+        if (inputs[k] && sd_fs_same_file(path, inputs[k]))
+            return sd_error_set(err, SD_ERR_INPUT, path, 0, option,
+                                "it is the input %s (the same file): writing there would destroy what is "
+                                "read; choose another name",
+                                inputs[k]);
+    return SD_OK;
 }
 
 /* Opens path for writing without following a symbolic link in its last

@@ -25,9 +25,22 @@ sd_status sd_fs_mkdir_p(const char *path, sd_error *err);
 int sd_fs_is_regular_file(const char *path);
 
 /* NULL when path names a regular file or nothing; else what it is ("a
- * symbolic link", "a directory", "not a regular file"), for messages.
+ * symbolic link", "a directory", "a FIFO", "a device node", "a socket",
+ * "not a regular file"), for messages.
  * Symbolic links are not followed. */
 const char *sd_fs_not_regular(const char *path);
+
+/* 1 when a and b both exist and are the same file (device and inode, links
+ * followed): an output that would replace one of its own inputs. */
+int sd_fs_same_file(const char *a, const char *b);
+
+/* Whether path may be replaced by an output that `option` names (a
+ * command's -o): SD_OK when it names nothing or a regular file that is
+ * none of the n inputs; else SD_ERR_INPUT naming it and what it is (a
+ * link, a directory, a FIFO or device node: the run's own outputs refuse
+ * the same entries, sd_fs_not_regular) or which input it is. */
+sd_status sd_fs_check_output(const char *path, const char *option, const char *const *inputs, size_t n,
+                             sd_error *err);
 
 /* Creates path for appending; fails (SD_ERR_IO, with strerror) when
  * anything already has that name, a symbolic link included: O_CREAT |

@@ -102,6 +102,13 @@ static long sd_output_frame_number(const char *name)
     return -1;
 }
 
+/* A checkpoint's name (io/checkpoint.c): checkpoint-<digits>.h5, or
+ * failed-<digits>.h5 of a step that failed. */
+static int sd_output_is_checkpoint_name(const char *s, size_t n)
+{
+    return sd_output_is_frame_name(s, n, "checkpoint-", ".h5") || sd_output_is_frame_name(s, n, "failed-", ".h5");
+}
+
 static int sd_output_is_ours(const char *name)
 {
     const char *s = name;
@@ -109,6 +116,10 @@ static int sd_output_is_ours(const char *name)
     if (n > 5 && name[0] == '.' && sd_output_has_suffix(name, n, ".tmp")) {
         s = name + 1; /* a temporary left by an interrupted run */
         n -= 5;
+        /* a checkpoint's too (SIGKILL during its write): the checkpoints
+         * themselves stay, their unfinished temporaries go */
+        if (sd_output_is_checkpoint_name(s, n))
+            return 1;
     }
     static const char *fixed[] = {"frames.pvd", "stats.csv", "summary.txt", "biaxial.csv", "walls.csv"};
     for (size_t k = 0; k < sizeof fixed / sizeof fixed[0]; ++k)
@@ -118,6 +129,21 @@ static int sd_output_is_ours(const char *name)
         if (sd_output_is_frame_name(s, n, sd_output_part_prefix[k], sd_output_part_suffix[k]))
             return 1;
     return 0;
+}
+
+int sd_output_is_run_name(const char *name)
+{
+    size_t n = strlen(name);
+    const char *s = name;
+    if (n > 5 && name[0] == '.' && sd_output_has_suffix(name, n, ".tmp")) {
+        s = name + 1; /* the temporary of any of them */
+        n -= 5;
+    }
+    static const char *more[] = {"outlet.csv", SD_OUTPUT_MARKER};
+    for (size_t k = 0; k < sizeof more / sizeof more[0]; ++k)
+        if (n == strlen(more[k]) && memcmp(s, more[k], n) == 0)
+            return 1;
+    return sd_output_is_ours(name) || sd_output_is_checkpoint_name(s, n);
 }
 
 typedef struct sd_output_scan {

@@ -39,6 +39,11 @@ typedef struct sd_run_summary {
 } sd_run_summary;
 
 sd_status sd_output_open(const sd_output_def *def, const sd_world *w, sd_output **out, sd_error *err);
+/* 1 when a run writes a file of this name in its directory: frames and
+ * frames.pvd, the CSV series, outlet.csv, summary.txt, checkpoints
+ * (checkpoint-N.h5, failed-N.h5), the .shapedem-output marker, and the
+ * ".<name>.tmp" temporary of each; an analysis file may not take one. */
+int sd_output_is_run_name(const char *name);
 sd_status sd_output_frame(sd_output *o, const sd_world *w, sd_error *err);
 /* Frames in the directory's series: written so far, and on a restart
  * those of the first part kept before the restart time. */

@@ -18,6 +18,12 @@
 
 #include "core/alloc.h"
 #include "io/fsutil.h"
+#include "io/output.h"
+
+/* An analysis file under the name of a run's own file (sd_output_is_run_name). */
+#define SD_AN_RUN_FILE                                                                                          \
+    "%s is a file of the run's own output (frames, frames.pvd, the CSV series, summary.txt, checkpoints, the "   \
+    ".shapedem-output marker): give this analysis another name or file"
 
 static const char *const sd_an_type_names[SD_AN_TYPE_COUNT] = {
 #define SD_X_AN_NAME(e, name, doc) name,
@@ -187,6 +193,8 @@ static sd_status sd_an_parse_entry(sd_parse *p, yaml_node_t *m, const char *path
                            "expected a plain file name (no directory, at most %zu characters) in the output "
                            "directory, got '%s'",
                            sizeof e->file - 1, v.str);
+        if (sd_output_is_run_name(v.str)) /* as below, at the file: key's own line */
+            return sd_fail(p, v.line, sd_yaml_kp(key, sizeof key, path, "file"), SD_AN_RUN_FILE, v.str);
         snprintf(e->file, sizeof e->file, "%s", v.str);
     }
     /* cadence: every steps, or interval seconds rounded to steps */
@@ -309,14 +317,11 @@ sd_status sd_parse_analysis(sd_parse *p, yaml_node_t *root)
                 return sd_fail(p, e->line, sd_yaml_kp(key, sizeof key, path, "file"),
                                "analysis[%zu] writes %s already: give this entry another name or file", k, e->file);
             }
-        const char *reserved[] = {"stats.csv", "outlet.csv", "walls.csv", "biaxial.csv", "summary.txt"};
-        for (size_t k = 0; k < sizeof reserved / sizeof reserved[0]; ++k)
-            if (strcmp(e->file, reserved[k]) == 0) {
-                char key[80];
-                return sd_fail(p, e->line, sd_yaml_kp(key, sizeof key, path, "file"),
-                               "%s is a file of the run's own output: give this analysis another name or file",
-                               e->file);
-            }
+        /* a run's own file (io/output.c): its writes would replace the rows */
+        if (sd_output_is_run_name(e->file)) {
+            char key[80];
+            return sd_fail(p, e->line, sd_yaml_kp(key, sizeof key, path, "file"), SD_AN_RUN_FILE, e->file);
+        }
         sa->count = i + 1;
     }
     return SD_OK;

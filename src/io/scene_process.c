@@ -395,9 +395,18 @@ static sd_status sd_parse_outlets(sd_parse *p, yaml_node_t *list)
         sd_region_outlet_def *o = &sp->outlets[i];
         *o = sd_region_outlet_def_default();
         sp->outlet_lines[i] = line;
-        if (sd_yaml_get(&p->y, m, SD_SEC_OUTLETS, "name", path, &v))
+        if (sd_yaml_get(&p->y, m, SD_SEC_OUTLETS, "name", path, &v)) {
+            /* the name heads two columns of outlet.csv: a comma, a quote or
+             * a line break in it would split the header */
+            for (const char *c = v.str; *c; ++c)
+                if (*c == ',' || *c == '"' || (unsigned char)*c < 0x20 || *c == 0x7f) {
+                    char nkey[96];
+                    snprintf(nkey, sizeof nkey, "%s.name", path);
+                    return sd_fail(p, v.line, nkey, "the name heads columns of outlet.csv: it may not hold a comma, "
+                                   "a double quote or a control character (a line break, a tab)");
+                }
             snprintf(sp->outlet_names[i], SD_SCENE_NAME_MAX, "%s", v.str);
-        else
+        } else
             snprintf(sp->outlet_names[i], SD_SCENE_NAME_MAX, "outlet%zu", i);
         o->name = sp->outlet_names[i];
         if ((st = sd_parse_region(p, m, SD_SEC_OUTLETS, path, kind, i, &o->region)))

@@ -18,11 +18,7 @@ bin="$1"
 . "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/lib.sh"  # pass, fail, check NAME 0|1, finish
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-cat >"$tmp/s.yaml" <<'EOF'
-simulation: {dt: 1.0e-5, steps: 200, seed: 3}
-materials: [{name: g, density: 2500, youngs_modulus: 1.0e7}]
-particles: [{generator: lattice, material: g, radius: 0.001, origin: [0.002, 0.002, 0.002], spacing: 0.003, count: [3, 3, 3]}]
-walls: [{name: box, type: box, min: [0, 0, 0], max: [0.02, 0.02, 0.05], open: [zmax], material: g}]
+{ cat "$(dirname "${BASH_SOURCE[0]}")/output_scenes/box27.yaml"; cat <<'EOF'; } >"$tmp/s.yaml"
 insert: [{name: f, region: box, min: [0.003, 0.003, 0.02], max: [0.017, 0.017, 0.04], count: 20, rate: 20000, mix: [{material: g, radius: 0.0008}]}]
 analysis: [{type: coordination}]
 output: {every: 50, stats_every: 10, checkpoint_every: 50}
@@ -132,9 +128,10 @@ if grep -q "cannot run" "$tmp/cuda.err"; then
         "$(yes01 grep -q '^shapedem: --backend cuda: backend cuda cannot run' "$tmp/cuda.err")"
     sed 's/^simulation: {dt: 1.0e-5, steps: 200, seed: 3}/simulation:\n  dt: 1.0e-5\n  steps: 200\n  backend: cuda/' \
         "$tmp/s.yaml" >"$tmp/cuda.yaml"
+    line=$(grep -n "backend: cuda" "$tmp/cuda.yaml" | cut -d: -f1)
     "$bin" check "$tmp/cuda.yaml" >/dev/null 2>"$tmp/cuda2.err"
-    check "backend: cuda in the scene: the message points at its line 4 ($(cat "$tmp/cuda2.err"))" \
-        "$(yes01 grep -q "cuda.yaml:4: simulation.backend: backend cuda cannot run" "$tmp/cuda2.err")"
+    check "backend: cuda in the scene: the message points at its line $line ($(cat "$tmp/cuda2.err"))" \
+        "$(yes01 grep -q "cuda.yaml:$line: simulation.backend: backend cuda cannot run" "$tmp/cuda2.err")"
 else
     echo "  (this build runs CUDA: the refusal cannot be seen)"
 fi
