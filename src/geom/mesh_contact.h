@@ -315,24 +315,154 @@ SD_HD static SD_INLINE int sd_mesh_edge_convex(const sd_mesh_view *m, uint32_t t
  * = 0.9886 of the true one, the same factor for its clipped part, so the
  * weight w = A_clip / A is not biased by it. */
 #define SD_MESH_SECTION_DIRS 24
-#define SD_MESH_SECTION_ITERS 34
+/* At most this many support points per rim point once bracketed: a smooth
+ * rim takes a handful; a sharp edge or corner across the plane (a jump of
+ * the height g below) is closed on by a halving at least every third step. */
+#define SD_MESH_SECTION_ITERS 64
 
-/* The section's support in plane direction u (seed 000 §2.4's section,
- * by LP duality): h_S(u) = min over t of h_K(u + t n) - t off, with
- * t = tan(phi): f(phi) = (h_K(d) - sin(phi) off) / cos(phi), d = cos(phi)
- * u + sin(phi) n, unimodal in phi on (-pi/2, pi/2). K is the rounded
- * body (core support plus the swept radius), all in the mesh frame;
- * *pt gets K's support point along d, a point of the section's rim at
- * the minimum. */
-SD_HD static SD_INLINE sd_real sd_mesh_section_f(const sd_convex *c, const sd_wall_geom *wg, sd_vec3 u, sd_vec3 n,
-                                                 sd_real off, sd_real phi, sd_vec3 *pt)
+/* The support point of the swept body (core plus radius) in its principal
+ * frame along direction (1 - s^2) u + 2 s n, s in [-1, 1]: u at s = 0, +n
+ * at s = 1, -n at s = -1 (s is the tangent of half the angle turned from
+ * u towards n, so no sine or cosine is needed), and its height g = n . p
+ * - off above the plane. */
+SD_HD static SD_INLINE sd_vec3 sd_mesh_section_support(const sd_shape *sh, const sd_vec3 *verts, sd_vec3 u, sd_vec3 n,
+                                                       sd_real off, sd_real s, sd_real *g)
 {
-    sd_real cp = sd_cos(phi), sp = sd_sin(phi);
-    sd_vec3 dm = sd_v3_add(sd_v3_scale(u, cp), sd_v3_scale(n, sp));
-    sd_vec3 dw = sd_quat_rotate(wg->q, dm);
-    sd_vec3 sw = sd_v3_madd(sd_convex_support_core(c, dw), c->shape->radius, dw);
-    *pt = sd_mesh_to_frame(wg->q, wg->trans, sw);
-    return (sd_v3_dot(*pt, dm) - sp * off) / cp;
+    /* u and n are unit and square to each other: |d| = 1 + s^2 exactly,
+     * so the swept radius needs no norm */
+    sd_vec3 d = sd_v3_add(sd_v3_scale(u, SD_R(1.0) - s * s), sd_v3_scale(n, SD_R(2.0) * s));
+    sd_vec3 p = sd_v3_madd(sd_shape_support_core(sh, verts, d), sh->radius / (SD_R(1.0) + s * s), d);
+    *g = sd_v3_dot(n, p) - off;
+    return p;
+}
+
+/* The s in (-1, 1) whose direction (1 - s^2) u + 2 s n is square to the
+ * chord e: (1 - s^2) a + 2 s b = 0, a = u . e, b = n . e; of its two
+ * roots (their product is -1) the one of magnitude below 1; 2 (none) when
+ * e is square to both u and n. */
+SD_HD static SD_INLINE sd_real sd_mesh_section_square(sd_vec3 u, sd_vec3 n, sd_vec3 e)
+{
+    sd_real a = sd_v3_dot(u, e), b = sd_v3_dot(n, e);
+    sd_real den = b + (b >= SD_R(0.0) ? SD_R(1.0) : SD_R(-1.0)) * sd_sqrt(a * a + b * b);
+    return den != SD_R(0.0) ? -a / den : SD_R(2.0);
+}
+
+/* What one rim point leaves to the next (24 directions turning by 15
+ * degrees): its root s, the first step to bracket the next from it, and
+ * the chord (c0, c1, heights h0 < 0 < h1) of the face it lay on, if any. */
+typedef struct sd_mesh_rim_state {
+    sd_real s, step, h0, h1;
+    int chord;
+    sd_vec3 c0, c1;
+} sd_mesh_rim_state;
+
+/* The section's rim point along plane direction u (body frame; the plane
+ * n . p = off): the support point whose height g(s) is zero. g never
+ * decreases with s (the support point of a turning direction climbs the
+ * body), so the root is bracketed: from the last rim point's root the
+ * bracket grows by steps, quadrupled, to where g changes sign (the body's
+ * lowest and highest points, plo at s = -1 and phi at s = 1, close it at
+ * worst); then regula falsi with the Illinois halving, every other step
+ * replaced by the chord step below, until |g| is below tol, the two ends'
+ * points are within dist of each other, or the bracket is 1e-12 wide.
+ * The chord step takes the direction square to the chord between the
+ * ends' points: when no point of the body lies above the chord along it,
+ * the chord lies on a face of the body (g jumps there: a flat face, or a
+ * sharp edge or corner crossing the plane) and the rim point is where it
+ * crosses the plane. A face found so is tried first for the next
+ * direction (a polygon-like section has few corners: one support point
+ * then gives the rim point). */
+SD_HD static SD_INLINE sd_vec3 sd_mesh_section_rim(const sd_shape *sh, const sd_vec3 *verts, sd_vec3 u, sd_vec3 n,
+                                                   sd_real off, sd_real tol, sd_real dist, sd_vec3 plo, sd_real glo,
+                                                   sd_vec3 phi, sd_real ghi, sd_mesh_rim_state *st)
+{
+    sd_real s0 = SD_R(-1.0), s1 = SD_R(1.0), g0 = glo, g1 = ghi, g, sg = st->s;
+    sd_vec3 p0 = plo, p1 = phi, p;
+    int have = 0;
+    if (st->chord) {
+        /* the last face, square to this direction */
+        sd_real sq = sd_mesh_section_square(u, n, sd_v3_sub(st->c1, st->c0));
+        if (sq > SD_R(-1.0) && sq < SD_R(1.0)) {
+            p = sd_mesh_section_support(sh, verts, u, n, off, sq, &g);
+            sd_vec3 d = sd_v3_add(sd_v3_scale(u, SD_R(1.0) - sq * sq), sd_v3_scale(n, SD_R(2.0) * sq));
+            if (sd_v3_dot(d, sd_v3_sub(p, st->c0)) <= tol * (SD_R(1.0) + sq * sq)) {
+                st->s = sq;
+                return sd_v3_add(st->c0, sd_v3_scale(sd_v3_sub(st->c1, st->c0), st->h0 / (st->h0 - st->h1)));
+            }
+            sg = sq;
+            have = 1;
+        }
+    }
+    st->chord = 0;
+    st->s = sg;
+    if (!have)
+        p = sd_mesh_section_support(sh, verts, u, n, off, sg, &g);
+    if (sd_fabs(g) <= tol)
+        return p;
+    /* grow the bracket from the guess towards the root */
+    int up = g < SD_R(0.0);
+    if (up)
+        s0 = sg, p0 = p, g0 = g;
+    else
+        s1 = sg, p1 = p, g1 = g;
+    for (sd_real s = sg, step = st->step;; step *= SD_R(4.0)) {
+        s = up ? s + step : s - step;
+        if (up ? s >= s1 : s <= s0)
+            break; /* the far end (-1 or 1) closes it */
+        p = sd_mesh_section_support(sh, verts, u, n, off, s, &g);
+        if (sd_fabs(g) <= tol) {
+            st->s = s;
+            return p;
+        }
+        if ((g < SD_R(0.0)) != up) {
+            if (up)
+                s1 = s, p1 = p, g1 = g;
+            else
+                s0 = s, p0 = p, g0 = g;
+            break;
+        }
+        if (up)
+            s0 = s, p0 = p, g0 = g;
+        else
+            s1 = s, p1 = p, g1 = g;
+    }
+    /* f0, f1: the ends' heights as regula falsi weighs them (halved by Illinois) */
+    sd_real f0 = g0, f1 = g1;
+    int side = 0;
+    for (int it = 0; it < SD_MESH_SECTION_ITERS && s1 - s0 > SD_R(1e-12); ++it) {
+        if (sd_v3_norm2(sd_v3_sub(p1, p0)) <= dist * dist)
+            break;
+        int chord = it % 2 == 1;
+        sd_real s = chord ? sd_mesh_section_square(u, n, sd_v3_sub(p1, p0)) : (s0 * f1 - s1 * f0) / (f1 - f0);
+        if (!(s > s0 && s < s1))
+            s = SD_R(0.5) * (s0 + s1);
+        p = sd_mesh_section_support(sh, verts, u, n, off, s, &g);
+        if (sd_fabs(g) <= tol) {
+            st->s = s;
+            return p;
+        }
+        if (chord) {
+            sd_vec3 d = sd_v3_add(sd_v3_scale(u, SD_R(1.0) - s * s), sd_v3_scale(n, SD_R(2.0) * s));
+            if (sd_v3_dot(d, sd_v3_sub(p, p0)) <= tol * (SD_R(1.0) + s * s)) {
+                st->chord = 1, st->c0 = p0, st->c1 = p1, st->h0 = g0, st->h1 = g1;
+                break; /* on a face */
+            }
+        }
+        if (g < SD_R(0.0)) {
+            s0 = s, p0 = p, g0 = f0 = g;
+            if (side == -1 && !chord)
+                f1 *= SD_R(0.5);
+            side = -1;
+        } else {
+            s1 = s, p1 = p, g1 = f1 = g;
+            if (side == 1 && !chord)
+                f0 *= SD_R(0.5);
+            side = 1;
+        }
+    }
+    sd_real w = g0 / (g0 - g1);
+    st->s = s0 + w * (s1 - s0);
+    return sd_v3_add(p0, sd_v3_scale(sd_v3_sub(p1, p0), w));
 }
 
 /* The section of a posed convex body (any kind: spheres, ellipsoids,
@@ -340,13 +470,44 @@ SD_HD static SD_INLINE sd_real sd_mesh_section_f(const sd_convex *c, const sd_wa
  * of the mesh frame, as the polygon of its rim points in
  * SD_MESH_SECTION_DIRS plane directions, hulled, in the plane basis
  * (e1, e2); returns its vertex count (0 when the plane misses the body).
- * Each rim point is the support point of the body at the minimum of
- * sd_mesh_section_f, found by golden-section search (SD_MESH_SECTION_ITERS
- * steps: phi to 1e-7 rad), then put on the plane. */
+ *
+ * The rim point along plane direction u is the body's support point along
+ * d = u + t n at the t where that point lies on the plane (seed 000
+ * §2.4's section, by LP duality: h_S(u) = min over t of h_K(u + t n) -
+ * t off, whose derivative in t is n . s(u + t n) - off), found by
+ * sd_mesh_section_rim to 1e-12 of the body's size, the first from the
+ * direction of a sphere's rim at the same depth, each next from the last.
+ * Everything is done in the body's principal frame (the plane and its
+ * basis turned into it once), so each step is one support point of the
+ * template. */
 SD_HD static SD_INLINE int sd_mesh_convex_section(const sd_convex *c, const sd_wall_geom *wg, sd_vec3 n, sd_real off,
                                                   sd_vec3 e1, sd_vec3 e2, sd_vec2 *sec)
 {
-    const sd_real half = SD_R(1.5707963267948966) - SD_R(1e-9), g = SD_R(0.6180339887498949);
+    const sd_shape *sh = c->shape;
+    /* the plane n . x = off and the mesh frame's basis in the body frame:
+     * x_mesh = R_m^T (R_b p + x_b - trans), so n . x_mesh = nb . p + n . xc,
+     * nb = R_b^T R_m n and xc the centre in the mesh frame */
+    sd_quat qr = sd_quat_mul(sd_quat_conj(c->q), wg->q);
+    sd_vec3 nb = sd_quat_rotate(qr, n), e1b = sd_quat_rotate(qr, e1), e2b = sd_quat_rotate(qr, e2);
+    sd_vec3 xc = sd_mesh_to_frame(wg->q, wg->trans, c->x);
+    sd_real offb = off - sd_v3_dot(n, xc), x1 = sd_v3_dot(xc, e1), x2 = sd_v3_dot(xc, e2);
+    sd_real size = sh->bound > 0 ? sh->bound : SD_R(1.0);
+    /* the lowest and the highest point along n: the brackets' far ends */
+    sd_real glo, ghi;
+    sd_vec3 plo = sd_mesh_section_support(sh, c->verts, e1b, nb, offb, SD_R(-1.0), &glo);
+    sd_vec3 phi = sd_mesh_section_support(sh, c->verts, e1b, nb, offb, SD_R(1.0), &ghi);
+    if (!(glo <= SD_R(0.0) && ghi >= SD_R(0.0)) || !(ghi > glo))
+        return 0; /* the plane misses the body (or grazes a face of no height) */
+    /* the first guess: the rim of a sphere of the body's height cut at its
+     * depth, at angle theta from -n, cos theta = 1 - depth / radius, is
+     * s = tan((theta - pi/2) / 2) = -cos theta / (1 + sin theta) */
+    sd_real ct = SD_R(1.0) + SD_R(2.0) * glo / (ghi - glo);
+    sd_mesh_rim_state st;
+    st.s = -ct / (SD_R(1.0) + sd_sqrt(sd_max(SD_R(0.0), SD_R(1.0) - ct * ct)));
+    st.step = SD_R(0.05);
+    st.chord = 0;
+    st.h0 = st.h1 = SD_R(0.0);
+    st.c0 = st.c1 = plo;
     /* cos and sin of k 2 pi / 24 */
     const sd_real cs[6] = {SD_R(1.0), SD_R(0.9659258262890683), SD_R(0.8660254037844386), SD_R(0.7071067811865476),
                            SD_R(0.5), SD_R(0.25881904510252074)};
@@ -356,46 +517,15 @@ SD_HD static SD_INLINE int sd_mesh_convex_section(const sd_convex *c, const sd_w
         sd_real ca = cs[q], sa = q == 0 ? SD_R(0.0) : cs[6 - q]; /* angle q pi / 12 in this quadrant */
         sd_real cx = quad == 0 ? ca : (quad == 1 ? -sa : (quad == 2 ? -ca : sa));
         sd_real cy = quad == 0 ? sa : (quad == 1 ? ca : (quad == 2 ? -sa : -ca));
-        sd_vec3 u = sd_v3_add(sd_v3_scale(e1, cx), sd_v3_scale(e2, cy));
-        sd_real a = -half, b = half;
-        sd_real x1 = b - g * (b - a), x2 = a + g * (b - a);
-        sd_vec3 p1, p2; /* the support points at x1, x2 (unused past the search) */
-        sd_real f1 = sd_mesh_section_f(c, wg, u, n, off, x1, &p1), f2 = sd_mesh_section_f(c, wg, u, n, off, x2, &p2);
-        for (int it = 0; it < SD_MESH_SECTION_ITERS; ++it) {
-            if (f1 <= f2) {
-                b = x2;
-                x2 = x1;
-                f2 = f1;
-                p2 = p1;
-                x1 = b - g * (b - a);
-                f1 = sd_mesh_section_f(c, wg, u, n, off, x1, &p1);
-            } else {
-                a = x1;
-                x1 = x2;
-                f1 = f2;
-                p1 = p2;
-                x2 = a + g * (b - a);
-                f2 = sd_mesh_section_f(c, wg, u, n, off, x2, &p2);
-            }
-        }
-        /* the support points at the bracket's ends: on a smooth rim both
-         * are on the plane; at a kink (an edge or a corner of a box, a
-         * cylinder's cap rim) they are the two ends of the edge crossing
-         * it, and the rim point is where that segment (inside the body)
-         * meets the plane */
-        sd_vec3 pa, pb;
-        (void)sd_mesh_section_f(c, wg, u, n, off, a, &pa);
-        (void)sd_mesh_section_f(c, wg, u, n, off, b, &pb);
-        sd_real ha = sd_v3_dot(n, pa) - off, hb = sd_v3_dot(n, pb) - off;
-        sd_vec3 p;
-        if ((ha <= SD_R(0.0) && hb >= SD_R(0.0)) || (ha >= SD_R(0.0) && hb <= SD_R(0.0)))
-            p = ha == hb ? pa : sd_v3_add(pa, sd_v3_scale(sd_v3_sub(pb, pa), ha / (ha - hb)));
-        else if (sd_fabs(ha) <= SD_R(1e-6) * (c->shape->bound > 0 ? c->shape->bound : SD_R(1.0)))
-            p = pa;
-        else
-            return 0; /* the rim is off the plane: the plane misses the body */
-        p = sd_v3_sub(p, sd_v3_scale(n, sd_v3_dot(n, p) - off));
-        sec[np++] = sd_v2(sd_v3_dot(p, e1), sd_v3_dot(p, e2));
+        sd_vec3 u = sd_v3_add(sd_v3_scale(e1b, cx), sd_v3_scale(e2b, cy));
+        sd_real sg = st.s;
+        sd_vec3 p = sd_mesh_section_rim(sh, c->verts, u, nb, offb, SD_R(1e-12) * size, SD_R(1e-7) * size, plo, glo,
+                                        phi, ghi, &st);
+        /* the next direction's first step: a little more than this root moved */
+        st.step = sd_max(SD_R(1e-3), SD_R(1.5) * sd_fabs(st.s - sg));
+        st.s = sd_max(SD_R(-1.0) + SD_R(1e-9), sd_min(SD_R(1.0) - SD_R(1e-9), st.s));
+        p = sd_v3_sub(p, sd_v3_scale(nb, sd_v3_dot(nb, p) - offb));
+        sec[np++] = sd_v2(sd_v3_dot(p, e1b) + x1, sd_v3_dot(p, e2b) + x2);
     }
     return sd_clip_hull(sec, np);
 }
