@@ -519,13 +519,19 @@ static void sd_h5_read_dataset(sd_h5_reader *r, hid_t g, const char *group, cons
     H5Dclose(d);
 }
 
-/* Children of a group by index (the same calls in HDF5 1.10 and 1.12+). */
+/* Children of a group by index (the same calls in HDF5 1.10 and 1.12+),
+ * in the name index's native order (the items are sorted by name after
+ * reading): for a group with dense link storage HDF5 then walks its
+ * B-tree of names, where increasing order builds and frees a table of
+ * every link for each call, the path on which damaged link records
+ * (bit flips with a resealed checksum, issue 31) made libhdf5 free
+ * invalid pointers. */
 static char *sd_h5_child_name(hid_t g, hsize_t k, char *buf, size_t size)
 {
-    ssize_t n = H5Lget_name_by_idx(g, ".", H5_INDEX_NAME, H5_ITER_INC, k, NULL, 0, H5P_DEFAULT);
+    ssize_t n = H5Lget_name_by_idx(g, ".", H5_INDEX_NAME, H5_ITER_NATIVE, k, NULL, 0, H5P_DEFAULT);
     if (n <= 0 || (size_t)n >= size)
         return NULL;
-    if (H5Lget_name_by_idx(g, ".", H5_INDEX_NAME, H5_ITER_INC, k, buf, size, H5P_DEFAULT) != n)
+    if (H5Lget_name_by_idx(g, ".", H5_INDEX_NAME, H5_ITER_NATIVE, k, buf, size, H5P_DEFAULT) != n)
         return NULL;
     return buf;
 }
