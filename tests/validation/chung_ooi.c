@@ -24,7 +24,8 @@
  * the paper (it was not at hand): each check is against Hertz's and the
  * sliding limit's figures for the parameters used, so a difference from
  * the paper's materials changes the case, not the verdict. The oblique
- * sweeps as curves in docs/validation/: not yet written.
+ * sweep, every 2 degrees on both walls: SD_CHUNG_OOI_CSV=FILE writes it as
+ * CSV, docs/validation/chung_ooi.py plots it.
  */
 #include "test.h"
 
@@ -168,6 +169,24 @@ int main(void)
         same(label, a.wy, b.wy);
         snprintf(label, sizeof label, "test 4, %d deg: normal velocity", deg);
         same(label, a.vn, b.vn);
+    }
+    /* the sweep for docs/validation/chung_ooi.py: every 2 degrees, both walls */
+    const char *csv = getenv("SD_CHUNG_OOI_CSV");
+    FILE *fp = csv ? fopen(csv, "w") : NULL;
+    if (fp) {
+        fprintf(fp, "theta_deg,et_plane,spin_plane,rebound_plane_deg,et_mesh,spin_mesh,rebound_mesh_deg,"
+                    "et_sliding,spin_sliding\n");
+        for (int deg = 2; deg <= 88; deg += 2) {
+            impact a = run(0, E, nu, rho, mu, r, v, deg);
+            impact b = run(1, E, nu, rho, mu, r, v, deg);
+            double th = deg * 3.14159265358979323846 / 180.0, vn = v * cos(th), vt = v * sin(th);
+            double rad = 180 / 3.14159265358979323846;
+            fprintf(fp, "%d,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", deg, a.vt / vt, a.wy * r / vt,
+                    atan2(a.vt, a.vn) * rad, b.vt / vt, b.wy * r / vt, atan2(b.vt, b.vn) * rad,
+                    1 - mu * 2 * vn / vt, 5 * mu * 2 * vn / (2 * vt));
+        }
+        fclose(fp);
+        printf("wrote %s\n", csv);
     }
     return sd_test_summary();
 }
