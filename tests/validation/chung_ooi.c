@@ -1,8 +1,13 @@
-/* chung_ooi.c — the sphere-wall impacts of the Chung & Ooi benchmark
- * (Granular Matter 13, 643-656, 2011), short forms, each against an
- * analytic plane and against a mesh wall holding the same plane (two
- * triangles), under Hertz-Mindlin with e = 1 (elastic):
+/* chung_ooi.c — tests 1, 2 and 4 of the Chung & Ooi benchmark (Granular
+ * Matter 13, 643-656, 2011), short forms, under Hertz-Mindlin with e = 1
+ * (elastic), the wall impacts each against an analytic plane and against
+ * a mesh wall holding the same plane (two triangles):
  *
+ *  - test 1, elastic normal impact of two identical spheres (no wall):
+ *    alumina (E 380 GPa, nu 0.23, rho 4000 kg/m^3) and cast iron (E 100
+ *    GPa, nu 0.25, rho 7000 kg/m^3), R 10 mm, 10 m/s each: peak force and
+ *    contact time against Hertz's with R* = R/2, m* = m/2 (1 %, 2 %), the
+ *    speeds after the speeds before (1e-3);
  *  - test 2, elastic normal impact of a sphere with a rigid wall:
  *    aluminium alloy (E 70 GPa, nu 0.33, rho 2700 kg/m^3) and nylon
  *    (E 2.5 GPa, nu 0.4, rho 1000 kg/m^3), R 0.1 m, 0.2 m/s. The peak
@@ -28,6 +33,8 @@
  * CSV, docs/validation/chung_ooi.py plots it.
  */
 #include "test.h"
+
+#include <string.h>
 
 typedef struct impact {
     double fmax, tc, vn, vt, wy; /* N, s, m/s after, m/s after, rad/s after */
@@ -107,6 +114,59 @@ static impact run(int mesh, double E, double nu, double rho, double mu, double r
     return out;
 }
 
+/* Test 1: two identical spheres (radius r, E, nu, rho) meeting head on at
+ * v each (no wall, no gravity): the peak force (m dv / dt of one sphere,
+ * velocity Verlet's kick) and the contact time (the steps its velocity
+ * changes), and the speed after. */
+static impact pair(double E, double nu, double rho, double r, double v, double dt)
+{
+    sd_error err;
+    sd_world *w;
+    sd_world_def wd = sd_world_def_default();
+    wd.law = SD_LAW_HERTZ_MINDLIN;
+    wd.dt = dt;
+    wd.gravity = sd_test_v(0, 0, 0);
+    wd.threads = 1;
+    sd_test_require(sd_world_create(&wd, &w, &err) == SD_OK, "world", &err);
+    sd_material_def md = sd_material_def_default();
+    md.name = "sphere";
+    md.density = rho;
+    md.youngs_modulus = E;
+    md.poisson_ratio = nu;
+    md.restitution = 1.0;
+    md.friction = 0.0;
+    int ms = sd_world_add_material(w, &md, &err);
+    sd_test_require(ms >= 0, "material", &err);
+    sd_sphere_def s[2];
+    memset(s, 0, sizeof s);
+    s[0].position = sd_test_v(-r - 2 * v * dt, 0, 0);
+    s[0].velocity = sd_test_v(v, 0, 0);
+    s[1].position = sd_test_v(r + 2 * v * dt, 0, 0);
+    s[1].velocity = sd_test_v(-v, 0, 0);
+    s[0].radius = s[1].radius = r;
+    s[0].material = s[1].material = ms;
+    sd_test_require(sd_world_add_spheres(w, 2, s, &err) == SD_OK, "spheres", &err);
+    double m = rho * 4.0 / 3.0 * 3.14159265358979323846 * r * r * r, last = v;
+    impact out = {0, 0, 0, 0, 0};
+    long touching = 0;
+    for (int k = 0; k < 4000; ++k) {
+        sd_test_require(sd_world_step(w, 1, &err) == SD_OK, "step", &err);
+        sd_particle_state p;
+        sd_world_get_particle(w, sd_world_find_particle(w, 0), &p);
+        double f = m * fabs(p.velocity.x - last) / dt;
+        if (f > 0)
+            touching++;
+        else if (touching > 0)
+            break;
+        out.fmax = f > out.fmax ? f : out.fmax;
+        last = p.velocity.x;
+    }
+    out.tc = (double)touching * dt;
+    out.vn = -last;
+    sd_world_destroy(w);
+    return out;
+}
+
 /* Both walls' figures equal to 1e-9 relative. */
 static void same(const char *what, double plane, double mesh)
 {
@@ -117,6 +177,28 @@ static void same(const char *what, double plane, double mesh)
 
 int main(void)
 {
+    /* test 1: elastic normal impact of two identical spheres: R* = R/2,
+     * m* = m/2, E* = E / (2 (1 - nu^2)), each at v (2 v closing) */
+    static const struct {
+        const char *name;
+        double E, nu, rho;
+    } t1[2] = {{"alumina", 3.8e11, 0.23, 4000}, {"cast iron", 1.0e11, 0.25, 7000}};
+    for (int k = 0; k < 2; ++k) {
+        double r = 0.01, v = 10, m = t1[k].rho * 4.0 / 3.0 * 3.14159265358979323846 * r * r * r;
+        double es = t1[k].E / (2 * (1 - t1[k].nu * t1[k].nu)), rs = r / 2, ms = m / 2;
+        double dmax = pow(15.0 * ms * (2 * v) * (2 * v) / (16.0 * es * sqrt(rs)), 0.4);
+        double fmax = 4.0 / 3.0 * es * sqrt(rs) * pow(dmax, 1.5), tc = 2.9432 * dmax / (2 * v);
+        impact a = pair(t1[k].E, t1[k].nu, t1[k].rho, r, v, tc / 400);
+        char label[160];
+        printf("test 1, %s: F_max %.6g N (Hertz %.6g), t_c %.6g s (Hertz %.6g), speed after %.6g m/s of %g\n",
+               t1[k].name, a.fmax, fmax, a.tc, tc, a.vn, v);
+        snprintf(label, sizeof label, "test 1, %s: peak force vs Hertz (1 %%)", t1[k].name);
+        CHECK_REL(label, a.fmax, fmax, 0.01);
+        snprintf(label, sizeof label, "test 1, %s: contact time vs Hertz (2 %%)", t1[k].name);
+        CHECK_REL(label, a.tc, tc, 0.02);
+        snprintf(label, sizeof label, "test 1, %s: speed after (e = 1)", t1[k].name);
+        CHECK_REL(label, a.vn, v, 1e-3);
+    }
     /* test 2: elastic normal impact with a rigid wall */
     static const struct {
         const char *name;
