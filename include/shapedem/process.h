@@ -69,6 +69,14 @@ typedef enum sd_size_kind {
 } sd_size_kind;
 
 #define SD_SIZE_CLASSES_MAX 16
+/* The most positions tried per particle (sd_insert_def.attempts). */
+#define SD_INSERT_ATTEMPTS_MAX 100000
+/* An insertion all at once (a count, no rate) stops after this many
+ * particles in a row found no free spot: the region is full. */
+#define SD_INSERT_GIVE_UP 1000
+/* A normal or log-normal law's largest radius (8 standard deviations, or
+ * its truncation max) is at most this many times its mean or median. */
+#define SD_SIZE_SPREAD_MAX 1e4
 
 typedef struct sd_size_def {
     int kind;                             /* sd_size_kind */
@@ -114,7 +122,7 @@ typedef struct sd_insert_def {
     sd_v3d velocity;    /* m/s, initial */
     double velocity_jitter; /* m/s, uniform +- per component */
     int random_orientation; /* 1 (default): shaped bodies uniform over rotations */
-    int attempts;       /* positions tried per particle (100) */
+    int attempts;       /* positions tried per particle (100; at most SD_INSERT_ATTEMPTS_MAX) */
     int cookie;
 } sd_insert_def;
 

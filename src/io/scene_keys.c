@@ -594,8 +594,10 @@ const sd_scene_key sd_scene_keys[] = {
     {SD_SEC_INSERT, "orientation", SD_KT_ENUM, SD_KR_ANY, "random|identity", ALL, 0, "", "random",
      "orientation of shaped bodies: uniform over all rotations (about z in 2D), or the template's"},
     {SD_SEC_INSERT, "attempts", SD_KT_INT, SD_KR_ONE, NULL, ALL, 0, "", "100",
-     "positions tried per particle before it waits for the next insertion time (or, all at once, is "
-     "given up; [Rakotonirina 2019] §4.1)"},
+     "positions tried per particle (at most 100000) before it waits for the next insertion time (or, "
+     "all at once, is given up; after 1000 given up in a row the rest are not tried: the region is "
+     "full; [Rakotonirina 2019] §4.1); a position must hold the particle's bounding sphere inside the "
+     "plane, box and drum walls"},
 
     {SD_SEC_INSERT_MIX, "material", SD_KT_STRING, SD_KR_NONEMPTY, NULL, ALL, ALL, "", "required",
      "material name"},
@@ -616,10 +618,12 @@ const sd_scene_key sd_scene_keys[] = {
      "class's mean volume, so the mix by mass is the law's (docs/physics.md)"},
     {SD_SEC_INSERT_MIX, "mean", SD_KT_NUMBER, SD_KR_ANY, NULL, ALL, 0, "m", "-", "normal: mean radius"},
     {SD_SEC_INSERT_MIX, "std", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "m", "-",
-     "normal: standard deviation of the radius"},
+     "normal: standard deviation of the radius; mean + 8 std (or the truncation max) at most 10^4 "
+     "times the mean"},
     {SD_SEC_INSERT_MIX, "median", SD_KT_NUMBER, SD_KR_ANY, NULL, ALL, 0, "m", "-", "lognormal: median radius"},
     {SD_SEC_INSERT_MIX, "sigma", SD_KT_NUMBER, SD_KR_NONNEG, NULL, ALL, 0, "", "-",
-     "lognormal: standard deviation of ln r"},
+     "lognormal: standard deviation of ln r; median e^(8 sigma) (or the truncation max) at most 10^4 "
+     "times the median (sigma <= 1.15 untruncated)"},
     {SD_SEC_INSERT_MIX, "classes", SD_KT_VEC3_LIST, SD_KR_ANY, NULL, ALL, 0, "m, m, -", "-",
      "table: sieve classes [r_lo, r_hi, fraction], the radius uniform within a class; fractions sum to 1"},
     {SD_SEC_INSERT_MIX, "classes_by", SD_KT_ENUM, SD_KR_ANY, "number|mass", ALL, 0, "", "number",

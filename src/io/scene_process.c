@@ -220,6 +220,17 @@ static sd_status sd_parse_mix(sd_parse *p, yaml_node_t *list, const char *ipath,
                     return sd_fail(p, rad.line, sd_yaml_kp(key, sizeof key, path, "radius"),
                                    "expected a truncation {min, max} >= 0, got min %g (a negative radius)", rad.lo);
             }
+            /* the largest radius drawn (8 spreads, or the max) within
+             * SD_SIZE_SPREAD_MAX of the median: a sigma of 100 draws
+             * infinite radii (world/process.c refuses them too) */
+            double big = kind == SD_SIZE_NORMAL ? s->a + 8 * s->b : s->a * exp(8 * s->b);
+            if (s->max > 0)
+                big = fmin(big, s->max);
+            if (s->b > 0 && (!isfinite(big) || big > SD_SIZE_SPREAD_MAX * s->a))
+                return sd_fail(p, vb.line, sd_yaml_kp(key, sizeof key, path, kb),
+                               "%s %g draws radii up to %.3g m, %.3g times the %s %g m (at most %g): a smaller %s, "
+                               "or a truncation radius: {min, max}",
+                               kb, s->b, big, big / s->a, ka, s->a, SD_SIZE_SPREAD_MAX, kb);
         } else { /* table */
             sd_yaml_value cv, by;
             if (!sd_yaml_get(&p->y, m, SD_SEC_INSERT_MIX, "classes", path, &cv))
@@ -345,7 +356,10 @@ static sd_status sd_parse_inserts(sd_parse *p, yaml_node_t *list)
         d->velocity_jitter = v.num;
         sd_yaml_get(&p->y, m, SD_SEC_INSERT, "orientation", path, &v);
         d->random_orientation = v.node ? v.choice == 0 : 1;
-        sd_yaml_get(&p->y, m, SD_SEC_INSERT, "attempts", path, &v);
+        if (sd_yaml_get(&p->y, m, SD_SEC_INSERT, "attempts", path, &v) && v.integer > SD_INSERT_ATTEMPTS_MAX)
+            return sd_fail(p, v.line, sd_yaml_kp(key, sizeof key, path, "attempts"),
+                           "expected at most %d positions per particle, got %lld", SD_INSERT_ATTEMPTS_MAX,
+                           (long long)v.integer);
         d->attempts = v.node ? (int)v.integer : 100;
         /* inside the domain where one is given (periodic boxes) */
         const sd_world_def *wd = &p->s->world;

@@ -519,6 +519,22 @@ static sd_status sd_size_check(const sd_size_def *s, const char *key, sd_error *
                                 "expected a %s > 0, a spread >= 0 and truncation 0 <= min < max, got %g, %g, [%g, %g]%s",
                                 s->kind == SD_SIZE_NORMAL ? "mean radius" : "median radius", s->a, s->b, s->min,
                                 s->max, (s->a <= 0 || s->min < 0) ? " (a negative radius)" : "");
+        if (s->b > 0) {
+            /* the largest size the law draws (8 standard deviations, or its
+             * max): finite and within SD_SIZE_SPREAD_MAX of the median, or
+             * placement works with cells of an absurd (or infinite) size */
+            double big = s->kind == SD_SIZE_NORMAL ? s->a + 8 * s->b : s->a * exp(8 * s->b);
+            if (s->max > 0)
+                big = fmin(big, s->max);
+            if (!isfinite(big) || big > SD_SIZE_SPREAD_MAX * s->a)
+                return sd_error_set(err, SD_ERR_INPUT, "", 0, key,
+                                    "the %s law of %s %g, %s %g draws radii up to %.3g m, %.3g times its %s (at most "
+                                    "%g): give a smaller spread or a truncation max",
+                                    s->kind == SD_SIZE_NORMAL ? "normal" : "lognormal",
+                                    s->kind == SD_SIZE_NORMAL ? "mean" : "median", s->a,
+                                    s->kind == SD_SIZE_NORMAL ? "std" : "sigma", s->b, big, big / s->a,
+                                    s->kind == SD_SIZE_NORMAL ? "mean" : "median", SD_SIZE_SPREAD_MAX);
+        }
         if (s->kind == SD_SIZE_NORMAL && s->b > 0) {
             /* the truncated range must hold some of the law (redraws end) */
             double lo = fmax(s->min, 0.0), hi = sd_size_hi(s);
@@ -621,7 +637,7 @@ static double sd_size_draw(const sd_insertion *ins, int e, sd_rng *rng)
         for (int k = 0; k < 100000; ++k) {
             double z = sd_normal_draw(rng);
             double r = s->kind == SD_SIZE_LOGNORMAL ? s->a * exp(s->b * z) : s->a + s->b * z;
-            if (r > 0 && r >= lo && r <= hi)
+            if (r > 0 && r >= lo && r <= hi && isfinite(r))
                 return r;
         }
         return s->a; /* unreachable for a range that holds 0.1 % of the law (sd_size_check) */
@@ -735,10 +751,11 @@ int sd_world_add_insertion(sd_world *w, const sd_insert_def *d, sd_error *err)
         return -1;
     }
     if (!(d->count > 0 || d->mass > 0) || d->mass < 0 || d->rate < 0 || d->mass_rate < 0 ||
-        (d->rate > 0 && d->mass_rate > 0) || !(d->start >= 0) || d->attempts < 1 || !(d->velocity_jitter >= 0)) {
+        (d->rate > 0 && d->mass_rate > 0) || !(d->start >= 0) || d->attempts < 1 ||
+        d->attempts > SD_INSERT_ATTEMPTS_MAX || !(d->velocity_jitter >= 0)) {
         sd_error_set(err, SD_ERR_INPUT, "", 0, "insert",
                      "an insertion needs a count or a mass > 0, at most one of rate and mass_rate (>= 0), a start "
-                     ">= 0 s, attempts >= 1 and a velocity jitter >= 0");
+                     ">= 0 s, attempts in 1..%d and a velocity jitter >= 0", SD_INSERT_ATTEMPTS_MAX);
         return -1;
     }
     /* a mesh region: its box in lo, hi (the box checks below read them) */
@@ -1182,6 +1199,40 @@ static int sd_place_push(sd_place_grid *g, sd_v3d x, double r)
     return 1;
 }
 
+/* 1 when the bounding sphere (centre x, radius b) lies inside every
+ * plane, box and drum wall: in front of a plane, within a box's closed
+ * faces (x, y only in 2D), inside a drum's mantle and closed caps. A
+ * region that crosses the walls gets its particles inside them only (a
+ * particle placed across a wall would start deep in it: the overlap guard
+ * stops the run, or the wall kicks it); one outside them places none.
+ * Meshes are not checked (a mesh has no inside that is cheap to test). */
+static int sd_place_inside_walls(const sd_world *w, sd_v3d x, double b, int dim2)
+{
+    const sd_vec3 c = sd_v3((sd_real)x.x, (sd_real)x.y, (sd_real)x.z);
+    const sd_real r = (sd_real)b;
+    for (size_t k = 0; k < w->wall_count; ++k) {
+        const sd_wall *wl = &w->walls[k];
+        if (wl->kind == SD_WALL_PLANE) {
+            if (sd_v3_dot(sd_v3_sub(c, wl->point), wl->normal) < r)
+                return 0;
+        } else if (wl->kind == SD_WALL_BOX) {
+            const sd_real lo[3] = {wl->lo.x, wl->lo.y, wl->lo.z}, hi[3] = {wl->hi.x, wl->hi.y, wl->hi.z};
+            const sd_real cc[3] = {c.x, c.y, c.z};
+            for (int a = 0; a < (dim2 ? 2 : 3); ++a)
+                if ((!(wl->open_faces & (1u << (2 * a))) && cc[a] - r < lo[a]) ||
+                    (!(wl->open_faces & (1u << (2 * a + 1))) && cc[a] + r > hi[a]))
+                    return 0;
+        } else if (wl->kind == SD_WALL_DRUM) {
+            sd_vec3 d;
+            sd_real s = sd_wall_drum_coords(&wl->geom, c, &d), half = wl->lo.y;
+            if (sd_v3_norm(d) + r > wl->lo.x || (!(wl->open_faces & SD_WALL_DRUM_CAP_HI) && s + r > half) ||
+                (!(wl->open_faces & SD_WALL_DRUM_CAP_LO) && s - r < -half))
+                return 0;
+        }
+    }
+    return 1;
+}
+
 static int sd_place_free_spot(const sd_place_grid *g, sd_v3d x, double r)
 {
     int64_t c[3];
@@ -1246,8 +1297,15 @@ static sd_status sd_place_grid_build(const sd_world *w, const sd_region_def *reg
         lo[2] = hi[2] = 0.0;
     g->cell = 2.0 * rmax;
     double margin = 2.0 * rmax; /* a neighbour's centre lies within r_new + r_j of the region */
+    if (!(rmax > 0) || !isfinite(rmax) || !(hi[0] - lo[0] + 2 * margin < 1e300) ||
+        !(hi[1] - lo[1] + 2 * margin < 1e300) || !(hi[2] - lo[2] + 2 * margin < 1e300)) {
+        sd_free(xr);
+        return SD_ERR_INPUT; /* sd_size_check refuses such sizes; never loop on them */
+    }
     size_t cells = 0;
-    for (;;) {
+    /* each pass doubles the cell: from a finite size, 2^22 cells within
+     * about 1,100 passes whatever the region */
+    for (int pass = 0; pass < 2200; ++pass) {
         cells = 1;
         for (int a = 0; a < 3; ++a) {
             g->lo[a] = lo[a] - margin;
@@ -1257,6 +1315,10 @@ static sd_status sd_place_grid_build(const sd_world *w, const sd_region_def *reg
         if (cells <= ((size_t)1 << 22))
             break;
         g->cell *= 2.0; /* coarser cells for a large region of small grains: still correct */
+    }
+    if (cells > ((size_t)1 << 22)) {
+        sd_free(xr);
+        return SD_ERR_INPUT;
     }
     g->head = sd_malloc(cells * sizeof *g->head);
     if (!g->head) {
@@ -1382,17 +1444,31 @@ static sd_status sd_insert_run(sd_world *w, sd_insertion *ins, sd_error *err)
     sd_status st = sd_place_grid_build(w, &d->region, rnew, &g);
     if (st != SD_OK) {
         sd_place_grid_free(&g);
-        return sd_error_set(err, st, "", 0, "", "out of memory for the insertion check");
+        return sd_error_set(err, st, "", 0, "", st == SD_ERR_MEMORY ? "out of memory for the insertion check"
+                            : "the insertion region or the particle sizes are too large for the insertion check "
+                              "(bounding radius %g m)", rnew);
     }
     int was_prepared = w->prepared;
     const sd_region_wrap wrap = sd_region_wraps(w, &d->region);
     size_t n_before = w->p.n; /* a decomposed run: the new ones go to their ranks below */
     double rmin_new = HUGE_VAL;
     size_t failed = 0, before = ins->inserted;
+    int in_a_row = 0; /* consecutive particles that found no spot */
     for (;;) {
         size_t due = sd_insert_due(w, ins, w->step);
         if (ins->inserted + failed >= due)
             break;
+        /* all at once: a region that refused SD_INSERT_GIVE_UP particles in
+         * a row is full; trying the rest (10^6 of them, each `attempts`
+         * times) would only take time */
+        if (all_at_once && in_a_row >= SD_INSERT_GIVE_UP) {
+            size_t left = due - ins->inserted - failed;
+            failed += left;
+            size_t len = strlen(ins->why);
+            snprintf(ins->why + len, sizeof ins->why - len, "; the last %zu not tried after %d in a row found none",
+                     left, SD_INSERT_GIVE_UP);
+            break;
+        }
         /* one particle: its entry, size, orientation and velocity, then positions */
         double u = sd_rng_uniform(&ins->rng);
         int e = 0;
@@ -1422,7 +1498,7 @@ static sd_status sd_insert_run(sd_world *w, sd_insertion *ins, sd_error *err)
                 v.z += jz;
         }
         sd_v3d x;
-        int ok = 0, fits = 1;
+        int ok = 0, fits = 1, outside = 0;
         const sd_region_mesh *rm = ins->mesh >= 0 && w->region_meshes ? &w->region_meshes->slot[ins->mesh] : NULL;
         for (int a = 0; a < d->attempts && !ok; ++a) {
             int drawn = sd_region_draw(&d->region, rm, &wrap, b, dim2, &ins->rng, &x);
@@ -1431,14 +1507,27 @@ static sd_status sd_insert_run(sd_world *w, sd_insertion *ins, sd_error *err)
                 break;
             }
             ok = drawn == 1 && sd_place_free_spot(&g, x, b);
+            if (ok && !sd_place_inside_walls(w, x, b, dim2)) {
+                ok = 0;
+                ++outside;
+            }
         }
         if (!ok) {
             ++failed;
-            snprintf(ins->why, sizeof ins->why,
-                     fits ? "at t = %.6g s a particle of bounding radius %g m found no free spot in %d attempts "
-                            "(the region is full)"
-                          : "at t = %.6g s a particle of bounding radius %g m is larger than the region",
-                     w->time, b, d->attempts);
+            ++in_a_row;
+            if (fits && outside == d->attempts)
+                snprintf(ins->why, sizeof ins->why,
+                         "at t = %.6g s a particle found every one of its %d positions outside the walls (the "
+                         "region lies outside them)",
+                         w->time, d->attempts);
+            else if (fits)
+                snprintf(ins->why, sizeof ins->why,
+                         "at t = %.6g s a particle of bounding radius %g m found no free spot in %d attempts (the "
+                         "region is full%s)",
+                         w->time, b, d->attempts, outside ? ", or outside the walls" : "");
+            else
+                snprintf(ins->why, sizeof ins->why,
+                         "at t = %.6g s a particle of bounding radius %g m is larger than the region", w->time, b);
             continue; /* the loop ends once the due count is tried */
         }
         sd_status ast;
@@ -1465,6 +1554,7 @@ static sd_status sd_insert_run(sd_world *w, sd_insertion *ins, sd_error *err)
             return ast;
         }
         double m = 1.0 / (double)w->p.inv_mass[w->p.n - 1];
+        in_a_row = 0;
         ins->inserted++;
         ins->mass += m;
         pr->inserted++;
