@@ -22,6 +22,7 @@
 
 #include <shapedem/scene.h>
 
+#include "cli/check_bounds.h"
 #include "cli/check_report.h"
 #include "cli/commands.h"
 #include "cli/threads.h"
@@ -720,6 +721,8 @@ static int sd_cmd_check(const sd_cli *c)
         printf(" %s", sd_scene_material_name(scene, k));
     printf("\ncontact law  %s (default)\n", sd_contact_law_name(info.law));
     printf("walls        %zu\n", sd_world_wall_count(w));
+    /* each mesh's facets, box and size against the particles' (inserted ones included) */
+    int mesh_warnings = sd_check_print_meshes(stdout, w, cnt.rmin, cnt.rmax);
     sd_check_print_grid(stdout, scene); /* solver grid: pouring and outlet (docs/grid-solver.md) */
     printf("steps        %ld x dt %.4g s = %.6g s simulated\n", info.steps, dt, (double)info.steps * dt);
     sd_check_print_stop(stdout, scene);
@@ -750,7 +753,8 @@ static int sd_cmd_check(const sd_cli *c)
     frames += frames < LONG_MAX; /* and step 0's; steps: up to LONG_MAX is accepted */
     rows += rows < LONG_MAX;
     sd_check_print_output(stdout, scene, est, total, frames, rows, (double)steps * dt, cnt.poured);
-    int warnings = 0;
+    int warnings = mesh_warnings + sd_check_print_analysis_size(stdout, scene, steps);
+    warnings += sd_check_print_regions(stdout, scene, w); /* insertion regions across the walls */
     if (dt > rec) {
         printf("warning      dt = %.4g s is above the recommended %.4g s: contacts are resolved in %.1f steps\n", dt,
                rec, tc / dt);

@@ -302,9 +302,12 @@ sd_status sd_trimesh_build_side(const sd_v3d *v, size_t nv, const uint32_t (*t)[
     }
     double diag =
         sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
-    /* squares of lengths (areas, dot products) must stay finite and normal */
-    if (!(big <= 1e100) || (diag > 0.0 && !(diag >= 1e-100)))
-        return sd_tm_fail_free(err, big, diag, p, map, newv, tri, src, keys, drop);
+    /* squares of lengths (areas, dot products) must stay finite and normal;
+     * the extent, not diag, tells a tiny mesh: diag's squares underflow to
+     * 0 below 1e-154 m (a mesh scaled by 1e-300) */
+    double extent = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));
+    if (!(big <= 1e100) || (extent > 0.0 && !(extent >= 1e-100)))
+        return sd_tm_fail_free(err, big, diag > 0.0 ? diag : extent, p, map, newv, tri, src, keys, drop);
     double tol = weld_tol > 0.0 ? weld_tol : 1e-9 * diag;
     /* cells no finer than 1e-15 of the coordinates, so cell numbers fit in 64 bits */
     double h = fmax(tol, 1e-15 * big);
@@ -366,8 +369,17 @@ sd_status sd_trimesh_build_side(const sd_v3d *v, size_t nv, const uint32_t (*t)[
             src[n++] = (uint32_t)j;
         }
     if (n == 0) {
-        st = sd_error_set(err, SD_ERR_INPUT, "", 0, "",
-                          "no facet is left: all %zu are degenerate (zero area) or duplicates", nt);
+        if (rep->degenerate == nt && weld_tol <= 0.0 && diag > 0.0)
+            /* the weld tolerance is 1e-9 of the box: a box made huge by one
+             * stray vertex, or in the wrong units, welds the rest into one */
+            st = sd_error_set(err, SD_ERR_INPUT, "", 0, "",
+                              "no facet is left: all %zu are degenerate at the weld tolerance %g m (1e-9 of the "
+                              "bounding box, %g m across, coordinates up to %g m): a vertex far from the others, or "
+                              "wrong units (check scale:)",
+                              nt, tol, diag, big);
+        else
+            st = sd_error_set(err, SD_ERR_INPUT, "", 0, "",
+                              "no facet is left: all %zu are degenerate (zero area) or duplicates", nt);
         goto done;
     }
     /* positions of the kept vertices, in the output numbering */

@@ -23,6 +23,7 @@
 
 #include "core/alloc.h"
 #include "core/error.h"
+#include "io/lines.h"
 
 static char *sd_csv_trim(char *t)
 {
@@ -84,6 +85,9 @@ int sd_csv_grow(sd_scene_generator *g, size_t cap)
  * Errors name the CSV file and its line; the key names the generator. */
 sd_status sd_csv_read(const sd_scene *s, sd_scene_generator *g, const char *key, int file_line, sd_error *err)
 {
+    if (sd_lines_is_directory(g->file))
+        return sd_error_set(err, SD_ERR_INPUT, s->path, file_line, key, "the CSV file '%s' is a directory, not a file",
+                            g->file);
     FILE *f = fopen(g->file, "rb");
     if (!f)
         return sd_error_set(err, SD_ERR_INPUT, s->path, file_line, key, "cannot open the CSV file '%s': %s", g->file,
@@ -93,11 +97,17 @@ sd_status sd_csv_read(const sd_scene *s, sd_scene_generator *g, const char *key,
     int ncols = 0, line = 0, have_header = 0;
     size_t cap = 0;
     sd_status st = SD_OK;
-    while (fgets(buf, sizeof buf, f)) {
-        ++line;
-        if (!strchr(buf, '\n') && !feof(f)) {
-            st = sd_error_set(err, SD_ERR_INPUT, g->file, line, key, "line longer than %zu characters",
-                              sizeof buf - 2);
+    for (;;) {
+        sd_lines_result lr = sd_lines_next(f, buf, sizeof buf, &line);
+        if (lr == SD_LINES_END)
+            break;
+        if (lr != SD_LINES_OK) {
+            st = lr == SD_LINES_LONG  ? sd_error_set(err, SD_ERR_INPUT, g->file, line, key,
+                                                     "line longer than %zu characters", sizeof buf - 2)
+                 : lr == SD_LINES_NUL ? sd_error_set(err, SD_ERR_INPUT, g->file, line, key,
+                                                     "a NUL byte in the line (not a text CSV file)")
+                                      : sd_error_set(err, SD_ERR_INPUT, g->file, line, key, "cannot read: %s",
+                                                     strerror(errno));
             break;
         }
         char *t = sd_csv_trim(buf);

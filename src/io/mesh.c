@@ -14,9 +14,11 @@
  * facet): not empty; a binary STL (NUL bytes) exactly 84 + 50 n bytes for
  * the n facets its header counts (shorter: truncated, naming the facet cut
  * off; longer: the count is wrong); an ASCII STL with 3 vertices in every
- * outer loop and a whole number of facets. Degenerate, duplicated and
- * wrongly wound facets are the mesh preparation's business
- * (geom/trimesh.c), which repairs them with a warning.
+ * outer loop, a whole number of facets and every "facet" closed by its
+ * "endfacet" (a file cut inside a facet is refused; endsolid is optional).
+ * Degenerate, duplicated and wrongly wound facets are the mesh
+ * preparation's business (geom/trimesh.c), which repairs them with a
+ * warning.
  *
  * Invariant: see mesh.h — all or nothing; every message names the file
  * and its line or facet; file bytes quoted in a message are escaped.
@@ -217,6 +219,12 @@ static sd_status sd_mesh_text(const char *path, int obj, char *text, sd_mesh_bui
     size_t tl = strlen(tag);
     int ln = 1;
     size_t loop_start = 0; /* STL: vertices before the current "outer loop" */
+    /* STL: the facet opened by "facet" and not yet closed by "endfacet"
+     * (0: none), its line, and whether its loop was closed: a file cut
+     * inside a facet ends with one open, even when its three vertex lines
+     * are whole */
+    size_t open_facet = 0;
+    int open_line = 0, loop_closed = 0;
     for (char *c = text; *c; ++ln) {
         char *eol = strchr(c, '\n');
         if (eol)
@@ -239,6 +247,20 @@ static sd_status sd_mesh_text(const char *path, int obj, char *text, sd_mesh_bui
         } else if (obj && t[0] == 'f' && (t[1] == ' ' || t[1] == '\t')) {
             if ((st = sd_mesh_obj_face(path, ln, t + 1, b, err)) != SD_OK)
                 return st;
+        } else if (!obj && !strncasecmp(t, "facet", 5) && (!t[5] || strchr(" \t\r", t[5]))) {
+            if (open_facet)
+                return sd_error_set(err, SD_ERR_INPUT, path, ln, "",
+                                    "%s line %d: a facet begins before facet %zu (line %d) has its endfacet", path,
+                                    ln, open_facet, open_line);
+            open_facet = b->v.n / 3 + 1;
+            open_line = ln;
+            loop_closed = 0;
+        } else if (!obj && !strncasecmp(t, "endfacet", 8) && (!t[8] || strchr(" \t\r", t[8]))) {
+            if (open_facet && !loop_closed)
+                return sd_error_set(err, SD_ERR_INPUT, path, ln, "",
+                                    "%s line %d: facet %zu ends without a whole outer loop ... endloop", path, ln,
+                                    open_facet);
+            open_facet = 0;
         } else if (!obj && !strncasecmp(t, "outer", 5) && (t[5] == ' ' || t[5] == '\t')) {
             loop_start = b->v.n;
         } else if (!obj && !strncasecmp(t, "endloop", 7) && (!t[7] || strchr(" \t\r", t[7]))) {
@@ -247,6 +269,7 @@ static sd_status sd_mesh_text(const char *path, int obj, char *text, sd_mesh_bui
                 return sd_error_set(err, SD_ERR_INPUT, path, ln, "",
                                     "%s line %d: facet %zu has %zu vertices in its loop, expected 3 (a triangle)",
                                     path, ln, b->v.n / 3 + (b->v.n % 3 != 0), b->v.n - loop_start);
+            loop_closed = 1;
         }
         c = eol ? eol + 1 : c + strlen(c);
     }
@@ -255,6 +278,10 @@ static sd_status sd_mesh_text(const char *path, int obj, char *text, sd_mesh_bui
         return sd_error_set(err, SD_ERR_INPUT, path, ln - 1, "",
                             "%s ends inside facet %zu: it has %zu vertex lines, not a multiple of 3 (truncated?)",
                             path, b->v.n / 3 + 1, b->v.n);
+    if (open_facet)
+        return sd_error_set(err, SD_ERR_INPUT, path, ln - 1, "",
+                            "%s ends inside facet %zu (begun at line %d, no endfacet: truncated?)", path, open_facet,
+                            open_line);
     b->corner.n = ((size_t *)b->start.p)[b->start.n - 1];
     return SD_OK;
 }

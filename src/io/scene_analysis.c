@@ -9,11 +9,14 @@
  * entries writing one file, a key of another type or region); a row is
  * written whole or not at all, each file flushed after its rows.
  */
+#define _POSIX_C_SOURCE 200809L /* open_memstream (the size estimate) */
+
 #include "io/scene_analysis.h"
 
 #include <limits.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "core/alloc.h"
@@ -234,8 +237,14 @@ static sd_status sd_an_parse_entry(sd_parse *p, yaml_node_t *m, const char *path
                            n, (double)SD_POROSITY_MAX_VOXELS);
     }
     e->bins = sd_an_default_bins(e->type);
-    if (sd_yaml_get(&p->y, m, SD_SEC_ANALYSIS, "bins", path, &v))
-        e->bins = (int)(v.integer > 100000 ? 100000 : v.integer);
+    if (sd_yaml_get(&p->y, m, SD_SEC_ANALYSIS, "bins", path, &v)) {
+        /* each bin is a row per output: 10^5 bins wrote 963 MB in 200 steps */
+        if (v.integer > SD_AN_BINS_MAX)
+            return sd_fail(p, v.line, sd_yaml_kp(key, sizeof key, path, "bins"),
+                           "expected at most %d bins (each is a row of the file at every output), got %lld",
+                           SD_AN_BINS_MAX, (long long)v.integer);
+        e->bins = (int)v.integer;
+    }
     if ((e->type == SD_AN_SURFACE_ANGLE || e->type == SD_AN_REPOSE_ANGLE) && e->bins < 2)
         return sd_fail(p, v.line, sd_yaml_kp(key, sizeof key, path, "bins"),
                        "expected at least 2 columns for a line fit, got %d", e->bins);
@@ -424,6 +433,37 @@ sd_status sd_analysis_run_open(const sd_scene *s, const char *dir, long resume_s
     }
     *out = a;
     return SD_OK;
+}
+
+double sd_analysis_estimate_bytes(const sd_scene *s, long steps, size_t *files)
+{
+    *files = 0;
+    const sd_scene_analysis *sa = s->analysis;
+    if (!sa)
+        return 0.0;
+    double total = 0;
+    for (size_t k = 0; k < sa->count; ++k) {
+        const sd_scene_analysis_entry *e = &sa->e[k];
+        char *buf = NULL;
+        size_t len = 0;
+        FILE *f = open_memstream(&buf, &len);
+        if (!f)
+            continue;
+        sd_an_header(f, e);
+        fclose(f);
+        double cols = 1;
+        for (size_t c = 0; c < len; ++c)
+            cols += buf[c] == ',';
+        free(buf);
+        /* rows at step 0, every `every` steps and at the end */
+        double outputs = 2.0 + (double)(steps > 0 ? steps : 0) / (double)(e->every > 0 ? e->every : 1);
+        double per = e->type == SD_AN_SPEED_PDF || e->type == SD_AN_RADIAL_POROSITY ? (double)e->bins
+                     : e->type == SD_AN_VELOCITY_FIELD ? (double)e->cells[0] * (double)e->cells[1]
+                                                       : 1.0;
+        total += (double)len + outputs * per * cols * 10.0;
+        ++*files;
+    }
+    return total;
 }
 
 long sd_analysis_run_next(const sd_analysis_run *a, long done)

@@ -31,6 +31,10 @@ typedef enum sd_analysis_type {
 } sd_analysis_type;
 
 #define SD_SCENE_ANALYSIS_MAX 32
+/* The most bins of one analysis (radial_porosity, speed_pdf; columns of
+ * surface_angle, repose_angle): each bin of the first two is a row of the
+ * file at every output. */
+#define SD_AN_BINS_MAX 10000
 
 typedef struct sd_scene_analysis_entry {
     int type; /* sd_analysis_type */
@@ -71,6 +75,10 @@ typedef struct sd_analysis_run sd_analysis_run;
 sd_status sd_analysis_run_open(const sd_scene *s, const char *dir, long resume_step, sd_analysis_run **out,
                                sd_error *err);
 long sd_analysis_run_next(const sd_analysis_run *a, long done);
+/* About how many bytes the analysis files of a run of `steps` steps will
+ * hold (headers, and rows as long as their columns at 10 bytes each, an
+ * estimate for `shapedem check`); *files gets their number. */
+double sd_analysis_estimate_bytes(const sd_scene *s, long steps, size_t *files);
 sd_status sd_analysis_run_rows(sd_analysis_run *a, const sd_world *w, long done, long last, sd_error *err);
 void sd_analysis_run_close(sd_analysis_run *a);
 

@@ -503,7 +503,9 @@ const sd_scene_key sd_scene_keys[] = {
      "the speed rises linearly from 0 over this time after start; 0 = at once"},
     {SD_SEC_MESH_MOTION, "table", SD_KT_STRING, SD_KR_NONEMPTY, NULL, MTAB, MTAB, "", "required",
      "CSV file relative to the scene file, rows t, dx, dy, dz, angle_deg (s, m, m, m, degrees about the "
-     "axis) with t increasing; an optional header line; blank lines and lines starting with # skipped; "
+     "axis) with t increasing; an optional header line of names (a first line that starts with a digit, "
+     "sign or point is a row, and is refused when it does not parse); a UTF-8 byte-order mark skipped; "
+     "blank lines and lines starting with # skipped; "
      "linear between rows, held before the first and after the last"},
 
 
@@ -676,7 +678,7 @@ const sd_scene_key sd_scene_keys[] = {
      "gives about 1 % (docs/analysis.md)"},
     {SD_SEC_ANALYSIS, "bins", SD_KT_INT, SD_KR_ONE, NULL, AN_BINS, 0, "", "10 radial, else 20",
      "annuli of radial_porosity, speed classes of speed_pdf, surface columns of surface_angle and "
-     "repose_angle (at least 2 there)"},
+     "repose_angle (at least 2 there); at most 10000 (a row per bin at every output)"},
     {SD_SEC_ANALYSIS, "cells", SD_KT_VEC2, SD_KR_ONE, NULL, AN(SD_AN_VELOCITY_FIELD), 0, "", "[10, 10]",
      "velocity_field: cells along the plane's two axes (integers)"},
     {SD_SEC_ANALYSIS, "plane", SD_KT_ENUM, SD_KR_ANY, "xy|xz|yz", AN(SD_AN_VELOCITY_FIELD), 0, "", "xz (2D: xy)",

@@ -14,6 +14,7 @@
  */
 #define _POSIX_C_SOURCE 200809L
 
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -22,6 +23,7 @@
 
 #include "core/alloc.h"
 #include "geom/trimesh.h"
+#include "io/lines.h"
 #include "io/mesh.h"
 #include "io/scene_sections.h"
 
@@ -48,6 +50,8 @@ static void sd_mesh_rotation_quat(const double deg[3], double q[4])
 /* The motion's time table: rows of 5 numbers, t strictly increasing. */
 static sd_status sd_mesh_table_read(sd_parse *p, sd_scene_wall *w, const char *file, int line, const char *key)
 {
+    if (sd_lines_is_directory(file))
+        return sd_fail(p, line, key, "the motion table '%s' is a directory, not a file", file);
     FILE *f = fopen(file, "r");
     if (!f)
         return sd_fail(p, line, key, "cannot open the motion table '%s': %s", file, strerror(errno));
@@ -56,10 +60,15 @@ static sd_status sd_mesh_table_read(sd_parse *p, sd_scene_wall *w, const char *f
     char buf[1024];
     int ln = 0, header_ok = 1;
     sd_status st = SD_OK;
-    while (fgets(buf, sizeof buf, f)) {
-        ++ln;
-        if (!strchr(buf, '\n') && !feof(f)) {
-            st = sd_fail(p, line, key, "%s line %d: longer than %zu characters", file, ln, sizeof buf - 2);
+    for (;;) {
+        sd_lines_result lr = sd_lines_next(f, buf, sizeof buf, &ln);
+        if (lr == SD_LINES_END)
+            break;
+        if (lr != SD_LINES_OK) {
+            st = lr == SD_LINES_LONG  ? sd_fail(p, line, key, "%s line %d: longer than %zu characters", file, ln,
+                                               sizeof buf - 2)
+                 : lr == SD_LINES_NUL ? sd_fail(p, line, key, "%s line %d: a NUL byte (not a text table)", file, ln)
+                                      : sd_fail(p, line, key, "%s: cannot read: %s", file, strerror(errno));
             break;
         }
         char *c = buf + strspn(buf, " \t\r\n");
@@ -83,7 +92,13 @@ static sd_status sd_mesh_table_read(sd_parse *p, sd_scene_wall *w, const char *f
         }
         at += strspn(at, " \t\r\n");
         if (k < 5 || *at) {
-            if (header_ok && n == 0) { /* a header line (t,dx,dy,dz,angle_deg) */
+            /* a header names the columns (t,dx,dy,dz,angle_deg): only a
+             * first line that starts with a name; a row that looks numeric
+             * but does not parse (a comment after it, a hex number, an
+             * empty field) is refused, never dropped */
+            char *hend;
+            (void)strtod(c, &hend); /* inf, nan: numbers, not names */
+            if (header_ok && n == 0 && (isalpha((unsigned char)*c) || *c == '_') && hend == c) {
                 header_ok = 0;
                 continue;
             }
