@@ -264,9 +264,10 @@ const sd_scene_key sd_scene_keys[] = {
      "before it (shape: name) or inline (type and its size keys), with position and orientation "
      "in the composite's frame; give elements or preset"},
     {SD_SEC_SHAPE, "lattice", SD_KT_INT, SD_KR_POS, NULL, SCOMP, 0, "", "200",
-     "composite: points per direction of the voxel lattice (4 to 2000) that integrates the volume "
-     "counted twice where elements overlap (§2.3 of [Rakotonirina 2019]); without overlaps "
-     "the mass properties are exact sums"},
+     "composite: points per direction of the voxel lattice (4 to 500) that integrates the volume "
+     "counted twice where elements overlap (§2.3 of [Rakotonirina 2019]), or the union itself where "
+     "more than 85 percent of the elements' summed volume is shared (long chains of overlapping elements); "
+     "without overlaps the mass properties are exact sums"},
     {SD_SEC_SHAPE, "height", SD_KT_NUMBER, SD_KR_POS, NULL, SCONE, 0, "m", "size z",
      "cone height along its axis z (apex up), with diameter instead of size"},
     {SD_SEC_SHAPE, "semi_axes", SD_KT_VEC3, SD_KR_POS, NULL, SELL, SELL, "m", "required",

@@ -42,7 +42,15 @@
  * out within 3e-4 of the exact volume and moments (tests/unit/composite.c:
  * 2.0e-4 measured; 0.2 % is the seed's target), in about 0.5 s on 2 cores. */
 #define SD_COMPOSITE_LATTICE_DEFAULT 200
-#define SD_COMPOSITE_LATTICE_MAX 2000
+/* 500^3 points take seconds; the 2000 documented before took minutes */
+#define SD_COMPOSITE_LATTICE_MAX 500
+/* Above this fraction of the elements' summed volume counted more than
+ * once (the lattice's error on the excess then comes back multiplied by
+ * more than 1 / (1 - 0.85) = 6.7), the union is integrated directly on the
+ * lattice instead of the sum minus the excess (composite.c). Ordinary
+ * clumps stay below it (the spheres9 preset shares 76 %), chains of many
+ * overlapping elements do not (20 spheres 0.01 mm apart: 88 %; 180: 92 %). */
+#define SD_COMPOSITE_EXCESS_MAX 0.85
 
 /* The shapes and pools the elements' templates live in (the world's). */
 typedef struct sd_composite_pools {
