@@ -12,6 +12,16 @@
  *     if (sd_world_create(&d, &w, &err) != SD_OK) { ... err.msg ... }
  *
  * Units are SI throughout (m, kg, s, N, Pa).
+ *
+ * Every call is safe in every state (a world just created, one not yet
+ * prepared, one after a failed call; tests/unit/api_states.c calls each
+ * function of these headers in each): a NULL handle, a NULL pointer where
+ * something must be read or written, or an index out of range gives an
+ * error status (with err filled when given) or, where a call has no
+ * status, a neutral value: -1 for an index, 0 for a count, a step or a
+ * flag, NaN for a time or a time step, NULL for a name (sd_world_backend
+ * and sd_world_backend_note: ""), and out structs zeroed. Destroy and
+ * free calls take NULL.
  */
 #ifndef SHAPEDEM_SHAPEDEM_H
 #define SHAPEDEM_SHAPEDEM_H
@@ -585,6 +595,65 @@ sd_status sd_world_get_particle(const sd_world *w, size_t index, sd_particle_sta
 /* Storage index of the particle with this stable id, or (size_t)-1. */
 size_t sd_world_find_particle(const sd_world *w, uint64_t id);
 
+/* ---- particle fields in bulk, by stable id ----------------------------------
+ * Storage order changes at pair-list rebuilds; these calls copy a field of
+ * many particles at once in the order of their stable ids (or of the ids
+ * the caller lists), so a caller's arrays keep their meaning across steps.
+ * Values are doubles, `components` per particle, particle after particle
+ * (x0 y0 z0 x1 y1 z1 ...). X(enum, name, member, components, unit,
+ * writable, doc): the member column names the sd_particle_state member the value is read
+ * from (world/fields.c checks each against it at compile time). */
+#define SD_FIELDS(X)                                                                                         \
+    X(SD_FIELD_POSITION, "position", position, 3, "m", 1, "position of the centre of mass")                   \
+    X(SD_FIELD_VELOCITY, "velocity", velocity, 3, "m/s", 1, "velocity of the centre of mass")                 \
+    X(SD_FIELD_ANGULAR_VELOCITY, "angular_velocity", angular_velocity, 3, "rad/s", 1,                         \
+      "angular velocity, world frame")                                                                        \
+    X(SD_FIELD_ORIENTATION, "orientation", quat, 4, "-", 1,                                                   \
+      "orientation (w, x, y, z), body frame to world frame; a unit quaternion")                               \
+    X(SD_FIELD_FORCE, "force", force, 3, "N", 0, "total contact force of the last step")                      \
+    X(SD_FIELD_TORQUE, "torque", torque, 3, "N m", 0, "total contact torque of the last step")                \
+    X(SD_FIELD_RADIUS, "radius", radius, 1, "m", 0, "radius (the bounding radius of a shaped body)")          \
+    X(SD_FIELD_MASS, "mass", mass, 1, "kg", 0, "mass (infinite for a fixed body)")
+
+typedef enum sd_field {
+#define SD_X_ENUM(e, name, member, components, unit, writable, doc) e,
+    SD_FIELDS(SD_X_ENUM)
+#undef SD_X_ENUM
+    SD_FIELD_COUNT
+} sd_field;
+
+/* The field's name ("position", ...; NULL for an unknown field), its
+ * values per particle (0 for an unknown field), its unit, and 1 when
+ * sd_world_set_field takes it. */
+const char *sd_field_name(sd_field field);
+size_t sd_field_components(sd_field field);
+const char *sd_field_unit(sd_field field);
+int sd_field_writable(sd_field field);
+
+/* The stable ids of all particles, increasing, into ids[0 .. n); n must be
+ * sd_world_particle_count (else SD_ERR_INPUT, nothing written). */
+sd_status sd_world_get_ids(const sd_world *w, uint64_t *ids, size_t n, sd_error *err);
+/* Copies a field of n particles into out[0 .. out_len): the particles with
+ * ids[0 .. n) in that order, or with ids NULL all particles in increasing
+ * id order (n must then be sd_world_particle_count). out_len must be
+ * n x sd_field_components(field). SD_ERR_INPUT, naming the first id not
+ * present or the size expected, when any is wrong; then nothing is written.
+ * Cost O((N + n) log N) for N particles. */
+sd_status sd_world_get_field(const sd_world *w, sd_field field, const uint64_t *ids, size_t n, double *out,
+                             size_t out_len, sd_error *err);
+/* The reverse for a writable field (position, velocity, angular velocity,
+ * orientation), with the same ids, n and sizes; the values must be finite,
+ * an orientation a unit quaternion (within 1e-6) and, in dimension 2, in
+ * the plane (z = 0; rotation about z only). Everything is checked before
+ * anything is written. An id listed twice takes its last values. The pair
+ * lists are rebuilt at the next step; the forces the next step starts from
+ * stay those of the last step (velocity Verlet) until sd_world_prepare
+ * computes them for the new state. The grid solver's particles are not
+ * writable (SD_ERR_INPUT). A decomposed (MPI) world sees its rank's own
+ * particles only. */
+sd_status sd_world_set_field(sd_world *w, sd_field field, const uint64_t *ids, size_t n, const double *values,
+                             size_t values_len, sd_error *err);
+
 typedef struct sd_stats {
     double time;              /* s */
     long step;
@@ -681,7 +750,10 @@ sd_status sd_world_get_wall(const sd_world *w, size_t index, sd_wall_info *out);
 
 /* Recommended time step (s) for the current particles and walls (seed 004
  * eqs. 12, 16 for the linear law; Rayleigh and Hertz durations otherwise).
- * contact_duration receives the shortest estimated contact duration (s). */
+ * contact_duration receives the shortest estimated contact duration (s).
+ * Any time: a world not prepared has its materials mixed for the estimate
+ * (as sd_world_prepare will); infinite when no contact can form (no
+ * particle or no material); NaN for a NULL world. */
 double sd_world_recommended_dt(const sd_world *w, double *contact_duration);
 
 /* Memory: bytes currently allocated through shapedem's allocator, and the peak. */

@@ -52,6 +52,8 @@ static size_t sd_an_unique(sd_an_pair *v, size_t n)
 sd_status sd_world_coordination(const sd_world *w, const sd_region_def *region, sd_coordination *out,
                                 sd_error *err)
 {
+    if (!w || !out)
+        return sd_error_null(err, "sd_world_coordination", !w ? "world" : "out");
     memset(out, 0, sizeof *out);
     sd_an_region reg;
     sd_status st = sd_an_region_make(region, w->dim2, &reg, err);

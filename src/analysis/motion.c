@@ -20,6 +20,8 @@
 
 sd_status sd_world_motion_stats(const sd_world *w, const sd_region_def *region, sd_motion_stats *out, sd_error *err)
 {
+    if (!w || !out)
+        return sd_error_null(err, "sd_world_motion_stats", !w ? "world" : "out");
     memset(out, 0, sizeof *out);
     sd_an_region r;
     sd_an_set set;
@@ -52,6 +54,8 @@ sd_status sd_world_motion_stats(const sd_world *w, const sd_region_def *region, 
 sd_status sd_world_speed_histogram(const sd_world *w, const sd_region_def *region, int bins, double max_speed,
                                    size_t *counts, double *top, sd_error *err)
 {
+    if (!w || !counts)
+        return sd_error_null(err, "sd_world_speed_histogram", !w ? "world" : "counts");
     if (bins < 1)
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "bins", "expected bins >= 1, got %d", bins);
     memset(counts, 0, (size_t)bins * sizeof *counts);
@@ -96,6 +100,8 @@ sd_velocity_field_def sd_velocity_field_def_default(void)
 sd_status sd_world_velocity_field(const sd_world *w, const sd_velocity_field_def *def, size_t *count, sd_v3d *mean,
                                   sd_error *err)
 {
+    if (!w || !count || !mean)
+        return sd_error_null(err, "sd_world_velocity_field", !w ? "world" : !count ? "count" : "mean");
     if (!def || def->cookie != SD_COOKIE_ANALYSIS)
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "",
                             "sd_velocity_field_def not initialised with sd_velocity_field_def_default");

@@ -164,6 +164,8 @@ static int sd_an_solid(const sd_world *w, const sd_an_bin *g, sd_vec3 p)
 sd_status sd_world_porosity(const sd_world *w, const sd_porosity_def *def, sd_porosity *out, long long *radial_solid,
                             long long *radial_voxels, sd_error *err)
 {
+    if (!w || !out)
+        return sd_error_null(err, "sd_world_porosity", !w ? "world" : "out");
     memset(out, 0, sizeof *out);
     if (!def || def->cookie != SD_COOKIE_ANALYSIS)
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "",

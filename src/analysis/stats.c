@@ -49,7 +49,11 @@ void sd_cells_stats(const sd_world *w, sd_stat_sums *s)
 
 void sd_world_stats(const sd_world *w, sd_stats *out)
 {
+    if (!out)
+        return;
     memset(out, 0, sizeof *out);
+    if (!w)
+        return;
     const sd_particles *p = &w->p;
     out->time = w->time;
     out->step = w->step;

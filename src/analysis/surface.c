@@ -53,6 +53,8 @@ static int sd_an_hm_cmp(const void *x, const void *y)
 sd_status sd_world_bed_height(const sd_world *w, const sd_region_def *region, double fraction, sd_bed_height *out,
                               sd_error *err)
 {
+    if (!w || !out)
+        return sd_error_null(err, "sd_world_bed_height", !w ? "world" : "out");
     memset(out, 0, sizeof *out);
     if (!(fraction > 0 && fraction <= 1))
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "fraction", "expected a mass fraction in (0, 1], got %g",
@@ -142,6 +144,8 @@ static sd_status sd_an_fit_check(int bins, const double fit[2], sd_error *err)
 {
     if (bins < 2)
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "bins", "expected at least 2 columns, got %d", bins);
+    if (!fit)
+        return sd_error_set(err, SD_ERR_INPUT, "", 0, "fit", "the fit range is NULL (expected two fractions)");
     if (!(fit[0] >= 0 && fit[1] <= 1 && fit[1] > fit[0]))
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "fit", "expected 0 <= fit[0] < fit[1] <= 1, got [%g, %g]", fit[0],
                             fit[1]);
@@ -151,6 +155,8 @@ static sd_status sd_an_fit_check(int bins, const double fit[2], sd_error *err)
 sd_status sd_world_drum_surface(const sd_world *w, const sd_region_def *drum, int bins, const double fit[2],
                                 sd_surface_fit *out, sd_error *err)
 {
+    if (!w || !out)
+        return sd_error_null(err, "sd_world_drum_surface", !w ? "world" : "out");
     memset(out, 0, sizeof *out);
     sd_status st;
     if ((st = sd_an_fit_check(bins, fit, err)) != SD_OK)
@@ -203,6 +209,8 @@ sd_status sd_world_drum_surface(const sd_world *w, const sd_region_def *drum, in
 sd_status sd_world_heap_angle(const sd_world *w, const sd_v3d *center, int bins, const double fit[2],
                               sd_surface_fit *out, sd_error *err)
 {
+    if (!w || !out)
+        return sd_error_null(err, "sd_world_heap_angle", !w ? "world" : "out");
     memset(out, 0, sizeof *out);
     sd_status st;
     if ((st = sd_an_fit_check(bins, fit, err)) != SD_OK)

@@ -70,6 +70,11 @@ const char *sd_escape(char *buf, size_t size, const char *s, size_t len)
     return buf;
 }
 
+sd_status sd_error_null(sd_error *err, const char *call, const char *arg)
+{
+    return sd_error_set(err, SD_ERR_INPUT, "", 0, "", "%s: %s is NULL", call, arg);
+}
+
 void sd_error_clear(sd_error *err)
 {
     if (err)

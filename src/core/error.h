@@ -14,6 +14,9 @@
 sd_status sd_error_set(sd_error *err, sd_status code, const char *file, int line, const char *key,
                        const char *fmt, ...) SD_PRINTF(6, 7);
 void sd_error_clear(sd_error *err);
+/* The public calls' answer to a NULL handle or pointer (every call is safe
+ * in every state, issue 31): SD_ERR_INPUT, "CALL: ARG is NULL". */
+sd_status sd_error_null(sd_error *err, const char *call, const char *arg);
 
 /* Writes s[0 .. len) (len (size_t)-1: up to its NUL) into buf (size >= 8)
  * with every byte that is not printable ASCII escaped: \r \n \t \\ and

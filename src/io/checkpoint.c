@@ -791,6 +791,8 @@ sd_status sd_checkpoint_write_collective(const sd_snapshot *s, const sd_ckpt_par
 
 sd_status sd_checkpoint_write(const sd_world *w, const char *path, sd_error *err)
 {
+    if (!w || !path)
+        return sd_error_null(err, "sd_checkpoint_write", !w ? "world" : "path");
     sd_snapshot s;
     sd_status st = sd_world_snapshot(w, &s, err);
     if (st != SD_OK)
@@ -802,6 +804,8 @@ sd_status sd_checkpoint_write(const sd_world *w, const char *path, sd_error *err
 
 sd_status sd_checkpoint_restore(sd_world *w, const char *path, sd_error *err)
 {
+    if (!w || !path)
+        return sd_error_null(err, "sd_checkpoint_restore", !w ? "world" : "path");
     sd_snapshot s;
     sd_status st = sd_checkpoint_read_file(path, &s, err);
     if (st == SD_OK) {
@@ -817,6 +821,8 @@ sd_status sd_checkpoint_restore(sd_world *w, const char *path, sd_error *err)
 
 sd_status sd_checkpoint_print(FILE *f, const char *path, sd_error *err)
 {
+    if (!f || !path)
+        return sd_error_null(err, "sd_checkpoint_print", !f ? "f" : "path");
     sd_snapshot s;
     sd_status st = sd_checkpoint_read_file(path, &s, err);
     if (st != SD_OK) {

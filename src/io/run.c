@@ -157,7 +157,11 @@ static size_t sd_run_peak_rss(void)
 
 sd_status sd_run_open(const sd_scene *s, sd_world *w, const char *dir, sd_run **out, sd_error *err)
 {
+    if (!out)
+        return sd_error_null(err, "sd_run_open", "out");
     *out = NULL;
+    if (!s || !w)
+        return sd_error_null(err, "sd_run_open", !s ? "scene" : "world");
     sd_scene_info info;
     sd_scene_get_info(s, &info);
     sd_run *r = sd_calloc(1, sizeof *r);
@@ -240,6 +244,8 @@ sd_status sd_run_open(const sd_scene *s, sd_world *w, const char *dir, sd_run **
 
 long sd_run_steps_to_output(const sd_run *r)
 {
+    if (!r)
+        return 0;
     long next = r->steps;
     long to_frame = r->every - r->done % r->every, to_stats = r->stats_every - r->done % r->stats_every;
     if (r->done + to_frame < next)
@@ -263,6 +269,8 @@ static sd_status sd_run_write_state(sd_run *r, const char *path, sd_error *err)
 
 sd_status sd_run_checkpoint(sd_run *r, sd_error *err)
 {
+    if (!r)
+        return sd_error_null(err, "sd_run_checkpoint", "run");
     if (!r->out)
         return SD_OK; /* a run without files writes no checkpoint either */
     char path[sizeof r->ckpt_last];
@@ -275,7 +283,7 @@ sd_status sd_run_checkpoint(sd_run *r, sd_error *err)
     return st;
 }
 
-const char *sd_run_last_checkpoint(const sd_run *r) { return r->ckpt_last; }
+const char *sd_run_last_checkpoint(const sd_run *r) { return r ? r->ckpt_last : NULL; }
 
 /* A checkpoint falls due at multiples of checkpoint_every and when
  * checkpoint_minutes of wall time have passed since the last one. */
@@ -305,6 +313,8 @@ static void sd_run_failed_state(sd_run *r, sd_error *err)
 sd_status sd_run_advance(sd_run *r, long steps, sd_error *err)
 {
     sd_status st = SD_OK;
+    if (!r)
+        return sd_error_null(err, "sd_run_advance", "run");
     if (r->failed)
         return sd_error_set(err, SD_ERR_INTERNAL, "", 0, "", "the run stopped at an earlier error");
     if (!r->started) {
@@ -372,7 +382,11 @@ sd_status sd_run_advance(sd_run *r, long steps, sd_error *err)
 
 void sd_run_get_progress(const sd_run *r, sd_run_progress *out)
 {
+    if (!out)
+        return;
     memset(out, 0, sizeof *out);
+    if (!r)
+        return;
     out->done = r->done;
     out->first = r->first;
     out->steps = r->steps;
@@ -383,7 +397,7 @@ void sd_run_get_progress(const sd_run *r, sd_run_progress *out)
     out->stopped = r->stopped;
 }
 
-const char *sd_run_stop_note(const sd_run *r) { return r->stop; }
+const char *sd_run_stop_note(const sd_run *r) { return r ? r->stop : NULL; }
 
 void sd_run_set_stepper(sd_run *r, sd_run_stepper step, void *ctx)
 {
@@ -406,7 +420,7 @@ void sd_run_set_note(sd_run *r, const char *lines)
         memcpy(r->note, lines, n + 1);
 }
 
-const char *sd_run_directory(const sd_run *r) { return r->out ? r->dir : ""; }
+const char *sd_run_directory(const sd_run *r) { return !r ? NULL : r->out ? r->dir : ""; }
 
 sd_status sd_run_close(sd_run *r, sd_error *err)
 {

@@ -735,8 +735,12 @@ sd_status sd_scene_build(const sd_scene *s, sd_world **out, sd_error *err)
     if (!err)
         err = &local; /* the world API calls below read err back */
     memset(&sp, 0, sizeof sp);
+    if (!out)
+        return sd_error_null(err, "sd_scene_build", "out");
     *out = NULL;
     sd_error_clear(err);
+    if (!s)
+        return sd_error_null(err, "sd_scene_build", "scene");
     sd_status st = sd_world_create(&s->world, &w, err);
     if (st != SD_OK && !strcmp(err->key, "simulation.backend")) {
         /* the backend refused: blame where the choice was made, the

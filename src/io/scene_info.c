@@ -12,13 +12,13 @@
 
 void sd_scene_set_threads(sd_scene *s, int threads)
 {
-    if (threads >= 1)
+    if (s && threads >= 1)
         s->world.threads = threads;
 }
 
 void sd_scene_set_backend(sd_scene *s, sd_backend_kind backend)
 {
-    if (backend >= 0 && backend < SD_BACKEND_COUNT) {
+    if (s && backend >= 0 && backend < SD_BACKEND_COUNT) {
         s->world.backend = backend;
         s->backend_cli = 1; /* a refusal names the option, not the scene (io/scene_build.c) */
     }
@@ -26,21 +26,25 @@ void sd_scene_set_backend(sd_scene *s, sd_backend_kind backend)
 
 void sd_scene_set_device(sd_scene *s, int device)
 {
-    if (device >= 0)
+    if (s && device >= 0)
         s->world.device = device;
 }
 
 void sd_scene_set_steps(sd_scene *s, long steps)
 {
-    if (steps >= 0)
+    if (s && steps >= 0)
         s->steps = steps;
 }
 
-long sd_scene_steps(const sd_scene *s) { return s->steps; }
+long sd_scene_steps(const sd_scene *s) { return s ? s->steps : 0; }
 
 void sd_scene_get_info(const sd_scene *s, sd_scene_info *out)
 {
+    if (!out)
+        return;
     memset(out, 0, sizeof *out);
+    if (!s)
+        return;
     out->path = s->path;
     out->dimension = s->world.dimension;
     out->dt = s->world.dt;
@@ -63,27 +67,32 @@ void sd_scene_get_info(const sd_scene *s, sd_scene_info *out)
 
 const char *sd_scene_material_name(const sd_scene *s, size_t i)
 {
-    return i < s->material_count ? s->materials[i].name : NULL;
+    return s && i < s->material_count ? s->materials[i].name : NULL;
 }
 
-const char *sd_scene_shape_name(const sd_scene *s, size_t i) { return i < s->shape_count ? s->shapes[i].name : NULL; }
+const char *sd_scene_shape_name(const sd_scene *s, size_t i)
+{
+    return s && i < s->shape_count ? s->shapes[i].name : NULL;
+}
 
 const char *sd_scene_shape_warning(const sd_scene *s, size_t i)
 {
-    return i < s->shape_count ? s->shapes[i].warning : NULL;
+    return s && i < s->shape_count ? s->shapes[i].warning : NULL;
 }
 
-const char *sd_scene_wall_name(const sd_scene *s, size_t i) { return i < s->wall_count ? s->walls[i].name : NULL; }
+const char *sd_scene_wall_name(const sd_scene *s, size_t i) { return s && i < s->wall_count ? s->walls[i].name : NULL; }
 
 const char *sd_scene_wall_warning(const sd_scene *s, size_t i)
 {
-    return i < s->wall_count ? s->walls[i].warning : NULL;
+    return s && i < s->wall_count ? s->walls[i].warning : NULL;
 }
 
 int sd_scene_get_pour(const sd_scene *s, sd_pour_def *out)
 {
-    if (!s->pour.given)
+    if (!s || !s->pour.given)
         return 0;
+    if (!out)
+        return 1;
     *out = sd_pour_def_default();
     out->radius = s->pour.radius;
     out->material = s->pour.material;
@@ -98,8 +107,10 @@ int sd_scene_get_pour(const sd_scene *s, sd_pour_def *out)
 
 int sd_scene_get_outlet(const sd_scene *s, sd_outlet_def *out)
 {
-    if (!s->outlet.given)
+    if (!s || !s->outlet.given)
         return 0;
+    if (!out)
+        return 1;
     *out = sd_outlet_def_default();
     out->x0 = s->outlet.lo[0];
     out->x1 = s->outlet.hi[0];
@@ -111,6 +122,11 @@ int sd_scene_get_outlet(const sd_scene *s, sd_outlet_def *out)
 
 void sd_scene_output_directory(const sd_scene *s, char *buf, size_t size)
 {
+    if (!buf || size == 0)
+        return;
+    buf[0] = '\0';
+    if (!s)
+        return;
     if (s->output.directory[0]) {
         snprintf(buf, size, "%s", s->output.directory);
         return;

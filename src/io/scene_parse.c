@@ -891,7 +891,11 @@ static sd_status sd_parse_root(sd_parse *p, yaml_node_t *root)
 sd_status sd_scene_load(const char *path, sd_scene **out, sd_error *err)
 {
     sd_error_clear(err);
+    if (!out)
+        return sd_error_null(err, "sd_scene_load", "out");
     *out = NULL;
+    if (!path)
+        return sd_error_null(err, "sd_scene_load", "path");
     struct stat sb;
     if (stat(path, &sb) != 0)
         return sd_error_set(err, SD_ERR_INPUT, path, 0, "", "cannot open the scene file: %s",

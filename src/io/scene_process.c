@@ -573,7 +573,7 @@ sd_status sd_scene_build_process(const sd_scene *s, sd_world *w, sd_error *err)
 
 const char *sd_scene_outlet_warning(const sd_scene *s, size_t k)
 {
-    if (!s->process || k >= s->process->outlet_count)
+    if (!s || !s->process || k >= s->process->outlet_count)
         return NULL;
     return s->process->outlet_warning[k];
 }

@@ -82,6 +82,6 @@ sd_status sd_world_choose_backend(sd_world *w, sd_error *err)
     return SD_OK;
 }
 
-const char *sd_world_backend(const sd_world *w) { return w->backend ? w->backend->name : "cpu"; }
+const char *sd_world_backend(const sd_world *w) { return !w ? "" : w->backend ? w->backend->name : "cpu"; }
 
-const char *sd_world_backend_note(const sd_world *w) { return w->backend_note; }
+const char *sd_world_backend_note(const sd_world *w) { return w ? w->backend_note : ""; }

@@ -29,6 +29,8 @@ sd_shape_desc sd_shape_desc_default(void)
 
 int sd_world_find_shape(const sd_world *w, const char *name)
 {
+    if (!w)
+        return -1;
     if (w->dim2) {
         for (size_t k = 0; k < w->shape2d_count; ++k)
             if (name && strcmp(w->shape2d_names[k], name) == 0)
@@ -51,10 +53,14 @@ sd_status sd_world_check_shape_name(const sd_world *w, const char *name, sd_erro
     return SD_OK;
 }
 
-size_t sd_world_shape_count(const sd_world *w) { return w->dim2 ? w->shape2d_count : w->shape_count; }
+size_t sd_world_shape_count(const sd_world *w) { return !w ? 0 : w->dim2 ? w->shape2d_count : w->shape_count; }
 
 int sd_world_add_shape(sd_world *w, const char *name, const sd_shape_desc *desc, sd_error *err)
 {
+    if (!w) {
+        sd_error_null(err, "sd_world_add_shape", "world");
+        return -1;
+    }
     if (!desc || desc->cookie != SD_COOKIE) {
         sd_error_set(err, SD_ERR_INPUT, "", 0, "shapes", "shape desc not made by sd_shape_desc_default");
         return -1;
@@ -69,6 +75,11 @@ int sd_world_add_shape(sd_world *w, const char *name, const sd_shape_desc *desc,
     int kind = sd_shape_kind_from_name(desc->kind);
     if (kind < 0 || kind >= SD_SHAPE_KIND_COUNT) {
         sd_error_set(err, SD_ERR_INPUT, "", 0, "type", "unknown shape kind '%s'", desc->kind ? desc->kind : "");
+        return -1;
+    }
+    if (desc->vertex_count > 0 && !desc->vertices) {
+        sd_error_set(err, SD_ERR_INPUT, "", 0, "vertices", "%zu vertices given, but the vertex array is NULL",
+                     desc->vertex_count);
         return -1;
     }
     if (desc->vertex_count > SD_SHAPE_MAX_VERTICES) {
@@ -152,6 +163,8 @@ int sd_world_add_shape(sd_world *w, const char *name, const sd_shape_desc *desc,
 
 sd_status sd_world_get_shape(const sd_world *w, size_t k, sd_shape_info *out)
 {
+    if (!w || !out)
+        return SD_ERR_INPUT;
     if (w->dim2)
         return sd_world_get_shape2d(w, k, out);
     if (k >= w->shape_count)
@@ -187,6 +200,10 @@ sd_status sd_world_get_shape(const sd_world *w, size_t k, sd_shape_info *out)
 
 sd_status sd_world_add_bodies(sd_world *w, size_t n, const sd_body_def *defs, sd_error *err)
 {
+    if (!w)
+        return sd_error_null(err, "sd_world_add_bodies", "world");
+    if (n > 0 && !defs)
+        return sd_error_null(err, "sd_world_add_bodies", "defs");
     if (w->dim2)
         return sd_world_add_bodies2d(w, n, defs, err);
     for (size_t k = 0; k < n; ++k) {
@@ -234,6 +251,10 @@ sd_status sd_world_add_bodies(sd_world *w, size_t n, const sd_body_def *defs, sd
 
 size_t sd_world_narrow_stats(const sd_world *w, sd_narrow_stats *out, size_t max)
 {
+    if (!w)
+        return 0;
+    if (!out)
+        max = 0; /* only the count */
     if (w->dim2)
         return sd_world_narrow_stats2d(w, out, max);
     size_t m = 0;

@@ -41,6 +41,10 @@ sd_shape2d_def sd_shape2d_def_default(void)
 
 int sd_world_add_shape2d(sd_world *w, const char *name, const sd_shape2d_def *def, sd_error *err)
 {
+    if (!w) {
+        sd_error_null(err, "sd_world_add_shape2d", "world");
+        return -1;
+    }
     if (!def || def->cookie != SD_COOKIE) {
         sd_error_set(err, SD_ERR_INPUT, "", 0, "shapes", "2D shape def not made by sd_shape2d_def_default");
         return -1;

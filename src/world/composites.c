@@ -30,6 +30,10 @@ sd_composite_desc sd_composite_desc_default(void)
 
 int sd_world_add_composite(sd_world *w, const char *name, const sd_composite_desc *desc, sd_error *err)
 {
+    if (!w) {
+        sd_error_null(err, "sd_world_add_composite", "world");
+        return -1;
+    }
     if (!desc || desc->cookie != SD_COMPOSITE_COOKIE) {
         sd_error_set(err, SD_ERR_INPUT, "", 0, "shapes", "composite desc not made by sd_composite_desc_default");
         return -1;
@@ -108,7 +112,13 @@ sd_composite_preset_def sd_composite_preset_def_default(void)
 sd_status sd_composite_preset(sd_world *w, const char *name, const sd_composite_preset_def *def,
                               sd_composite_element *out, size_t cap, size_t *n, sd_error *err)
 {
+    if (!n)
+        return sd_error_null(err, "sd_composite_preset", "n");
     *n = 0;
+    if (!w)
+        return sd_error_null(err, "sd_composite_preset", "world");
+    if (!out && cap > 0)
+        return sd_error_null(err, "sd_composite_preset", "out");
     if (!def || def->cookie != SD_COMPOSITE_PRESET_COOKIE)
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "preset",
                             "composite preset def not made by sd_composite_preset_def_default");

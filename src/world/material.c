@@ -86,14 +86,13 @@ void sd_volume_zeta_table(double e, sd_real zeta[SD_VOLUME_ZETA_N])
 
 double sd_volume_rebound_model(double p, double zeta) { return sd_volume_model_rebound(p, zeta); }
 
-sd_status sd_world_mix_materials(sd_world *w, sd_error *err)
+/* Fills mix[nm x nm] from the materials and interactions; returns 1 when
+ * some pair uses a volume law. Reads w only (sd_world_dt_report mixes a
+ * table of its own for a world not prepared yet). */
+static int sd_mix_table(const sd_world *w, sd_pair_params *mix)
 {
     size_t nm = w->material_count;
-    sd_pair_params *mix = sd_realloc(w->mix, (nm ? nm * nm : 1) * sizeof *mix);
-    if (!mix)
-        return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory for the table of %zu material pairs", nm * nm);
-    w->mix = mix;
-    w->has_volume_law = 0;
+    int has_volume_law = 0;
     for (size_t a = 0; a < nm; ++a)
         for (size_t b = 0; b < nm; ++b) {
             const sd_material_def *ma = &w->materials[a].def, *mb = &w->materials[b].def;
@@ -154,7 +153,7 @@ sd_status sd_world_mix_materials(sd_world *w, sd_error *err)
                 fo = mb->volume_face_omega_dt;
             p->face_omega = (sd_real)(fo > 0 ? fo : 0.0);
             if (sd_law_traits(law) & SD_LAW_IS_VOLUME) {
-                w->has_volume_law = 1;
+                has_volume_law = 1;
                 /* the calibration costs ~0.1 s: reuse it for an equal e */
                 int done = 0;
                 for (size_t q = 0; q < a * nm + b && !done; ++q) {
@@ -175,6 +174,17 @@ sd_status sd_world_mix_materials(sd_world *w, sd_error *err)
                 p->gt_over_gn = (sd_real)sqrt(4.0 * (double)p->g_star / (double)p->y_star);
             }
         }
+    return has_volume_law;
+}
+
+sd_status sd_world_mix_materials(sd_world *w, sd_error *err)
+{
+    size_t nm = w->material_count;
+    sd_pair_params *mix = sd_realloc(w->mix, (nm ? nm * nm : 1) * sizeof *mix);
+    if (!mix)
+        return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory for the table of %zu material pairs", nm * nm);
+    w->mix = mix;
+    w->has_volume_law = sd_mix_table(w, mix);
     return SD_OK;
 }
 
@@ -436,6 +446,20 @@ void sd_world_dt_report(const sd_world *w, sd_dt_report *r)
     w->solver->dt_inputs(w, gd, &in);
     if (!in.any || nm == 0)
         return;
+    /* the mixed pair table is made at prepare (and stale after a material
+     * or interaction was added): a world not prepared gets one of its own */
+    sd_pair_params *own = NULL;
+    const sd_pair_params *mix = w->mix;
+    if (!w->prepared || !mix) {
+        own = sd_malloc(nm * nm * sizeof *own);
+        if (!own) {
+            r->recommended = r->contact = NAN;
+            r->limit = "out of memory for the table of material pairs";
+            return;
+        }
+        sd_mix_table(w, own);
+        mix = own;
+    }
     double vmax = in.vmax, zlo = in.zlo, zhi = in.zhi, rsmall = in.rsmall;
     for (size_t k = 0; k < p->n; ++k) {
         int m = p->material[k];
@@ -472,7 +496,7 @@ void sd_world_dt_report(const sd_world *w, sd_dt_report *r)
         double mass = 1.0 / (double)p->inv_mass[k], req = (double)w->shape_req[s], rb = (double)sh->bound;
         double ii = fmax(fmax((double)p->inv_inertia[k].x, (double)p->inv_inertia[k].y), (double)p->inv_inertia[k].z);
         for (size_t b = 0; b < nm && b < 256; ++b) {
-            const sd_pair_params *pp = &w->mix[(size_t)a * nm + b];
+            const sd_pair_params *pp = &mix[(size_t)a * nm + b];
             if (!(sd_law_traits(pp->law) & SD_LAW_IS_VOLUME) || !sd_law_params_ready(pp))
                 continue;
             int wall_b = 0;
@@ -541,7 +565,7 @@ void sd_world_dt_report(const sd_world *w, sd_dt_report *r)
             rayleigh_min = fmin(rayleigh_min, tr);
         }
         for (size_t b = 0; b < nm && b < 256; ++b) {
-            const sd_pair_params *pp = &w->mix[a * nm + b];
+            const sd_pair_params *pp = &mix[a * nm + b];
             if (!sd_law_params_ready(pp)) /* sd_world_check_params says why when it meets */
                 continue;
             if (sd_law_traits(pp->law) & SD_LAW_IS_VOLUME)
@@ -566,7 +590,7 @@ void sd_world_dt_report(const sd_world *w, sd_dt_report *r)
     double other = INFINITY;
     for (size_t a = 0; a < nm && a < 256; ++a)
         for (size_t b = 0; b < nm && b < 256; ++b)
-            if (!(sd_law_traits(w->mix[a * nm + b].law) & SD_LAW_IS_VOLUME))
+            if (!(sd_law_traits(mix[a * nm + b].law) & SD_LAW_IS_VOLUME))
                 other = 0; /* some pair is not a volume pair: tc_min may be its duration */
     if (other == 0)
         sd_dt_keep(&rec, &what, tc_min / 50.0, "contact duration over 50");
@@ -574,10 +598,16 @@ void sd_world_dt_report(const sd_world *w, sd_dt_report *r)
     sd_dt_keep(&rec, &what, vol_rec, vol_what);
     r->recommended = rec;
     r->limit = what;
+    sd_free(own);
 }
 
 double sd_world_recommended_dt(const sd_world *w, double *contact_duration)
 {
+    if (!w) {
+        if (contact_duration)
+            *contact_duration = (double)NAN;
+        return (double)NAN;
+    }
     sd_dt_report r;
     sd_world_dt_report(w, &r);
     if (contact_duration)

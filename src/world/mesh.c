@@ -45,7 +45,7 @@ sd_mesh_motion_def sd_mesh_motion_def_default(void)
 
 static sd_mesh_store *sd_mesh_of(const sd_world *w, int wall)
 {
-    if (wall < 0 || (size_t)wall >= w->wall_count || w->walls[wall].kind != SD_WALL_MESH)
+    if (!w || wall < 0 || (size_t)wall >= w->wall_count || w->walls[wall].kind != SD_WALL_MESH)
         return NULL;
     return &w->meshes[w->walls[wall].mesh];
 }
@@ -73,6 +73,10 @@ static void sd_mesh_refresh_view(sd_world *w, size_t k)
 
 int sd_world_add_mesh(sd_world *w, const char *name, const sd_mesh_def *def, sd_error *err)
 {
+    if (!w) {
+        sd_error_null(err, "sd_world_add_mesh", "world");
+        return -1;
+    }
     const char *nm = name && name[0] ? name : "mesh";
     if (!def || def->cookie != SD_COOKIE) {
         sd_error_set(err, SD_ERR_INPUT, "", 0, "mesh", "mesh def not made by sd_mesh_def_default");
@@ -588,6 +592,8 @@ void sd_world_meshes_free(sd_world *w)
 
 sd_status sd_world_set_wall_torque_point(sd_world *w, int wall, sd_v3d point, sd_error *err)
 {
+    if (!w)
+        return sd_error_null(err, "sd_world_set_wall_torque_point", "world");
     if (wall < 0 || (size_t)wall >= w->wall_count)
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "torque_point", "unknown wall index %d", wall);
     if (!isfinite(point.x) || !isfinite(point.y) || !isfinite(point.z))

@@ -734,6 +734,10 @@ static double sd_material_density(const sd_world *w, int m) { return w->material
 
 int sd_world_add_insertion(sd_world *w, const sd_insert_def *d, sd_error *err)
 {
+    if (!w) {
+        sd_error_null(err, "sd_world_add_insertion", "world");
+        return -1;
+    }
     if (!d || d->cookie != SD_COOKIE_PROCESS) {
         sd_error_set(err, SD_ERR_INPUT, "", 0, "insert", "insertion def not made by sd_insert_def_default");
         return -1;
@@ -970,12 +974,14 @@ int sd_world_add_insertion(sd_world *w, const sd_insert_def *d, sd_error *err)
     return (int)index;
 }
 
-size_t sd_world_insertion_count(const sd_world *w) { return w->process ? w->process->insertion_count : 0; }
+size_t sd_world_insertion_count(const sd_world *w) { return w && w->process ? w->process->insertion_count : 0; }
 
 sd_status sd_world_get_insertion(const sd_world *w, size_t k, sd_insert_info *out)
 {
+    if (!out)
+        return SD_ERR_INPUT;
     memset(out, 0, sizeof *out);
-    if (!w->process || k >= w->process->insertion_count)
+    if (!w || !w->process || k >= w->process->insertion_count)
         return SD_ERR_INPUT;
     const sd_insertion *ins = &w->process->insertions[k];
     out->name = ins->name;
@@ -992,6 +998,10 @@ sd_status sd_world_get_insertion(const sd_world *w, size_t k, sd_insert_info *ou
 
 int sd_world_add_outlet(sd_world *w, const sd_region_outlet_def *d, sd_error *err)
 {
+    if (!w) {
+        sd_error_null(err, "sd_world_add_outlet", "world");
+        return -1;
+    }
     if (!d || d->cookie != SD_COOKIE_PROCESS) {
         sd_error_set(err, SD_ERR_INPUT, "", 0, "outlets", "outlet def not made by sd_region_outlet_def_default");
         return -1;
@@ -1023,12 +1033,14 @@ int sd_world_add_outlet(sd_world *w, const sd_region_outlet_def *d, sd_error *er
     return (int)pr->outlet_count++;
 }
 
-size_t sd_world_outlet_count(const sd_world *w) { return w->process ? w->process->outlet_count : 0; }
+size_t sd_world_outlet_count(const sd_world *w) { return w && w->process ? w->process->outlet_count : 0; }
 
 sd_status sd_world_get_outlet(const sd_world *w, size_t k, sd_outlet_info *out)
 {
+    if (!out)
+        return SD_ERR_INPUT;
     memset(out, 0, sizeof *out);
-    if (!w->process || k >= w->process->outlet_count)
+    if (!w || !w->process || k >= w->process->outlet_count)
         return SD_ERR_INPUT;
     const sd_outlet_state *o = &w->process->outlets[k];
     out->name = o->name;
@@ -1040,7 +1052,11 @@ sd_status sd_world_get_outlet(const sd_world *w, size_t k, sd_outlet_info *out)
 
 void sd_world_get_process(const sd_world *w, sd_process_info *out)
 {
+    if (!out)
+        return;
     memset(out, 0, sizeof *out);
+    if (!w)
+        return;
     const sd_process *pr = w->process;
     if (!pr) {
         out->initial = w->p.n;
@@ -1627,6 +1643,10 @@ sd_drum_def sd_drum_def_default(void)
 
 int sd_world_add_drum(sd_world *w, const sd_drum_def *d, sd_error *err)
 {
+    if (!w) {
+        sd_error_null(err, "sd_world_add_drum", "world");
+        return -1;
+    }
     if (!d || d->cookie != SD_COOKIE_PROCESS) {
         sd_error_set(err, SD_ERR_INPUT, "", 0, "walls", "drum def not made by sd_drum_def_default");
         return -1;

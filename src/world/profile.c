@@ -8,6 +8,7 @@
 
 #include "world/profile.h"
 
+#include <string.h>
 #include <time.h>
 
 double sd_profile_now(void)
@@ -19,12 +20,18 @@ double sd_profile_now(void)
 
 void sd_world_profile(const sd_world *w, sd_profile *out)
 {
+    if (!out)
+        return;
+    if (!w) {
+        memset(out, 0, sizeof *out);
+        return;
+    }
     *out = w->profile;
 }
 
 void sd_world_profile_add(sd_world *w, sd_profile_stage stage, double seconds)
 {
-    if ((int)stage < 0 || stage >= SD_PROFILE_STAGE_COUNT)
+    if (!w || (int)stage < 0 || stage >= SD_PROFILE_STAGE_COUNT)
         return;
     w->profile.seconds[stage] += seconds > 0 ? seconds : 0.0;
     w->profile.calls[stage] += 1;

@@ -219,6 +219,10 @@ static int sd_scaled_2d(sd_world *w, int k, sd_real s, const char *name, sd_erro
 
 int sd_world_add_scaled_shape(sd_world *w, int shape, double scale, const char *name, sd_error *err)
 {
+    if (!w) {
+        sd_error_null(err, "sd_world_add_scaled_shape", "world");
+        return -1;
+    }
     size_t ns = w->dim2 ? w->shape2d_count : w->shape_count;
     if (shape < 0 || (size_t)shape >= ns) {
         sd_error_set(err, SD_ERR_INPUT, "", 0, "shape", "unknown template index %d", shape);

@@ -40,6 +40,8 @@ static sd_real sd_wall_span(const sd_world *w, size_t k);
 
 sd_status sd_world_set_wall_motion(sd_world *w, int wall, const sd_wall_motion_def *d, sd_error *err)
 {
+    if (!w)
+        return sd_error_null(err, "sd_world_set_wall_motion", "world");
     if (!d || d->cookie != SD_COOKIE)
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "motion",
                             "wall motion def not made by sd_wall_motion_def_default");
@@ -275,7 +277,7 @@ static int sd_biaxial_walls(const sd_world *w, int idx[4])
 sd_status sd_world_biaxial_reference(sd_world *w)
 {
     int idx[4];
-    if (!w->dim2 || !sd_biaxial_walls(w, idx))
+    if (!w || !w->dim2 || !sd_biaxial_walls(w, idx))
         return SD_ERR_INPUT;
     w->biaxial_ref = sd_v3(w->walls[idx[1]].point.x - w->walls[idx[0]].point.x,
                            w->walls[idx[3]].point.y - w->walls[idx[2]].point.y, SD_R(1.0));
@@ -285,8 +287,10 @@ sd_status sd_world_biaxial_reference(sd_world *w)
 sd_status sd_world_biaxial(const sd_world *w, sd_biaxial *out)
 {
     int idx[4];
+    if (!out)
+        return SD_ERR_INPUT;
     memset(out, 0, sizeof *out);
-    if (!w->dim2 || !sd_biaxial_walls(w, idx))
+    if (!w || !w->dim2 || !sd_biaxial_walls(w, idx))
         return SD_ERR_INPUT;
     const sd_wall *xl = &w->walls[idx[0]], *xr = &w->walls[idx[1]], *yb = &w->walls[idx[2]], *yt = &w->walls[idx[3]];
     double width = (double)(xr->point.x - xl->point.x), height = (double)(yt->point.y - yb->point.y);

@@ -166,6 +166,8 @@ static int sd_pick_threads(int requested)
 
 sd_status sd_world_create(const sd_world_def *def, sd_world **out, sd_error *err)
 {
+    if (!out)
+        return sd_error_null(err, "sd_world_create", "out");
     *out = NULL;
     if (!def || def->cookie != SD_COOKIE)
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "", "world def not made by sd_world_def_default");
@@ -252,6 +254,10 @@ void sd_world_destroy(sd_world *w)
 
 int sd_world_add_material(sd_world *w, const sd_material_def *d, sd_error *err)
 {
+    if (!w) {
+        sd_error_null(err, "sd_world_add_material", "world");
+        return -1;
+    }
     if (!d || d->cookie != SD_COOKIE) {
         sd_error_set(err, SD_ERR_INPUT, "", 0, "materials", "material def not made by sd_material_def_default");
         return -1;
@@ -298,7 +304,7 @@ int sd_world_add_material(sd_world *w, const sd_material_def *d, sd_error *err)
 
 int sd_world_find_material(const sd_world *w, const char *name)
 {
-    for (size_t k = 0; k < w->material_count; ++k)
+    for (size_t k = 0; w && k < w->material_count; ++k)
         if (name && strcmp(w->materials[k].name, name) == 0)
             return (int)k;
     return -1;
@@ -306,11 +312,13 @@ int sd_world_find_material(const sd_world *w, const char *name)
 
 const char *sd_world_material_name(const sd_world *w, size_t index)
 {
-    return index < w->material_count ? w->materials[index].name : NULL;
+    return w && index < w->material_count ? w->materials[index].name : NULL;
 }
 
 sd_status sd_world_set_interaction(sd_world *w, int a, int b, const sd_interaction_def *d, sd_error *err)
 {
+    if (!w)
+        return sd_error_null(err, "sd_world_set_interaction", "world");
     if (!d || d->cookie != SD_COOKIE)
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "interactions", "def not made by sd_interaction_def_default");
     if (a < 0 || b < 0 || (size_t)a >= w->material_count || (size_t)b >= w->material_count)
@@ -334,6 +342,10 @@ sd_status sd_world_set_interaction(sd_world *w, int a, int b, const sd_interacti
 
 sd_status sd_world_add_spheres(sd_world *w, size_t n, const sd_sphere_def *defs, sd_error *err)
 {
+    if (!w)
+        return sd_error_null(err, "sd_world_add_spheres", "world");
+    if (n > 0 && !defs)
+        return sd_error_null(err, "sd_world_add_spheres", "defs");
     for (size_t k = 0; k < n; ++k) {
         const sd_sphere_def *d = &defs[k];
         if (!(d->radius > 0) || !isfinite(d->radius))
@@ -409,6 +421,10 @@ int sd_world_push_wall(sd_world *w, const sd_wall *proto, sd_error *err) { retur
 
 int sd_world_add_plane(sd_world *w, const char *name, sd_v3d point, sd_v3d normal, int material, sd_error *err)
 {
+    if (!w) {
+        sd_error_null(err, "sd_world_add_plane", "world");
+        return -1;
+    }
     sd_wall wl;
     memset(&wl, 0, sizeof wl);
     sd_vec3 nv = sd_v3((sd_real)normal.x, (sd_real)normal.y, (sd_real)normal.z);
@@ -431,6 +447,10 @@ int sd_world_add_plane(sd_world *w, const char *name, sd_v3d point, sd_v3d norma
 int sd_world_add_box(sd_world *w, const char *name, sd_v3d lo, sd_v3d hi, unsigned open_faces, int material,
                      sd_error *err)
 {
+    if (!w) {
+        sd_error_null(err, "sd_world_add_box", "world");
+        return -1;
+    }
     sd_wall wl;
     memset(&wl, 0, sizeof wl);
     if (!(hi.x > lo.x && hi.y > lo.y && hi.z > lo.z)) {
@@ -457,19 +477,25 @@ int sd_world_add_box(sd_world *w, const char *name, sd_v3d lo, sd_v3d hi, unsign
 
 /* ---- the solver interface (world/solver.h) ------------------------------------- */
 
-sd_status sd_world_prepare(sd_world *w, sd_error *err) { return w->solver->prepare(w, err); }
+sd_status sd_world_prepare(sd_world *w, sd_error *err)
+{
+    return w ? w->solver->prepare(w, err) : sd_error_null(err, "sd_world_prepare", "world");
+}
+
 sd_status sd_world_step(sd_world *w, long nsteps, sd_error *err)
 {
+    if (!w)
+        return sd_error_null(err, "sd_world_step", "world");
     /* the stability limit, as the scene loader and `shapedem check` see it (guards.c) */
     sd_status st = nsteps > 0 ? sd_world_check_dt(w, err) : SD_OK;
     return st != SD_OK ? st : w->solver->step(w, nsteps, err);
 }
-size_t sd_world_particle_count(const sd_world *w) { return w->solver->count(w); }
+size_t sd_world_particle_count(const sd_world *w) { return w ? w->solver->count(w) : 0; }
 sd_status sd_world_get_particle(const sd_world *w, size_t k, sd_particle_state *out)
 {
-    return w->solver->read(w, k, out);
+    return w && out ? w->solver->read(w, k, out) : SD_ERR_INPUT;
 }
-size_t sd_world_find_particle(const sd_world *w, uint64_t id) { return w->solver->find(w, id); }
+size_t sd_world_find_particle(const sd_world *w, uint64_t id) { return w ? w->solver->find(w, id) : (size_t)-1; }
 
 
 sd_pour_def sd_pour_def_default(void)
@@ -495,6 +521,8 @@ sd_outlet_def sd_outlet_def_default(void)
  * (the pour height against its domain, at prepare). */
 sd_status sd_world_set_pour(sd_world *w, const sd_pour_def *d, sd_error *err)
 {
+    if (!w)
+        return sd_error_null(err, "sd_world_set_pour", "world");
     if (!d || d->cookie != SD_COOKIE)
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "pour", "pour def not made by sd_pour_def_default");
     if (!(d->radius > 0) || !isfinite(d->radius) || d->material < 0 || (size_t)d->material >= w->material_count)
@@ -506,6 +534,8 @@ sd_status sd_world_set_pour(sd_world *w, const sd_pour_def *d, sd_error *err)
 
 sd_status sd_world_set_outlet(sd_world *w, const sd_outlet_def *d, sd_error *err)
 {
+    if (!w)
+        return sd_error_null(err, "sd_world_set_outlet", "world");
     if (!d || d->cookie != SD_COOKIE)
         return sd_error_set(err, SD_ERR_INPUT, "", 0, "outlet", "outlet def not made by sd_outlet_def_default");
     if (!(d->x1 > d->x0 && d->y1 > d->y0))
@@ -515,7 +545,13 @@ sd_status sd_world_set_outlet(sd_world *w, const sd_outlet_def *d, sd_error *err
     return w->solver->set_outlet(w, d, err);
 }
 
-int sd_world_get_pour(const sd_world *w, sd_pour_def *out) { return w->solver->get_pour(w, out); }
+int sd_world_get_pour(const sd_world *w, sd_pour_def *out)
+{
+    if (!w)
+        return 0;
+    sd_pour_def ignored;
+    return w->solver->get_pour(w, out ? out : &ignored);
+}
 
 size_t sd_world_solver_items(const sd_world *w, sd_solver_item *items, size_t max)
 {
@@ -578,11 +614,11 @@ const sd_solver_ops sd_solver_cells = {
 };
 
 size_t sd_cells_count(const sd_world *w) { return w->p.n; }
-size_t sd_world_wall_count(const sd_world *w) { return w->wall_count; }
-long sd_world_step_count(const sd_world *w) { return w->step; }
-double sd_world_time(const sd_world *w) { return w->time; }
-double sd_world_dt(const sd_world *w) { return (double)w->dt; }
-int sd_world_threads(const sd_world *w) { return w->threads; }
+size_t sd_world_wall_count(const sd_world *w) { return w ? w->wall_count : 0; }
+long sd_world_step_count(const sd_world *w) { return w ? w->step : 0; }
+double sd_world_time(const sd_world *w) { return w ? w->time : (double)NAN; }
+double sd_world_dt(const sd_world *w) { return w ? (double)w->dt : (double)NAN; }
+int sd_world_threads(const sd_world *w) { return w ? w->threads : 0; }
 
 int sd_world_wants_parallel(const sd_world *w)
 {
@@ -633,7 +669,7 @@ size_t sd_cells_find(const sd_world *w, uint64_t id)
 
 sd_status sd_world_get_wall(const sd_world *w, size_t k, sd_wall_info *out)
 {
-    if (k >= w->wall_count)
+    if (!w || !out || k >= w->wall_count)
         return SD_ERR_INPUT;
     const sd_wall *wl = &w->walls[k];
     out->name = wl->name;
