@@ -732,11 +732,14 @@ SD_HD static SD_INLINE void sd_item_wall_convex(const sd_step_view *v, sd_wall_p
     sd_vec3 p0, nw;
     int inside = sd_wall_feature_plane(&wl->g, o->sub[e], a.x, &p0, &nw);
     sd_narrow_count ns;
-    int touching = inside && sd_convex_wall_geom(&c, p0, nw, &g, &ns);
+    sd_real arm = SD_R(0.0);
+    int touching = inside && sd_convex_wall_geom_twist(&c, p0, nw, &g, &ns, &arm);
     if (touching && wl->g.kind == SD_WALL_DRUM)
         sd_item_drum_relative(wl, &a);
     const sd_pair_params *prm = sd_item_params(v, v->material[i], wl->material);
     sd_pair_result r = sd_pair_wall(prm, &a, &g, touching, v->shape_req[v->shape[i]], &o->ds[e], v->dt);
+    if (touching)
+        sd_pair_wall_twist(prm, &a, g.n, sd_v3_dot(a.w, g.n), arm, v->dt, &r);
     sd_item_wall_store(o, e, touching ? g.point : a.x, &r);
 }
 
@@ -1174,7 +1177,8 @@ SD_HD static SD_INLINE void sd_item_mesh_convex(const sd_step_view *v, sd_wall_p
     sd_contact_geom g;
     sd_narrow_count ns;
     sd_real req = v->shape_req[v->shape[i]];
-    int touching = sd_convex_wall_geom(&c, p0, nw, &g, &ns);
+    sd_real arm = SD_R(0.0);
+    int touching = sd_convex_wall_geom_twist(&c, p0, nw, &g, &ns, &arm);
     sd_real wgt = SD_R(0.0);
     sd_vec3 shift = sd_v3_zero();
     touching = touching && !sd_item_mesh_ridge_yields(m, &wl->g, o->sub[e], o->tri + o->tstart[e], o->tcount[e], &c,
@@ -1187,8 +1191,10 @@ SD_HD static SD_INLINE void sd_item_mesh_convex(const sd_step_view *v, sd_wall_p
         a.v = sd_v3_sub(a.v, sd_item_wall_velocity_at(wl, g.point));
     const sd_pair_params *prm = sd_item_params(v, v->material[i], wl->material);
     sd_pair_result r = sd_pair_wall(prm, &a, &g, touching, req, &o->ds[e], v->dt);
-    if (touching)
+    if (touching) {
+        sd_pair_wall_twist(prm, &a, g.n, sd_v3_dot(sd_v3_sub(a.w, wl->omega), g.n), arm, v->dt, &r);
         sd_item_mesh_scale(&r, wgt, shift);
+    }
     sd_item_wall_store(o, e, touching ? sd_v3_add(g.point, shift) : a.x, &r);
 }
 

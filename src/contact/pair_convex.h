@@ -46,19 +46,51 @@ SD_HD static SD_INLINE sd_pair_result sd_pair_convex(const sd_pair_params *prm, 
     return sd_pair_apply(prm, a, b, &g, r_star, ds, dt);
 }
 
-/* A shape against a half-space wall (point p0, unit normal nw into free space). */
-SD_HD static SD_INLINE int sd_convex_wall_geom(const sd_convex *ca, sd_vec3 p0, sd_vec3 nw, sd_contact_geom *g,
-                                               sd_narrow_count *ns)
+/* A shape against a half-space wall (point p0, unit normal nw into free
+ * space); *twist_arm (when not NULL): the lever of the contact's torsional
+ * friction (sd_convex_plane; 0 for a point contact). */
+SD_HD static SD_INLINE int sd_convex_wall_geom_twist(const sd_convex *ca, sd_vec3 p0, sd_vec3 nw, sd_contact_geom *g,
+                                                     sd_narrow_count *ns, sd_real *twist_arm)
 {
     sd_convex_contact c = sd_convex_plane(ca, p0, nw);
     ns->iterations = 0;
     ns->supports = c.support_calls;
+    if (twist_arm)
+        *twist_arm = c.touching ? c.twist_arm : SD_R(0.0);
     if (!c.touching)
         return 0;
     g->n = c.n;
     g->point = c.point;
     g->delta = c.delta;
     return 1;
+}
+
+SD_HD static SD_INLINE int sd_convex_wall_geom(const sd_convex *ca, sd_vec3 p0, sd_vec3 nw, sd_contact_geom *g,
+                                               sd_narrow_count *ns)
+{
+    return sd_convex_wall_geom_twist(ca, p0, nw, g, ns, NULL);
+}
+
+/* Torsional friction of a face pressed on a wall (issue 30): a point
+ * contact has none, so a cube set spinning on a slope pivoted about its
+ * contact point for ever. The torque about the normal n opposes the spin
+ * wn (rad/s, relative to the wall): mu F_n arm (Coulomb, arm from
+ * sd_convex_wall_geom_twist), but never more than stops half the spin in
+ * one step (0.5 |wn| / (dt n.I^-1.n)), so it brings a slow spin to rest
+ * without reversing it (no history kept). Added to r->ti. */
+SD_HD static SD_INLINE void sd_pair_wall_twist(const sd_pair_params *prm, const sd_body *a, sd_vec3 n, sd_real wn,
+                                               sd_real arm, sd_real dt, sd_pair_result *r)
+{
+    sd_real fn = sd_v3_dot(r->f, n);
+    if (!(arm > SD_R(0.0)) || !(fn > SD_R(0.0)) || wn == SD_R(0.0))
+        return;
+    sd_vec3 nb = sd_quat_rotate_inv(a->q, n);
+    sd_real inv_i = nb.x * nb.x * a->inv_inertia.x + nb.y * nb.y * a->inv_inertia.y + nb.z * nb.z * a->inv_inertia.z;
+    if (!(inv_i > SD_R(0.0)))
+        return;
+    sd_real t = prm->friction * fn * arm, stop = SD_R(0.5) * sd_fabs(wn) / (inv_i * dt);
+    t = t < stop ? t : stop;
+    r->ti = sd_v3_madd(r->ti, wn > SD_R(0.0) ? -t : t, n);
 }
 
 #endif

@@ -38,6 +38,8 @@ typedef struct sd_convex_contact {
     int iterations, support_calls; /* GJK + EPA together */
     int status;                    /* sd_gjk_status of the core distance */
     int epa_status;                /* sd_epa_status when used_epa, else -1 */
+    sd_real twist_arm;             /* m, sd_convex_plane only: the lever of the face's torsional
+                                      friction (0: a point contact) */
 } sd_convex_contact;
 
 /* Rounding allowance of sd_convex_apart_along, relative to |d|_1 times the
@@ -207,18 +209,38 @@ SD_HD static SD_INLINE sd_vec3 sd_convex_core_to_world(const sd_convex *a, sd_ve
  * (nplane unit, pointing into free space; n of the result is nplane).
  *
  * The depth comes from the core's support point s in −nplane:
- * δ = r − (s − p0)·nplane. The contact point is halfway through the overlap
- * below the deepest core point — except that a FLAT face nearly parallel to
- * the wall (box and polyhedron faces; the end caps of cylinders and the base
- * of cones) has many deepest points, and the support function returns one of
- * them, chosen by rounding: a box resting on a face would then jump from
- * corner to corner and rock. So the point is taken below the centroid of all
- * core points within 1e-9 L (L = the bounding radius) of the deepest one:
- * the vertex centroid of the face, edge or corner for boxes and polyhedra,
- * the cap centre for a cap tilted by less than 1e-9 L over its diameter,
- * the midpoint of a cylinder's mantle line tilted by less than 1e-9 L over
- * its length. (For a polyhedron face the vertex centroid is not the area centroid, but it
- * lies in the face and does not jump; the volume model handles area.) */
+ * δ = r − (s − p0)·nplane, and the contact point is halfway through the
+ * overlap below the deepest core point — except for the flat features.
+ *
+ * Boxes and polyhedra (issue 30): with d_i = max(0, r − h_i) the depths of
+ * the core's corners (h_i their heights over the plane), the depth is the
+ * Lehmer mean δ* = Σ d_i³ / Σ d_i² and the point lies below the corners'
+ * centroid weighted by the gradient of δ*, g_i = d_i (3 d_i − 2 δ*) / Σ d_i².
+ * δ* is the common depth of a face or an edge flat on the plane and the
+ * depth of a lone corner (the old rule's two cases), and in between it
+ * and the point move continuously with the tilt: the force F(δ*) applied
+ * at that point is (up to Σ g_i, 1 in both limits) the gradient of the
+ * potential U(δ*), so a tilted face feels a restoring moment and comes to
+ * rest. The old rule (the deepest corner's depth, the point under the
+ * corners within 1e-9 L of it) jumped between a face, an edge and a
+ * corner at every slight tilt: a cube on a slope rocked for ever, its
+ * friction spring carried from point to point, and walked uphill at
+ * ~20 µm/s (tests/validation/mesh_vs_plane.c). Where shallow corners
+ * outweigh the deep ones (Σ g_i < 1/2, a polyhedron of many corners
+ * barely tilted into the plane) the deepest corner's depth and point are
+ * kept.
+ *
+ * Cylinders and cones (a tie broken by rounding otherwise): the cap
+ * centre for a cap tilted by less than 1e-9 L over its diameter, the
+ * midpoint of a cylinder's mantle line tilted by less than 1e-9 L over its
+ * length. */
+/* Corner i of a box or polyhedron core, in the body frame. */
+SD_HD static SD_INLINE sd_vec3 sd_convex_plane_corner(const sd_shape *sh, const sd_vec3 *verts, int i)
+{
+    if (sh->kind == SD_SHAPE_BOX)
+        return sd_v3((i & 1) ? sh->a.x : -sh->a.x, (i & 2) ? sh->a.y : -sh->a.y, (i & 4) ? sh->a.z : -sh->a.z);
+    return verts[sh->vstart + (uint32_t)i];
+}
 SD_HD static SD_INLINE sd_convex_contact sd_convex_plane(const sd_convex *a, sd_vec3 p0, sd_vec3 nplane)
 {
     sd_convex_contact c;
@@ -234,6 +256,7 @@ SD_HD static SD_INLINE sd_convex_contact sd_convex_plane(const sd_convex *a, sd_
     c.iterations = 0;
     c.support_calls = 1;
     c.n = nplane;
+    c.twist_arm = SD_R(0.0);
     if (c.status == SD_GJK_DEGENERATE) {
         c.touching = 0;
         c.delta = SD_R(0.0);
@@ -244,32 +267,47 @@ SD_HD static SD_INLINE sd_convex_contact sd_convex_plane(const sd_convex *a, sd_
     c.delta = r - h;
     c.touching = c.delta > SD_R(0.0);
 
-    /* the centroid of the deepest core points, in the body frame */
     sd_vec3 nl = sd_quat_rotate_inv(a->q, nplane); /* wall normal in the body frame */
     sd_vec3 cen = s;
-    if (sh->kind == SD_SHAPE_BOX || sh->kind == SD_SHAPE_POLYHEDRON) {
+    if ((sh->kind == SD_SHAPE_BOX || sh->kind == SD_SHAPE_POLYHEDRON) && c.touching) {
+        /* the corners' depths d_i = r - h_i (0 when not below the swept
+         * surface), h_i their heights over the plane: the plane's height
+         * in the body frame is hp, so h_i = p_i . nl - hp */
         int nv = sh->kind == SD_SHAPE_BOX ? 8 : (int)sh->vcount;
-        sd_real hmin = SD_R(0.0);
-        for (int pass = 0; pass < 2; ++pass) {
+        sd_real hp = sd_v3_dot(sd_v3_sub(p0, sd_convex_core_to_world(a, sd_v3_zero())), nplane);
+        sd_real s1 = SD_R(0.0), s2 = SD_R(0.0), s3 = SD_R(0.0), m2 = SD_R(0.0);
+        sd_vec3 m1 = sd_v3_zero();
+        for (int i = 0; i < nv; ++i) {
+            sd_vec3 p = sd_convex_plane_corner(sh, a->verts, i);
+            sd_real di = sd_max(SD_R(0.0), r - (sd_v3_dot(p, nl) - hp));
+            sd_vec3 pt = sd_v3_madd(p, -sd_v3_dot(p, nl), nl); /* in the plane */
+            s1 += di;
+            s2 += di * di;
+            s3 += di * di * di;
+            m1 = sd_v3_madd(m1, di * di, pt);
+            m2 += di * di * sd_v3_dot(pt, pt);
+        }
+        /* the torsional lever: 2/3 of the corners' RMS distance (weights
+         * d_i^2) from their centre in the plane, the (2/3) R of a disc
+         * pressed evenly (a square face of side L gets 0.47 L, its exact
+         * 0.38 L); 0 for a lone corner */
+        if (s2 > SD_R(0.0)) {
+            sd_real var = m2 / s2 - sd_v3_dot(m1, m1) / (s2 * s2);
+            c.twist_arm = var > SD_R(0.0) ? SD_R(2.0) / SD_R(3.0) * sd_sqrt(var) : SD_R(0.0);
+        }
+        /* delta* = s3 / s2 and its gradient d_i (3 d_i - 2 delta*) / s2,
+         * summing to 3 - 2 delta* s1 / s2 (1 on a face or a corner) */
+        sd_real ds = s2 > SD_R(0.0) ? s3 / s2 : SD_R(0.0);
+        sd_real gsum = s2 > SD_R(0.0) ? SD_R(3.0) - SD_R(2.0) * ds * s1 / s2 : SD_R(0.0);
+        if (gsum >= SD_R(0.5)) {
             sd_vec3 sum = sd_v3_zero();
-            int cnt = 0;
             for (int i = 0; i < nv; ++i) {
-                sd_vec3 p;
-                if (sh->kind == SD_SHAPE_BOX)
-                    p = sd_v3((i & 1) ? sh->a.x : -sh->a.x, (i & 2) ? sh->a.y : -sh->a.y, (i & 4) ? sh->a.z : -sh->a.z);
-                else
-                    p = a->verts[sh->vstart + (uint32_t)i];
-                sd_real hi = sd_v3_dot(p, nl);
-                if (pass == 0) {
-                    if (i == 0 || hi < hmin)
-                        hmin = hi;
-                } else if (hi <= hmin + tol) {
-                    sum = sd_v3_add(sum, p);
-                    cnt++;
-                }
+                sd_vec3 p = sd_convex_plane_corner(sh, a->verts, i);
+                sd_real di = sd_max(SD_R(0.0), r - (sd_v3_dot(p, nl) - hp));
+                sum = sd_v3_madd(sum, di * (SD_R(3.0) * di - SD_R(2.0) * ds), p);
             }
-            if (pass == 1 && cnt > 0)
-                cen = sd_convex_core_to_world(a, sd_v3_scale(sum, SD_R(1.0) / (sd_real)cnt));
+            cen = sd_convex_core_to_world(a, sd_v3_scale(sum, SD_R(1.0) / (gsum * s2)));
+            c.delta = ds;
         }
     } else if (sh->kind == SD_SHAPE_CYLINDER || sh->kind == SD_SHAPE_CONE) {
         /* a cap of radius R tilted by angle t dips 2 R sin t across */
