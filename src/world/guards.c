@@ -108,13 +108,25 @@ sd_status sd_world_guards(sd_world *w, sd_error *err)
     const sd_wall_pair_list *wl = &w->wpairs;
     for (size_t e = 0; e < wl->n; ++e) {
         sd_real r = p->radius[wl->i[e]];
-        if (wl->delta[e] > lim * r)
-            return sd_error_set(err, SD_ERR_PHYSICS, "", 0, "",
-                                "particle id %llu overlaps wall '%s' by %g m at step %ld, %.0f %% of its radius "
-                                "(the guard's limit is %.0f %%, simulation.max_overlap): stiffness too low for the "
-                                "load, or time step too large",
-                                (unsigned long long)p->id[wl->i[e]], w->walls[wl->wall[e]].name, (double)wl->delta[e],
-                                w->step, 100.0 * (double)(wl->delta[e] / r), 100.0 * (double)lim);
+        if (!(wl->delta[e] > lim * r))
+            continue;
+        /* a mesh holds its particles on the side its facets' normals point
+         * to: a particle that came from the other side (an open sheet
+         * wound the wrong way, a closed mesh given the wrong `side:`) or
+         * through a part thinner than its reach is "overlapped" by up to
+         * its whole size at once (issue 30) */
+        const sd_wall *wall = &w->walls[wl->wall[e]];
+        const char *why = wall->kind == SD_WALL_MESH
+                              ? "the particle is on the mesh's far side (the particles' side is the one its facets' "
+                                "normals point to: `side:` of a closed mesh, the file's winding for an open one), "
+                                "it passed through a part of the mesh thinner than its size, or the stiffness is "
+                                "too low for the load or the time step too large"
+                              : "stiffness too low for the load, or time step too large";
+        return sd_error_set(err, SD_ERR_PHYSICS, "", 0, "",
+                            "particle id %llu overlaps wall '%s' by %g m at step %ld, %.0f %% of its radius "
+                            "(the guard's limit is %.0f %%, simulation.max_overlap): %s",
+                            (unsigned long long)p->id[wl->i[e]], wall->name, (double)wl->delta[e], w->step,
+                            100.0 * (double)(wl->delta[e] / r), 100.0 * (double)lim, why);
     }
     return SD_OK;
 }

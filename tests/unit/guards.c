@@ -5,7 +5,10 @@
  *  - an overlap beyond half the smaller radius, a particle crossing more
  *    than a broad-phase cell per step, and a NaN state each stop the step
  *    with SD_ERR_PHYSICS naming the particle's stable id, the step and a
- *    likely cause.
+ *    likely cause; against a mesh the cause names the mesh's side (issue
+ *    30: a sphere above an open floor wound downwards is "overlapped" by
+ *    its whole size at once, and the message used to blame only the
+ *    stiffness).
  */
 #include <string.h>
 
@@ -95,6 +98,24 @@ int main(void)
     w = spheres(dtf, 2, fast);
     expect("a cell per step", w, 1, SD_ERR_PHYSICS, "particle id 1 moves", "time step too large");
     sd_world_destroy(w);
+
+    /* a mesh floor wound downwards (its particle side below): a sphere
+     * 1 mm in radius right above it is behind the facets, 190 % deep */
+    {
+        sd_sphere_def above = sphere(0, 0, 0.001);
+        above.position.z = 0.0009;
+        w = spheres(1e-6, 1, &above);
+        sd_v3d fv[4] = {{-0.01, -0.01, 0}, {0.01, -0.01, 0}, {0.01, 0.01, 0}, {-0.01, 0.01, 0}};
+        uint32_t ft[2][3] = {{0, 2, 1}, {0, 3, 2}}; /* clockwise from above: normals -z */
+        sd_mesh_def md = sd_mesh_def_default();
+        md.vertices = fv;
+        md.vertex_count = 4;
+        md.triangles = (const uint32_t(*)[3])ft;
+        md.triangle_count = 2;
+        sd_test_require(sd_world_add_mesh(w, "floor", &md, &err) >= 0, "mesh", &err);
+        expect("mesh: from its far side", w, 1, SD_ERR_PHYSICS, "overlaps wall 'floor'", "mesh's far side");
+        sd_world_destroy(w);
+    }
 
     /* NaN: the particle named */
     sd_sphere_def nan2[2] = {sphere(0, 0, 0.001), sphere(0.01, NAN, 0.001)};
