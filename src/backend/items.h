@@ -813,6 +813,48 @@ SD_HD static SD_INLINE void sd_item_mesh_scale(sd_pair_result *r, sd_real w, sd_
     r->energy *= w;
 }
 
+/* The plane kinds' rule at a convex ridge (issue 14: no double push). A
+ * body near a convex edge between plane groups X and Y sinks into both
+ * planes, but near the ridge the solid is the intersection of the two
+ * half-spaces, and the overlap is pushed out along the plane it sinks
+ * less deep into (the separating-axis choice): the contact with X, depth
+ * delta (m), gives way (returns 1) when some group Y across a convex edge
+ * of X's near triangles tl (nt) holds the body less deep (ties: the
+ * lower group index keeps it). Y makes that contact itself: it is within
+ * reach, since its edge is. Depths are the support depths of c under each
+ * plane (contact/'s plane contact). */
+SD_HD static SD_INLINE int sd_item_mesh_ridge_yields(const sd_mesh_view *m, const sd_wall_geom *wg, uint32_t gr,
+                                                     const uint32_t *tl, uint32_t nt, const sd_convex *c,
+                                                     sd_real delta)
+{
+    if (!m->nbr)
+        return 0;
+    enum { SEEN = 8 };
+    uint32_t seen[SEEN];
+    int ns = 0;
+    for (uint32_t k = 0; k < nt; ++k)
+        for (int q = 0; q < 3; ++q) {
+            uint32_t nb = m->nbr[tl[k]][q];
+            if (nb == UINT32_MAX || m->group[nb] == gr)
+                continue;
+            uint32_t gy = m->group[nb];
+            int dup = 0;
+            for (int s = 0; s < ns; ++s)
+                dup |= seen[s] == gy;
+            if (dup || !sd_mesh_edge_convex(m, tl[k], q, nb))
+                continue;
+            if (ns < SEEN)
+                seen[ns++] = gy;
+            sd_vec3 p0, nw;
+            sd_mesh_group_plane(m, wg, gy, &p0, &nw);
+            sd_contact_geom g;
+            sd_narrow_count cnt;
+            if (sd_convex_wall_geom(c, p0, nw, &g, &cnt) && (g.delta < delta || (g.delta == delta && gy < gr)))
+                return 1;
+        }
+    return 0;
+}
+
 /* The contact geometry of the element of wall pair e (SD_WALL_PAIR_ELEMENTS)
  * with its wall feature: a sphere element by the sphere's contact with the
  * plane, box face or drum, or with the closest active feature of a mesh
@@ -844,6 +886,9 @@ SD_HD static SD_INLINE int sd_item_wall_element_geom(const sd_step_view *v, cons
         *has_plane = 1;
         sd_narrow_count ns;
         if (!sd_convex_wall_geom(c, *p0, *nw, g, &ns))
+            return 0;
+        /* the ridge rule for elements as for whole bodies (issue 30) */
+        if (sd_item_mesh_ridge_yields(m, &wl->g, o->sub[e], o->tri + o->tstart[e], o->tcount[e], c, g->delta))
             return 0;
         *wgt = sd_item_mesh_weight(o, e, wl, m, c, g->point, g->delta, *req, shift);
         return *wgt > SD_R(0.0);
@@ -886,6 +931,13 @@ SD_HD static SD_INLINE int sd_item_wall_element_volume_geom(const sd_step_view *
     if (!has_plane || !sd_shape_is_sharp_polyhedron(c->shape) || !sd_pair_poly_wall_geom(c, p0, nw, g))
         return 0;
     if (wl->g.kind == SD_WALL_MESH) {
+        /* the ridge rule on the support depths, as sd_item_mesh_poly_volume */
+        const sd_mesh_view *m = &v->meshes[wl->g.mesh];
+        sd_contact_geom gx;
+        sd_narrow_count cnt;
+        if (sd_convex_wall_geom(c, p0, nw, &gx, &cnt) &&
+            sd_item_mesh_ridge_yields(m, &wl->g, o->sub[e], o->tri + o->tstart[e], o->tcount[e], c, gx.delta))
+            return 0;
         *wgt = sd_item_mesh_weight(o, e, wl, &v->meshes[wl->g.mesh], c, g->point, g->depth, *req, shift);
         return *wgt > SD_R(0.0);
     }
@@ -1119,48 +1171,6 @@ SD_HD static SD_HOT void sd_item_mesh_sphere(const sd_step_view *v, sd_wall_pair
     const sd_pair_params *prm = sd_item_params(v, v->material[i], wl->material);
     sd_pair_result r = sd_pair_wall(prm, &a, &g, touching, a.radius, &o->ds[e], v->dt);
     sd_item_wall_store(o, e, touching ? g.point : a.x, &r);
-}
-
-/* The plane kinds' rule at a convex ridge (issue 14: no double push). A
- * body near a convex edge between plane groups X and Y sinks into both
- * planes, but near the ridge the solid is the intersection of the two
- * half-spaces, and the overlap is pushed out along the plane it sinks
- * less deep into (the separating-axis choice): the contact with X, depth
- * delta (m), gives way (returns 1) when some group Y across a convex edge
- * of X's near triangles tl (nt) holds the body less deep (ties: the
- * lower group index keeps it). Y makes that contact itself: it is within
- * reach, since its edge is. Depths are the support depths of c under each
- * plane (contact/'s plane contact). */
-SD_HD static SD_INLINE int sd_item_mesh_ridge_yields(const sd_mesh_view *m, const sd_wall_geom *wg, uint32_t gr,
-                                                     const uint32_t *tl, uint32_t nt, const sd_convex *c,
-                                                     sd_real delta)
-{
-    if (!m->nbr)
-        return 0;
-    enum { SEEN = 8 };
-    uint32_t seen[SEEN];
-    int ns = 0;
-    for (uint32_t k = 0; k < nt; ++k)
-        for (int q = 0; q < 3; ++q) {
-            uint32_t nb = m->nbr[tl[k]][q];
-            if (nb == UINT32_MAX || m->group[nb] == gr)
-                continue;
-            uint32_t gy = m->group[nb];
-            int dup = 0;
-            for (int s = 0; s < ns; ++s)
-                dup |= seen[s] == gy;
-            if (dup || !sd_mesh_edge_convex(m, tl[k], q, nb))
-                continue;
-            if (ns < SEEN)
-                seen[ns++] = gy;
-            sd_vec3 p0, nw;
-            sd_mesh_group_plane(m, wg, gy, &p0, &nw);
-            sd_contact_geom g;
-            sd_narrow_count cnt;
-            if (sd_convex_wall_geom(c, p0, nw, &g, &cnt) && (g.delta < delta || (g.delta == delta && gy < gr)))
-                return 1;
-        }
-    return 0;
 }
 
 /* SD_WALL_PAIR_MESH_CONVEX: a 3D shape against a plane group: the plane

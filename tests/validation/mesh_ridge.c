@@ -19,6 +19,10 @@
  *     air), i.e. the force of the cube on the analytic plane z = 0 times
  *     the share of its core's section over A, with no x component. Before the rule the slope's plane, which the
  *     cube sinks deep into behind the ridge, added a push along n_B.
+ *  3. the same for a composite of two such cubes side by side (its
+ *     elements' contacts, SD_WALL_PAIR_ELEMENTS, issue 30): each element
+ *     feels only its share over A. Before the rule reached the elements
+ *     the slope pushed them along n_B as it had pushed the cube.
  */
 #include "test.h"
 
@@ -151,7 +155,41 @@ static void test_sphere(void)
     }
 }
 
-/* The force on a rounded cube (core half edge h, margin mg) centred at x, unrotated. */
+/* The force on a rounded cube (core half edge h, margin mg) centred at x,
+ * unrotated; composite: two of them glued side by side along y. */
+static int composite_mode;
+
+/* The orientation (w, x, y, z) that shows shape s as it was given: its
+ * principal axes (columns of R, principal to given frame) as a quaternion. */
+static void given_frame(const sd_world *w, int s, double q[4])
+{
+    sd_shape_info info;
+    sd_test_require(sd_world_get_shape(w, (size_t)s, &info) == SD_OK, "shape info", NULL);
+    double R[3][3];
+    for (int c = 0; c < 3; ++c) {
+        R[0][c] = info.axes[c].x;
+        R[1][c] = info.axes[c].y;
+        R[2][c] = info.axes[c].z;
+    }
+    double det = R[0][0] * (R[1][1] * R[2][2] - R[1][2] * R[2][1]) - R[0][1] * (R[1][0] * R[2][2] - R[1][2] * R[2][0]) +
+                 R[0][2] * (R[1][0] * R[2][1] - R[1][1] * R[2][0]);
+    sd_test_require(det > 0.5, "principal axes right-handed", NULL);
+    double t = R[0][0] + R[1][1] + R[2][2];
+    if (t > 0) {
+        double r = sqrt(1 + t) * 2;
+        q[0] = r / 4, q[1] = (R[2][1] - R[1][2]) / r, q[2] = (R[0][2] - R[2][0]) / r, q[3] = (R[1][0] - R[0][1]) / r;
+    } else if (R[0][0] > R[1][1] && R[0][0] > R[2][2]) {
+        double r = sqrt(1 + R[0][0] - R[1][1] - R[2][2]) * 2;
+        q[0] = (R[2][1] - R[1][2]) / r, q[1] = r / 4, q[2] = (R[0][1] + R[1][0]) / r, q[3] = (R[0][2] + R[2][0]) / r;
+    } else if (R[1][1] > R[2][2]) {
+        double r = sqrt(1 + R[1][1] - R[0][0] - R[2][2]) * 2;
+        q[0] = (R[0][2] - R[2][0]) / r, q[1] = (R[0][1] + R[1][0]) / r, q[2] = r / 4, q[3] = (R[1][2] + R[2][1]) / r;
+    } else {
+        double r = sqrt(1 + R[2][2] - R[0][0] - R[1][1]) * 2;
+        q[0] = (R[1][0] - R[0][1]) / r, q[1] = (R[0][2] + R[2][0]) / r, q[2] = (R[1][2] + R[2][1]) / r, q[3] = r / 4;
+    }
+}
+
 static sd_v3d cube_force(int mesh, int b_first, double h, double mg, sd_v3d x)
 {
     int mat;
@@ -167,9 +205,24 @@ static sd_v3d cube_force(int mesh, int b_first, double h, double mg, sd_v3d x)
     sh.margin = mg;
     int shape = sd_world_add_shape(w, "cube", &sh, &err);
     sd_test_require(shape >= 0, "shape", &err);
+    if (composite_mode) {
+        sd_composite_element el[2];
+        memset(el, 0, sizeof el);
+        for (int k = 0; k < 2; ++k) {
+            el[k].shape = shape;
+            el[k].position = sd_test_v(0, k ? 1.2 * h : -1.2 * h, 0);
+        }
+        sd_composite_desc cd = sd_composite_desc_default();
+        cd.elements = el;
+        cd.element_count = 2;
+        shape = sd_world_add_composite(w, "pair", &cd, &err);
+        sd_test_require(shape >= 0, "composite", &err);
+    }
     sd_body_def b = {0};
     b.position = x;
     b.orientation[0] = 1;
+    if (composite_mode) /* as glued: the principal frame turned back to the given one */
+        given_frame(w, shape, b.orientation);
     b.shape = shape;
     b.material = mat;
     sd_test_require(sd_world_add_bodies(w, 1, &b, &err) == SD_OK, "body", &err);
@@ -180,7 +233,7 @@ static sd_v3d cube_force(int mesh, int b_first, double h, double mg, sd_v3d x)
     return p.force;
 }
 
-static void test_cube(void)
+static void test_cube(const char *what)
 {
     const double h = 0.005, mg = 0.0001, d0 = 2e-4;
     /* the depth on the analytic plane fixes the height: the lowest point d0 below z = 0 */
@@ -194,7 +247,7 @@ static void test_cube(void)
         zc = zs - d0;
     }
     sd_v3d fref = cube_force(0, 0, h, mg, sd_test_v(0, 0, zc));
-    printf("cube on the analytic plane at depth %g m: force %.10g N\n", d0, fref.z);
+    printf("%s on the analytic plane at depth %g m: force %.10g N\n", what, d0, fref.z);
     for (int b_first = 1; b_first >= 0; --b_first) {
         double worst = 0, worst_at = 0;
         /* centre x from -h - 4 mm (the core's face all over A) to +0.8 h (most of it over B) */
@@ -211,7 +264,8 @@ static void test_cube(void)
             }
         }
         char label[96];
-        snprintf(label, sizeof label, "cube over the ridge (%s first): max |F - F_A share| / F_ref", b_first ? "B" : "A");
+        snprintf(label, sizeof label, "%s over the ridge (%s first): max |F - F_A share| / F_ref", what,
+                 b_first ? "B" : "A");
         printf("  worst at centre x = %.4g m\n", worst_at);
         CHECK_NEAR(label, worst / fref.z, 0.0, 1e-3);
     }
@@ -220,6 +274,8 @@ static void test_cube(void)
 int main(void)
 {
     test_sphere();
-    test_cube();
+    test_cube("cube");
+    composite_mode = 1;
+    test_cube("composite");
     return sd_test_summary();
 }
