@@ -30,14 +30,14 @@ typedef struct hash_case {
 
 static const hash_case cases[] = {
     {"examples/settle-spheres.yaml", 5500, 100, 0x51f5c4b36663cd68ull},
-    {"examples/mixed-shapes.yaml", 14000, 20, 0xe587a7eb49bd40ccull},
+    {"examples/mixed-shapes.yaml", 14000, 20, 0xb8c09af496bc696full},
     {"examples/polyhedra-pour.yaml", 20000, 12, 0x760923edeb296fb4ull},
     {"examples/biaxial-2d.yaml", 5000, 40, 0x94b639b7bf1cca23ull},
     {"examples/hopper-grid.yaml", 3000, 0, 0xed59cf1690b88852ull},
-    {"bench/scenes/convex-settle.yaml", 300, 40, 0xd6b6ffe9ffb87590ull},
-    {"bench/scenes/sharp-cubes-settle.yaml", 8000, 20, 0xf0db151d79b2b0f2ull},
+    {"bench/scenes/convex-settle.yaml", 300, 40, 0xfe406e01c526eaacull},
+    {"bench/scenes/sharp-cubes-settle.yaml", 8000, 20, 0x727d042665e1c630ull},
     {"bench/scenes/spheres-settle-8000.yaml", 400, 40, 0xacc94b96dc686adbull},
-    {"tests/validation/scenes/mixed-packing.yaml", 14000, 20, 0xaacfedeca31d5577ull},
+    {"tests/validation/scenes/mixed-packing.yaml", 14000, 20, 0xeecac5d823edad29ull},
     {"tests/unit/scenes/restart-composites.yaml", 8000, 10, 0x3cdcf00bbb0869dcull},
 };
 
