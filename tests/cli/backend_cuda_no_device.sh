@@ -2,8 +2,9 @@
 # backend_cuda_no_device.sh — the backend choice (simulation.backend,
 # --backend; world/backend.c):
 #  - `backend: cuda` (the scene key, then the flag) where no GPU is usable
-#    exits 2 before any output: one line on stderr naming the scene, the key
-#    simulation.backend and the reason (not compiled with CUDA, no CUDA
+#    exits 2 before any output: one line on stderr naming the scene and the
+#    backend: key's own line (or, for the flag, the option --backend cuda)
+#    and the reason (not compiled with CUDA, no CUDA
 #    device, driver too old), and no output directory;
 #  - `--backend cpu` runs and summary.txt says "backend: cpu (asked for)";
 #  - `auto` runs and summary.txt names the backend it chose and why;
@@ -66,8 +67,16 @@ else
         nl=$(wc -l <"$tmp/stderr")
         echo "  $how: exit $rc: $msg"
         check "$how: backend cuda without a device exits 2" "$([[ $rc == 2 ]] && echo 1)" "exit $rc"
-        check "$how: one line naming the file and simulation.backend" \
-            "$([[ $nl == 1 && $msg == *drop*.yaml:* && $msg == *simulation.backend* ]] && echo 1)" "$msg"
+        # the scene key: its own line (not the simulation: line above it);
+        # the flag: the option, and no scene line blamed for it (issue 31)
+        if [[ $how == "flag" ]]; then
+            check "$how: one line naming the option --backend cuda, not the scene" \
+                "$([[ $nl == 1 && $msg == *--backend\ cuda* && $msg != *.yaml:* ]] && echo 1)" "$msg"
+        else
+            key_line=$(grep -n '^  backend: cuda$' drop-cuda.yaml | cut -d: -f1)
+            check "$how: one line naming the file, the backend: line ($key_line) and simulation.backend" \
+                "$([[ $nl == 1 && $msg == *drop-cuda.yaml:$key_line:* && $msg == *simulation.backend* ]] && echo 1)" "$msg"
+        fi
         check "$how: the reason" \
             "$([[ $msg =~ (not\ compiled\ with\ CUDA|no\ CUDA\ device|driver\ too\ old) ]] && echo 1)" "$msg"
         check "$how: no output directory" "$([[ ! -e out-cuda ]] && echo 1)" "out-cuda exists"
