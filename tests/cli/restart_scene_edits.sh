@@ -26,8 +26,8 @@ cp drum.stl drum-b.stl
 chmod u+w drum-b.stl
 printf '\x01' | dd of=drum-b.stl bs=1 seek=96 conv=notrunc 2>/dev/null
 # the analytic-drum scene: the mesh wall replaced by a drum of its size
-sed 's|^  - {name: drum, type: mesh.*|  - {name: drum, type: drum, center: [0, 0, 0], axis: [0, 1, 0], radius: 0.03, length: 0.02, rpm: 30, material: glass}|' \
-    edits.yaml >drum.yaml
+drum_wall='  - {name: drum, type: drum, center: [0, 0, 0], axis: [0, 1, 0], radius: 0.03, length: 0.02, rpm: 30, material: glass}'
+sed "s|^  - {name: drum, type: mesh.*|$drum_wall|" edits.yaml >drum.yaml
 
 for base in edits drum; do
     "$bin" run $base.yaml -o "base-$base" --quiet --threads 1 >"base-$base.out" 2>&1
