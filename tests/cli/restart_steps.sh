@@ -79,12 +79,21 @@ sed -e 's/steps: 200/steps: 100000000/' -e 's/output: .*/output: {every: 5000000
     "$tmp/s.yaml" >"$tmp/long.yaml"
 mkdir -p "$tmp/it's here"
 # interrupted ERR COMMAND: runs the (shell) command in "it's here" with its
-# stderr in ERR, SIGINT after 2 s; rc its exit status (timeout passes the
-# signal on, and ends a run that would not stop)
+# stderr in ERR, SIGINT once the run has used 1 s of CPU (it is stepping
+# then; a fixed sleep could land in the start-up on a loaded machine, and a
+# run stopped before its first step writes the checkpoint it started from);
+# rc its exit status (timeout passes the signal on, and ends a run that
+# would not stop)
 interrupted() {
     (trap - EXIT; cd "$tmp/it's here" && eval "exec timeout -s KILL 60 $2" >/dev/null 2>"$1") &
-    local pid=$!
-    sleep 2
+    local pid=$! child="" ticks=0 i
+    for ((i = 0; i < 300; ++i)); do
+        sleep 0.1
+        [[ -n $child ]] || child=$(pgrep -P $pid | head -1)
+        [[ -n $child && -r /proc/$child/stat ]] || continue
+        ticks=$(awk '{ print $14 }' "/proc/$child/stat" 2>/dev/null)
+        (( ${ticks:-0} >= $(getconf CLK_TCK) )) && break
+    done
     kill -INT $pid
     wait $pid
     rc=$?
