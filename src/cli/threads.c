@@ -119,6 +119,11 @@ static void sd_threads_restart(void)
         return; /* the user's choice */
     if (getenv("OMPI_COMM_WORLD_SIZE") || getenv("PMI_SIZE"))
         return; /* an MPI rank: not restarted under its launcher */
+    /* under valgrind /proc/self/exe is valgrind's tool, which refuses to be
+     * started directly: the run would end there (memcheck.run_short) */
+    const char *preload = getenv("LD_PRELOAD");
+    if (preload && strstr(preload, "vgpreload"))
+        return;
     char plan[96];
     snprintf(plan, sizeof plan, "%d %.2f 1", sd_plan.cores, sd_plan.busy);
     if (setenv("OMP_WAIT_POLICY", "passive", 1) || setenv(SD_THREADS_ENV, plan, 1))
