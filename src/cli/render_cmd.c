@@ -138,13 +138,13 @@ typedef struct sd_render_inputs {
     char *buf;
 } sd_render_inputs;
 
-/* frames: n paths of SD_RENDER_PATH_MAX bytes each; pvd may be NULL;
+/* frames: n paths (sd_render_pvd_list's); pvd may be NULL;
  * --scene's file (a checkpoint's) is one too. */
-static int sd_render_inputs_make(const char *pvd, const char *frames, size_t n, sd_render_inputs *in)
+static int sd_render_inputs_make(const char *pvd, char *const *frames, size_t n, sd_render_inputs *in)
 {
     size_t bytes = pvd ? strlen(pvd) + 1 : 0;
     for (size_t k = 0; k < n; ++k)
-        bytes += 4 * (strlen(frames + SD_RENDER_PATH_MAX * k) + 16);
+        bytes += 4 * (strlen(frames[k]) + 16);
     in->n = 0;
     in->path = sd_malloc((4 * n + 2) * sizeof *in->path);
     in->buf = sd_malloc(bytes ? bytes : 1);
@@ -163,7 +163,7 @@ static int sd_render_inputs_make(const char *pvd, const char *frames, size_t n, 
     }
     static const char *const sib[3][2] = {{"particles_", "shapes_"}, {"particles_", "walls_"}, {"shapes_", "walls_"}};
     for (size_t k = 0; k < n; ++k) {
-        const char *f = frames + SD_RENDER_PATH_MAX * k;
+        const char *f = frames[k];
         size_t len = strlen(f) + 16;
         in->path[in->n++] = at;
         at += snprintf(at, len, "%s", f) + 1;
@@ -250,7 +250,7 @@ static int sd_render_one(const char *frame, const char *field, sd_render_def *d,
 static int sd_render_movie(const char *pvd, const char *field, sd_render_def *d, int view_given, const char *out,
                            int fps)
 {
-    char *paths;
+    char **paths;
     size_t n;
     sd_error err;
     if (sd_render_pvd_list(pvd, &paths, &n, &err) != SD_OK)
@@ -260,7 +260,7 @@ static int sd_render_movie(const char *pvd, const char *field, sd_render_def *d,
         double lo = 0.0, hi = 0.0;
         for (size_t k = 0; k < n && !rc; ++k) {
             sd_render_frame f;
-            if (sd_render_frame_load(paths + SD_RENDER_PATH_MAX * k, field, &f, &err) != SD_OK) {
+            if (sd_render_frame_load(paths[k], field, &f, &err) != SD_OK) {
                 rc = sd_cli_fail_input(&err);
                 break;
             }
@@ -281,7 +281,7 @@ static int sd_render_movie(const char *pvd, const char *field, sd_render_def *d,
     int made = !rc && (rc = sd_render_inputs_make(pvd, paths, n, &in)) == 0;
     for (size_t k = 0; k < n && !rc; ++k) {
         sd_movie_name(out, (long)k, name, sizeof name);
-        rc = sd_render_one(paths + SD_RENDER_PATH_MAX * k, field, d, view_given, name, k + 1 == n, &in);
+        rc = sd_render_one(paths[k], field, d, view_given, name, k + 1 == n, &in);
     }
     sd_movie_name(out, -1, mp4, sizeof mp4);
     if (!rc && sd_on_path("ffmpeg")) /* ffmpeg -y replaces what is there */
@@ -418,13 +418,14 @@ int sd_cmd_render(int argc, char **argv)
         return sd_render_movie(in, field, &d, view_given, out, fps);
     if (!is_pvd) {
         sd_render_inputs ins;
-        if (sd_render_inputs_make(NULL, in, 1, &ins))
+        char *one[1] = {(char *)in}; /* read only */
+        if (sd_render_inputs_make(NULL, one, 1, &ins))
             return 1;
         int rc = sd_render_one(in, field, &d, view_given, out, 1, &ins);
         sd_render_inputs_free(&ins);
         return rc;
     }
-    char *paths;
+    char **paths;
     size_t n;
     sd_error err;
     if (sd_render_pvd_list(in, &paths, &n, &err) != SD_OK)
@@ -439,7 +440,7 @@ int sd_cmd_render(int argc, char **argv)
     sd_render_inputs ins; /* every frame of the collection: none may become the picture */
     int rc = sd_render_inputs_make(in, paths, n, &ins);
     if (!rc) {
-        rc = sd_render_one(paths + SD_RENDER_PATH_MAX * (size_t)i, field, &d, view_given, out, 1, &ins);
+        rc = sd_render_one(paths[i], field, &d, view_given, out, 1, &ins);
         sd_render_inputs_free(&ins);
     }
     sd_free(paths);

@@ -91,9 +91,10 @@ sd_status sd_render_frame_particles(const sd_render_particles *p, const char *fi
                                     sd_error *err);
 
 /* The particle files of a frames.pvd (part 0 of each DataSet, in order),
- * resolved against the .pvd's directory: *paths holds *count strings of
- * SD_RENDER_PATH_MAX bytes (sd_free it). */
-sd_status sd_render_pvd_list(const char *pvd, char **paths, size_t *count, sd_error *err);
+ * resolved against the .pvd's directory: (*paths)[k] for k < *count, each
+ * shorter than SD_RENDER_PATH_MAX, in one block with the pointers (sd_free
+ * *paths). */
+sd_status sd_render_pvd_list(const char *pvd, char ***paths, size_t *count, sd_error *err);
 
 /* The smallest and largest value of the frame's field (0, 0 when empty). */
 void sd_render_frame_range(const sd_render_frame *f, double *lo, double *hi);

@@ -51,14 +51,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     sd_error err;
     memset(&err, 0, sizeof err);
     if (kind == 2) {
-        char *paths = NULL;
+        char **paths = NULL;
         size_t n = 0;
         sd_status st = sd_render_pvd_list(path, &paths, &n, &err);
         sd_fuzz_report("sd_render_pvd_list", st, &err);
         SD_FUZZ_CHECK((st == SD_OK) == (paths != NULL));
         SD_FUZZ_CHECK(st != SD_OK || n > 0);
         for (size_t k = 0; k < n; ++k)
-            SD_FUZZ_CHECK(memchr(paths + SD_RENDER_PATH_MAX * k, 0, SD_RENDER_PATH_MAX) != NULL);
+            SD_FUZZ_CHECK(paths[k] && memchr(paths[k], 0, SD_RENDER_PATH_MAX) != NULL);
         sd_free(paths);
         return 0;
     }
