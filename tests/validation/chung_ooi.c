@@ -43,6 +43,31 @@ typedef struct impact {
     double fmax, tc, vn, vt, wy; /* N, s, m/s after, m/s after, rad/s after */
 } impact;
 
+/* A Hertz-Mindlin world without gravity on one thread, with the sphere
+ * material (E, nu, rho, e, mu) in *ms; test 1 and the wall impacts share it. */
+static sd_world *world_with_sphere(double dt, double E, double nu, double rho, double e, double mu,
+                                   sd_material_def *md, int *ms)
+{
+    sd_error err;
+    sd_world *w;
+    sd_world_def wd = sd_world_def_default();
+    wd.law = SD_LAW_HERTZ_MINDLIN;
+    wd.dt = dt;
+    wd.gravity = sd_test_v(0, 0, 0);
+    wd.threads = 1;
+    sd_test_require(sd_world_create(&wd, &w, &err) == SD_OK, "world", &err);
+    *md = sd_material_def_default();
+    md->name = "sphere";
+    md->density = rho;
+    md->youngs_modulus = E;
+    md->poisson_ratio = nu;
+    md->restitution = e;
+    md->friction = mu;
+    *ms = sd_world_add_material(w, md, &err);
+    sd_test_require(*ms >= 0, "material", &err);
+    return w;
+}
+
 /* One sphere (radius r, material E, nu, rho, mu, restitution e) hitting the wall z = 0
  * (mesh = 1: two triangles of a 4 m square) at speed v, theta degrees
  * from the normal, moving along +x; stepped until it leaves. */
@@ -56,20 +81,10 @@ static impact run(int mesh, double E, double nu, double rho, double mu, double e
     double es = 1.0 / ((1 - nu * nu) / E + (1 - nu * nu) / (1000 * E));
     double dmax = pow(15.0 * m * vn * vn / (16.0 * es * sqrt(r)), 0.4);
     double tc = 2.9432 * dmax / vn;
-    sd_world_def wd = sd_world_def_default();
-    wd.law = SD_LAW_HERTZ_MINDLIN;
-    wd.dt = tc / 400;
-    wd.gravity = sd_test_v(0, 0, 0);
-    wd.threads = 1;
-    sd_test_require(sd_world_create(&wd, &w, &err) == SD_OK, "world", &err);
-    sd_material_def md = sd_material_def_default();
-    md.name = "sphere";
-    md.density = rho;
-    md.youngs_modulus = E;
-    md.poisson_ratio = nu;
-    md.restitution = e;
-    md.friction = mu;
-    int ms = sd_world_add_material(w, &md, &err);
+    double dt = tc / 400; /* 400 steps a contact */
+    sd_material_def md;
+    int ms;
+    w = world_with_sphere(dt, E, nu, rho, e, mu, &md, &ms);
     md.name = "wall";
     md.youngs_modulus = 1000 * E;
     int mw = sd_world_add_material(w, &md, &err);
@@ -89,7 +104,7 @@ static impact run(int mesh, double E, double nu, double rho, double mu, double e
                         "plane", &err);
     }
     sd_sphere_def s = {0};
-    s.position = sd_test_v(0, 0, r + 2 * vn * wd.dt); /* two steps above the wall */
+    s.position = sd_test_v(0, 0, r + 2 * vn * dt); /* two steps above the wall */
     s.velocity = sd_test_v(vt, 0, -vn);
     s.radius = r;
     s.material = ms;
@@ -109,7 +124,7 @@ static impact run(int mesh, double E, double nu, double rho, double mu, double e
     }
     sd_particle_state p;
     sd_world_get_particle(w, sd_world_find_particle(w, 0), &p);
-    out.tc = (double)touching * wd.dt;
+    out.tc = (double)touching * dt;
     out.vn = p.velocity.z;
     out.vt = p.velocity.x;
     out.wy = p.angular_velocity.y;
@@ -125,21 +140,9 @@ static impact pair(double E, double nu, double rho, double r, double v, double d
 {
     sd_error err;
     sd_world *w;
-    sd_world_def wd = sd_world_def_default();
-    wd.law = SD_LAW_HERTZ_MINDLIN;
-    wd.dt = dt;
-    wd.gravity = sd_test_v(0, 0, 0);
-    wd.threads = 1;
-    sd_test_require(sd_world_create(&wd, &w, &err) == SD_OK, "world", &err);
-    sd_material_def md = sd_material_def_default();
-    md.name = "sphere";
-    md.density = rho;
-    md.youngs_modulus = E;
-    md.poisson_ratio = nu;
-    md.restitution = 1.0;
-    md.friction = 0.0;
-    int ms = sd_world_add_material(w, &md, &err);
-    sd_test_require(ms >= 0, "material", &err);
+    sd_material_def md;
+    int ms;
+    w = world_with_sphere(dt, E, nu, rho, 1.0, 0.0, &md, &ms);
     sd_sphere_def s[2];
     memset(s, 0, sizeof s);
     s[0].position = sd_test_v(-r - 2 * v * dt, 0, 0);
