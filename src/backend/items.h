@@ -862,9 +862,11 @@ SD_HD static SD_INLINE int sd_item_mesh_ridge_yields(const sd_mesh_view *m, cons
  * the feature's plane (a mesh: the group's plane, the contact weighted by
  * the element's section clipped by the group's near triangles, *wgt and
  * *shift as sd_item_mesh_weight gives them; touching only where that
- * weight is positive). *c: the posed element; *req: its equivalent radius,
- * m; *p0, *nw: the feature's plane when *has_plane is set; *wgt = 1 and
- * *shift = 0 off meshes. */
+ * weight is positive; beyond a mesh's free edge, the edge's contact,
+ * sd_mesh_rim_contact, unweighted). *c: the posed element; *req: its
+ * equivalent radius, m; *p0, *nw: the feature's plane when *has_plane is
+ * 1, the plane tangent to the element at the free edge when it is 2;
+ * *wgt = 1 and *shift = 0 off meshes and at a free edge. */
 SD_HD static SD_INLINE int sd_item_wall_element_geom(const sd_step_view *v, const sd_wall_pair_out *o, size_t e,
                                                      sd_convex *c, sd_shape *tmp, sd_real *req, sd_contact_geom *g,
                                                      sd_vec3 *p0, sd_vec3 *nw, int *has_plane, sd_real *wgt,
@@ -887,6 +889,18 @@ SD_HD static SD_INLINE int sd_item_wall_element_geom(const sd_step_view *v, cons
         sd_narrow_count ns;
         if (!sd_convex_wall_geom(c, *p0, *nw, g, &ns))
             return 0;
+        /* the rim rule for elements as for whole bodies (issue 30): beyond
+         * a free edge, the edge's contact and its tangent plane */
+        if (sd_mesh_beyond_rim(m, &wl->g, o->sub[e], o->tri + o->tstart[e], o->tcount[e], c)) {
+            sd_vec3 foot;
+            *has_plane = 0;
+            if (!sd_mesh_rim_contact(m, &wl->g, o->tri + o->tstart[e], o->tcount[e], c, g, &foot))
+                return 0;
+            *p0 = foot;
+            *nw = g->n;
+            *has_plane = 2;
+            return 1;
+        }
         /* the ridge rule for elements as for whole bodies (issue 30) */
         if (sd_item_mesh_ridge_yields(m, &wl->g, o->sub[e], o->tri + o->tstart[e], o->tcount[e], c, g->delta))
             return 0;
@@ -925,11 +939,19 @@ SD_HD static SD_INLINE int sd_item_wall_element_volume_geom(const sd_step_view *
     sd_contact_geom cg;
     sd_vec3 p0, nw;
     int has_plane;
-    (void)sd_item_wall_element_geom(v, o, e, c, tmp, req, &cg, &p0, &nw, &has_plane, wgt, shift);
+    int touching = sd_item_wall_element_geom(v, o, e, c, tmp, req, &cg, &p0, &nw, &has_plane, wgt, shift);
     *wgt = SD_R(1.0);
     *shift = sd_v3_zero();
     if (!has_plane || !sd_shape_is_sharp_polyhedron(c->shape) || !sd_pair_poly_wall_geom(c, p0, nw, g))
         return 0;
+    if (has_plane == 2) {
+        /* at a free edge: the overlap with the tangent plane there, its
+         * force applied at the edge's contact point (the rim rule) */
+        if (!touching)
+            return 0;
+        *shift = sd_v3_sub(cg.point, g->point);
+        return 1;
+    }
     if (wl->g.kind == SD_WALL_MESH) {
         /* the ridge rule on the support depths, as sd_item_mesh_poly_volume */
         const sd_mesh_view *m = &v->meshes[wl->g.mesh];
@@ -1191,11 +1213,19 @@ SD_HD static SD_INLINE void sd_item_mesh_convex(const sd_step_view *v, sd_wall_p
     int touching = sd_convex_wall_geom_twist(&c, p0, nw, &g, &ns, &arm);
     sd_real wgt = SD_R(0.0);
     sd_vec3 shift = sd_v3_zero();
-    touching = touching && !sd_item_mesh_ridge_yields(m, &wl->g, o->sub[e], o->tri + o->tstart[e], o->tcount[e], &c,
-                                                      g.delta);
-    if (touching) {
-        wgt = sd_item_mesh_weight(o, e, wl, m, &c, g.point, g.delta, req, &shift);
-        touching = wgt > 0;
+    const uint32_t *tl = o->tri + o->tstart[e];
+    if (touching && sd_mesh_beyond_rim(m, &wl->g, o->sub[e], tl, o->tcount[e], &c)) {
+        /* the rim rule: beyond a free edge, the edge's point contact */
+        sd_vec3 foot;
+        touching = sd_mesh_rim_contact(m, &wl->g, tl, o->tcount[e], &c, &g, &foot);
+        arm = SD_R(0.0);
+        wgt = SD_R(1.0);
+    } else {
+        touching = touching && !sd_item_mesh_ridge_yields(m, &wl->g, o->sub[e], tl, o->tcount[e], &c, g.delta);
+        if (touching) {
+            wgt = sd_item_mesh_weight(o, e, wl, m, &c, g.point, g.delta, req, &shift);
+            touching = wgt > 0;
+        }
     }
     if (touching)
         a.v = sd_v3_sub(a.v, sd_item_wall_velocity_at(wl, g.point));
@@ -1227,17 +1257,33 @@ SD_HD static SD_INLINE void sd_item_mesh_poly_volume(const sd_step_view *v, sd_w
         sd_vec3 p0, nw;
         sd_mesh_group_plane(m, &wl->g, o->sub[e], &p0, &nw);
         sd_convex c = sd_item_shape_of(v, i);
+        const uint32_t *tl = o->tri + o->tstart[e];
+        /* the ridge rule on the support depths (the law's own depth is a
+         * volume's); beyond a free edge the rim rule: the overlap with the
+         * plane tangent to the body at the edge, its force applied at the
+         * edge's contact point */
+        sd_contact_geom gx;
+        sd_narrow_count cnt;
+        int plane = sd_convex_wall_geom(&c, p0, nw, &gx, &cnt);
+        int rim = plane && sd_mesh_beyond_rim(m, &wl->g, o->sub[e], tl, o->tcount[e], &c);
+        int yields = 0;
+        if (rim) {
+            sd_vec3 at;
+            yields = !sd_mesh_rim_contact(m, &wl->g, tl, o->tcount[e], &c, &gx, &at);
+            p0 = at;
+            nw = gx.n;
+        } else {
+            yields = plane && sd_item_mesh_ridge_yields(m, &wl->g, o->sub[e], tl, o->tcount[e], &c, gx.delta);
+        }
         /* the wall's velocity at the centre's foot on the plane (the overlap's
          * centroid is not known before the law runs) */
         sd_vec3 foot = sd_v3_sub(a.x, sd_v3_scale(nw, sd_v3_dot(sd_v3_sub(a.x, p0), nw)));
         a.v = sd_v3_sub(a.v, sd_item_wall_velocity_at(wl, foot));
-        /* the ridge rule on the support depths (the law's own depth is a volume's) */
-        sd_contact_geom gx;
-        sd_narrow_count cnt;
-        int yields = sd_convex_wall_geom(&c, p0, nw, &gx, &cnt) &&
-                     sd_item_mesh_ridge_yields(m, &wl->g, o->sub[e], o->tri + o->tstart[e], o->tcount[e], &c, gx.delta);
         r = yields ? sd_pair_none(&o->ds[e]) : sd_pair_poly_wall(prm, &a, &c, p0, nw, v->shape_req[s], &o->ds[e], v->dt, &point);
-        if (r.delta > 0) {
+        if (r.delta > 0 && rim) {
+            sd_item_mesh_scale(&r, SD_R(1.0), sd_v3_sub(gx.point, point));
+            point = gx.point;
+        } else if (r.delta > 0) {
             sd_vec3 shift;
             sd_real wgt = sd_item_mesh_weight(o, e, wl, m, &c, point, r.delta, v->shape_req[s], &shift);
             if (wgt > 0) {

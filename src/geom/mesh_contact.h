@@ -30,7 +30,8 @@
  *    contact point (the Hertzian patch of the equivalent sphere). At a
  *    convex edge to another group the contact of the plane the body sinks
  *    deeper into gives way to the other (backend/items.h,
- *    sd_item_mesh_ridge_yields, with sd_mesh_edge_convex here).
+ *    sd_item_mesh_ridge_yields, with sd_mesh_edge_convex here). Beyond an
+ *    open edge the body meets the edge instead (the rim rule, below).
  *
  * Everything is computed in the mesh frame (the particle mapped into it);
  * normals and points go back to the world frame. Single source (SD_HD):
@@ -42,9 +43,12 @@
 #include "dynamics/meshwall.h"
 #include "dynamics/walls.h"
 #include "geom/clip.h"
+#include "geom/convex_contact.h"
 #include "shape/support.h"
 #include "geom/sphere.h"
 #include "shape/shape.h"
+
+#include <string.h>
 
 /* Relative size below which a point's lateral offset from the plane
  * normal counts as none (a centre above a seam). */
@@ -125,6 +129,20 @@ SD_HD static SD_INLINE int sd_mesh_feature_owns(const sd_mesh_view *m, uint32_t 
     return 1;
 }
 
+/* 1 when feature f (sd_clip_closest's code) of triangle t lies on a free
+ * (boundary) edge: the edge itself, or a corner at the end of one. Past a
+ * free edge there is no wall behind the plane, so a body below the
+ * plane's level meets the edge as one above it does (the rim rule). */
+SD_HD static SD_INLINE int sd_mesh_feature_free(const sd_mesh_view *m, uint32_t t, int f)
+{
+    if (!m->nbr || f == SD_CLIP_FACE)
+        return 0;
+    if (f < SD_CLIP_CORNER0)
+        return m->nbr[t][f - SD_CLIP_EDGE0] == UINT32_MAX;
+    int k = f - SD_CLIP_CORNER0; /* edges k -> k + 1 and k + 2 -> k meet at corner k */
+    return m->nbr[t][k] == UINT32_MAX || m->nbr[t][(k + 2) % 3] == UINT32_MAX;
+}
+
 /* A sphere (centre x, radius r, world frame) against group gr through its
  * nt near triangles tl. 1 and *g filled when touching. */
 SD_HD static SD_INLINE int sd_mesh_sphere_geom(const sd_mesh_view *m, const sd_wall_geom *wg, uint32_t gr,
@@ -167,8 +185,10 @@ SD_HD static SD_INLINE int sd_mesh_sphere_geom(const sd_mesh_view *m, const sd_w
         delta = r - s;
     } else {
         unsigned bit = bf >= SD_CLIP_CORNER0 ? SD_MESH_CORNER_BIT(bf - SD_CLIP_CORNER0) : SD_MESH_EDGE_BIT(bf - SD_CLIP_EDGE0);
-        if (!(m->flags[bt] & bit) || !(s > SD_R(0.0)))
+        if (!(m->flags[bt] & bit))
             return 0; /* inactive: the faces beside it make the contact */
+        if (!(s > SD_R(0.0)) && !sd_mesh_feature_free(m, bt, bf))
+            return 0; /* behind the plane at a joined edge: the faces make it (or it is inside) */
         if (!sd_mesh_feature_owns(m, bt, bf, bp, xm, r))
             return 0; /* the centre is over a neighbouring group's face: that group's contact */
         sd_real dist = sd_sqrt(best);
@@ -528,6 +548,120 @@ SD_HD static SD_INLINE int sd_mesh_convex_section(const sd_convex *c, const sd_w
         sec[np++] = sd_v2(sd_v3_dot(p, e1b) + x1, sd_v3_dot(p, e2b) + x2);
     }
     return sd_clip_hull(sec, np);
+}
+
+/* ---- the rim rule (issue 30, defect 2) ---------------------------------
+ *
+ * A plane contact takes its depth against the group's plane extended
+ * without end. Past an open (boundary) edge of the mesh there is no
+ * wall: a body falling through a hopper's outlet sinks into the cone's
+ * plane extended below the rim, often by a large part of its size, and
+ * the area weight (the part of its section still over the facets) let a
+ * share of that depth through as a kick (a rounded cube reached 20.7 % of
+ * its radius at the rim of the cone hopper, a sphere 0.9 %). So when the
+ * body's deepest point under the plane lies beyond the group's facets
+ * across a boundary edge (sd_mesh_beyond_rim), the facet is a bounded
+ * triangle of no thickness there and the body meets its free edges: each
+ * boundary edge
+ * of the near triangles is a segment, its contact with the body (core
+ * swept by its rounding) is GJK's distance, or EPA's depth where the
+ * segment cuts the core (geom/convex_contact.h), and the deepest one is
+ * the group's contact (sd_mesh_rim_contact): a point contact along the
+ * direction that frees the body from the edge, as a sphere's edge contact
+ * (sd_mesh_sphere_geom) is, and a sphere meets a free edge from below
+ * the plane's level too (sd_mesh_feature_free). Contacts whose deepest
+ * point lies over a facet are untouched, bit for bit. */
+
+/* The squared distance from p to segment a-b (any frame). */
+SD_HD static SD_INLINE sd_real sd_mesh_seg_dist2(sd_vec3 p, sd_vec3 a, sd_vec3 b)
+{
+    sd_vec3 ab = sd_v3_sub(b, a), ap = sd_v3_sub(p, a);
+    sd_real l2 = sd_v3_dot(ab, ab), t = l2 > SD_R(0.0) ? sd_v3_dot(ap, ab) / l2 : SD_R(0.0);
+    t = t < SD_R(0.0) ? SD_R(0.0) : (t > SD_R(1.0) ? SD_R(1.0) : t);
+    return sd_v3_norm2(sd_v3_sub(ap, sd_v3_scale(ab, t)));
+}
+
+/* 1 when body c's contact with group gr belongs to the rim: the deepest
+ * point of its core under the group's plane (the support point along the
+ * inward normal; of a face lying flat, the one the support function
+ * returns) has its foot on none of the near triangles tl (nt), and the
+ * nearest of their points to that foot lies on a boundary edge (one
+ * facet; its corners included). Across an edge to another group the faces
+ * and the ridge rule decide, as before. Not the plane contact's point:
+ * a box's or polyhedron's (the corners' Lehmer mean, convex_contact.h)
+ * stays over the facets while a corner hangs deep beyond the edge. */
+SD_HD static SD_INLINE int sd_mesh_beyond_rim(const sd_mesh_view *m, const sd_wall_geom *wg, uint32_t gr,
+                                              const uint32_t *tl, uint32_t nt, const sd_convex *c)
+{
+    if (!m->nbr || nt == 0)
+        return 0;
+    sd_vec3 n = m->group_normal[gr];
+    sd_vec3 q = sd_mesh_to_frame(wg->q, wg->trans, sd_convex_support_core(c, sd_v3_neg(sd_quat_rotate(wg->q, n))));
+    q = sd_v3_sub(q, sd_v3_scale(n, sd_v3_dot(n, q) - m->group_offset[gr])); /* onto the plane */
+    sd_real d_all = SD_R(-1.0), d_rim = SD_R(-1.0);
+    for (uint32_t k = 0; k < nt; ++k) {
+        const uint32_t *tv = m->tris[tl[k]];
+        int f;
+        sd_vec3 p = sd_clip_closest(q, m->verts[tv[0]], m->verts[tv[1]], m->verts[tv[2]], &f);
+        if (f == SD_CLIP_FACE)
+            return 0; /* over a facet */
+        sd_real d2 = sd_v3_norm2(sd_v3_sub(q, p));
+        d_all = d_all < SD_R(0.0) || d2 < d_all ? d2 : d_all;
+        for (int e = 0; e < 3; ++e)
+            if (m->nbr[tl[k]][e] == UINT32_MAX) {
+                sd_real de = sd_mesh_seg_dist2(q, m->verts[tv[e]], m->verts[tv[(e + 1) % 3]]);
+                d_rim = d_rim < SD_R(0.0) || de < d_rim ? de : d_rim;
+            }
+    }
+    /* the nearest point is on a boundary edge (to rounding of the squares) */
+    return d_rim >= SD_R(0.0) && d_rim <= d_all * (SD_R(1.0) + SD_R(1e-9));
+}
+
+/* The contact of posed body c with the boundary edges of the near
+ * triangles tl (nt) of a mesh: the deepest of the segments' contacts, 1
+ * and *g when one touches (n from the edge to the body, the point midway
+ * through the overlap); *foot: the edge's witness point (world frame),
+ * where the tangent plane {x : (x - foot) . n = 0} touches the segment. */
+SD_HD static SD_INLINE int sd_mesh_rim_contact(const sd_mesh_view *m, const sd_wall_geom *wg, const uint32_t *tl,
+                                               uint32_t nt, const sd_convex *c, sd_contact_geom *g, sd_vec3 *foot)
+{
+    int found = 0;
+    for (uint32_t k = 0; k < nt; ++k) {
+        const uint32_t *tv = m->tris[tl[k]];
+        for (int e = 0; e < 3; ++e) {
+            if (m->nbr[tl[k]][e] != UINT32_MAX)
+                continue;
+            /* the segment as a posed polyhedron of two vertices about its midpoint */
+            sd_vec3 a = sd_mesh_to_world(wg->q, wg->trans, m->verts[tv[e]]);
+            sd_vec3 b = sd_mesh_to_world(wg->q, wg->trans, m->verts[tv[(e + 1) % 3]]);
+            sd_vec3 mid = sd_v3_scale(sd_v3_add(a, b), SD_R(0.5));
+            sd_vec3 sv[2];
+            sv[0] = sd_v3_sub(a, mid);
+            sv[1] = sd_v3_sub(b, mid);
+            sd_shape sh;
+            memset(&sh, 0, sizeof sh);
+            sh.kind = SD_SHAPE_POLYHEDRON;
+            sh.vcount = 2;
+            sh.bound = sd_v3_norm(sv[0]);
+            sd_convex s;
+            s.shape = &sh;
+            s.verts = sv;
+            s.planes = NULL;
+            s.dtris = NULL;
+            s.x = mid;
+            s.q = sd_quat_identity();
+            sd_convex_contact cc = sd_convex_collide(c, &s, NULL);
+            if (!cc.touching || (found && !(cc.delta > g->delta)))
+                continue;
+            found = 1;
+            g->n = cc.n;
+            g->delta = cc.delta;
+            g->point = cc.point;
+            /* the segment's side of the overlap: half the depth back along n */
+            *foot = sd_v3_madd(cc.point, SD_R(0.5) * cc.delta, cc.n);
+        }
+    }
+    return found;
 }
 
 #endif
