@@ -614,7 +614,9 @@ void sd_check_print_output(FILE *f, const sd_scene *s, const sd_world *w, size_t
                         .csv = (s->output.formats & SD_OUT_CSV) != 0,
                         .scene = s->path,
                         .shapes = (s->output.formats & SD_OUT_SHAPES) != 0,
-                        .shape_resolution = s->output.shape_resolution};
+                        .shape_resolution = s->output.shape_resolution,
+                        .dump = (s->output.formats & SD_OUT_DUMP) != 0,
+                        .dump_box = {s->world.periodic, s->world.domain_lo, s->world.domain_hi}};
     sd_output_size osz;
     sd_error oerr;
     memset(&oerr, 0, sizeof oerr);
@@ -628,6 +630,10 @@ void sd_check_print_output(FILE *f, const sd_scene *s, const sd_world *w, size_t
         fprintf(f, "%ld frames x %s%s", frames, fb, poured ? " (at most: all poured spheres in)" : "");
     if (od.csv)
         fprintf(f, "%s%ld stats rows x %.0f bytes", od.vtk ? ", " : "", rows, osz.stats_row);
+    if (od.dump) {
+        sd_check_format_bytes(osz.frame_dump, fb, sizeof fb);
+        fprintf(f, "%s%ld trajectory.dump snapshots x %s", od.vtk || od.csv ? ", " : "", frames, fb);
+    }
     fprintf(f, "\n");
 }
 

@@ -212,8 +212,9 @@ sd_status sd_fs_read_all(const char *path, const char *what, void **buf, size_t 
  * header and every row before the first whose `step` column is at least
  * step (or is not a number). -1 when there is no header with a step
  * column. */
-static long sd_fs_csv_keep(const char *f, size_t n, long step)
+static long sd_fs_csv_keep(const char *f, size_t n, long step, void *ctx)
 {
+    (void)ctx;
     const char *eol = memchr(f, '\n', n);
     if (!eol)
         return -1;
@@ -255,6 +256,12 @@ static long sd_fs_csv_keep(const char *f, size_t n, long step)
 
 sd_status sd_fs_resume_csv(const char *path, long step, FILE **fp, int *kept, sd_error *err)
 {
+    return sd_fs_resume_series(path, step, sd_fs_csv_keep, NULL, fp, kept, err);
+}
+
+sd_status sd_fs_resume_series(const char *path, long step, sd_fs_keep_fn keep_fn, void *ctx, FILE **fp, int *kept,
+                              sd_error *err)
+{
     *fp = NULL;
     *kept = 0;
     if (!sd_fs_is_regular_file(path))
@@ -264,7 +271,7 @@ sd_status sd_fs_resume_csv(const char *path, long step, FILE **fp, int *kept, sd
     sd_status st = sd_fs_read_all(path, "file", &text, &n, err);
     if (st != SD_OK)
         return st;
-    long keep = sd_fs_csv_keep(text, n, step);
+    long keep = keep_fn(text, n, step, ctx);
     sd_free(text);
     if (keep < 0) { /* not a series this run can continue: a new one */
         if (remove(path) != 0)

@@ -58,6 +58,12 @@ sd_status sd_fs_read_all(const char *path, const char *what, void **buf, size_t 
  * there, or a file without a step column in its header, creates it anew
  * (*kept = 0: write the header). Never through a link, as above. */
 sd_status sd_fs_resume_csv(const char *path, long step, FILE **fp, int *kept, sd_error *err);
+/* The same for any series of records by step: keep(text, n, step, ctx)
+ * gives the bytes of the file's text to keep, -1 when it is not a series
+ * this run can continue (then it is created anew, *kept = 0). */
+typedef long (*sd_fs_keep_fn)(const char *text, size_t n, long step, void *ctx);
+sd_status sd_fs_resume_series(const char *path, long step, sd_fs_keep_fn keep, void *ctx, FILE **fp, int *kept,
+                              sd_error *err);
 
 /* Calls visit(name, ctx) for each entry of dir except "." and "..";
  * stops early when visit returns non-zero. */

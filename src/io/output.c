@@ -5,8 +5,10 @@
  * that lacks the .shapedem-output marker; a directory with the marker loses
  * only files whose names shapedem itself writes (particles_<digits>.vtu,
  * walls_<digits>.vtp, shapes_<digits>.vtp, frames.pvd, stats.csv, walls.csv, biaxial.csv,
- * summary.txt and their ".<name>.tmp" temporaries); every file except the
- * CSVs is replaced atomically; stats.csv, walls.csv (worlds with walls) and
+ * trajectory.dump, summary.txt and their ".<name>.tmp" temporaries); every file except the
+ * CSVs and trajectory.dump is replaced atomically; trajectory.dump gets a
+ * whole snapshot, flushed, per frame, and a restart keeps its snapshots
+ * before its step (sd_dump_keep); stats.csv, walls.csv (worlds with walls) and
  * biaxial.csv (2D boxes) are only ever appended to, one flushed row per call,
  * so a crash loses at most the row being written; a restart
  * (sd_output_def.resume_step) keeps their rows before its step and appends.
@@ -51,6 +53,9 @@ struct sd_output {
     FILE *biaxial;        /* biaxial.csv (2D worlds with four walls), opened at the first row */
     FILE *walls;          /* walls.csv (worlds with walls), opened at the first row */
     int walls_csv;        /* write walls.csv (not in the size estimate's dry run) */
+    FILE *dump;           /* trajectory.dump (sd_output_def.dump), else NULL */
+    sd_dump_box dump_box;
+    long dump_frames;     /* snapshots in trajectory.dump, those a restart kept included */
 };
 
 static char *sd_output_strdup(const char *s)
@@ -121,7 +126,8 @@ static int sd_output_is_ours(const char *name)
         if (sd_output_is_checkpoint_name(s, n))
             return 1;
     }
-    static const char *fixed[] = {"frames.pvd", "stats.csv", "summary.txt", "biaxial.csv", "walls.csv"};
+    static const char *fixed[] = {"frames.pvd", "stats.csv", "summary.txt", "biaxial.csv", "walls.csv",
+                                  "trajectory.dump"};
     for (size_t k = 0; k < sizeof fixed / sizeof fixed[0]; ++k)
         if (n == strlen(fixed[k]) && memcmp(s, fixed[k], n) == 0)
             return 1;
@@ -164,7 +170,8 @@ static int sd_output_scan_visit(const char *name, void *ctx)
 
 typedef struct sd_output_clean {
     const char *dir;
-    int resume;           /* a restart: the CSV series stay (sd_output_open_csv cuts them) */
+    int resume;           /* a restart: the CSV series and the dump stay (sd_output_open_csv,
+                             sd_output_open_dump cut them) */
     long keep_frames;     /* a restart: frames numbered below this stay, and frames.pvd when > 0 */
     sd_status status;
     sd_error *err;
@@ -175,7 +182,8 @@ static int sd_output_clean_visit(const char *name, void *ctx)
     sd_output_clean *c = ctx;
     if (!sd_output_is_ours(name))
         return 0;
-    if (c->resume && (!strcmp(name, "stats.csv") || !strcmp(name, "walls.csv") || !strcmp(name, "biaxial.csv")))
+    if (c->resume && (!strcmp(name, "stats.csv") || !strcmp(name, "walls.csv") || !strcmp(name, "biaxial.csv") ||
+                      !strcmp(name, "trajectory.dump")))
         return 0;
     long f = sd_output_frame_number(name);
     if ((f >= 0 && f < c->keep_frames) || (c->keep_frames > 0 && !strcmp(name, "frames.pvd")))
@@ -276,9 +284,28 @@ static sd_status sd_output_resume_frames(const char *dir, size_t parts, double t
 
 /* ---- open ------------------------------------------------------------------ */
 
+/* trajectory.dump, created new or on a restart continued after its
+ * snapshots before the restart step. */
+static sd_status sd_output_open_dump(sd_output *o, sd_error *err)
+{
+    char *path = sd_fs_join(o->dir, "trajectory.dump");
+    if (!path)
+        return sd_error_set(err, SD_ERR_MEMORY, o->dir, 0, "", "out of memory");
+    int kept = 0;
+    sd_status s = o->resume_step > 0
+                      ? sd_fs_resume_series(path, o->resume_step, sd_dump_keep, &o->dump_frames, &o->dump, &kept, err)
+                      : sd_fs_create_append(path, &o->dump, err);
+    if (!kept)
+        o->dump_frames = 0;
+    sd_free(path);
+    return s;
+}
+
 /* Frees o and what it holds (its files closed already). */
 static void sd_output_free(sd_output *o)
 {
+    if (o->dump)
+        fclose(o->dump);
     sd_free(o->frame_times);
     sd_vtk_shapes_free(o->shapes);
     sd_free(o->scene);
@@ -325,7 +352,7 @@ static sd_status sd_output_prepare_dir(const char *dir, int resume, long keep_fr
     fprintf(af.fp,
             "This directory was written by shapedem %s.\n"
             "The next run writing here replaces particles_*.vtu, walls_*.vtp, shapes_*.vtp, frames.pvd,\n"
-            "stats.csv, walls.csv, biaxial.csv and summary.txt; any other file is left alone.\n",
+            "stats.csv, walls.csv, biaxial.csv, trajectory.dump and summary.txt; any other file is left alone.\n",
             SD_VERSION_STRING);
     return sd_fs_atomic_commit(&af, err);
 }
@@ -367,7 +394,10 @@ sd_status sd_output_open(const sd_output_def *def, const sd_world *w, sd_output 
     o->csv = def->csv;
     o->resume_step = def->resume_step;
     o->walls_csv = def->csv;
-    if (def->shapes) {
+    o->dump_box = def->dump_box;
+    if (def->dump)
+        s = sd_output_open_dump(o, err);
+    if (s == SD_OK && def->shapes) {
         s = sd_vtk_shapes_make(w, def->shape_resolution ? def->shape_resolution : 24, &o->shapes, err);
     }
     /* the kept frames only, those after the restart gone with their files */
@@ -424,12 +454,30 @@ static sd_status sd_output_write_pvd(sd_output *o, sd_error *err)
     return s;
 }
 
-long sd_output_frame_count(const sd_output *o) { return o ? o->frames : 0; }
+long sd_output_frame_count(const sd_output *o) { return !o ? 0 : o->vtk ? o->frames : o->dump_frames; }
+
+/* One snapshot appended to trajectory.dump, flushed whole. */
+static sd_status sd_output_dump(sd_output *o, const sd_world *w, sd_error *err)
+{
+    sd_status s = sd_dump_write(o->dump, w, &o->dump_box, err);
+    if (s == SD_OK && (fflush(o->dump) != 0 || ferror(o->dump)))
+        s = sd_error_set(err, SD_ERR_IO, "", 0, "", "write failed: %s", strerror(errno));
+    if (s != SD_OK && err && !err->file[0])
+        snprintf(err->file, sizeof err->file, "%s/trajectory.dump", o->dir);
+    if (s == SD_OK)
+        o->dump_frames++;
+    return s;
+}
 
 sd_status sd_output_frame(sd_output *o, const sd_world *w, sd_error *err)
 {
     if (!o || !w)
         return sd_error_set(err, SD_ERR_INTERNAL, "", 0, "", "sd_output_frame: NULL argument");
+    if (o->dump) {
+        sd_status s = sd_output_dump(o, w, err);
+        if (s != SD_OK)
+            return s;
+    }
     if (!o->vtk)
         return SD_OK;
     if ((size_t)o->frames == o->frame_cap) {
@@ -850,27 +898,26 @@ static void sd_output_summary_text(FILE *fp, const sd_output *o, const sd_world 
                     pr.calls[k]);
 }
 
+/* Closes one of the appended series (*fp NULL when it was never opened);
+ * the first failure is the one *s keeps. */
+static void sd_output_close_file(const sd_output *o, FILE **fp, const char *name, sd_status *s, sd_error *err)
+{
+    if (!*fp)
+        return;
+    if (fclose(*fp) != 0 && *s == SD_OK)
+        *s = sd_error_set(err, SD_ERR_IO, o->dir, 0, "", "cannot close %s: %s", name, strerror(errno));
+    *fp = NULL;
+}
+
 sd_status sd_output_close(sd_output *o, const sd_world *w, const sd_run_summary *sum, sd_error *err)
 {
     if (!o)
         return SD_OK;
     sd_status s = SD_OK;
-    if (o->stats) {
-        if (fclose(o->stats) != 0)
-            s = sd_error_set(err, SD_ERR_IO, o->dir, 0, "", "cannot close stats.csv: %s",
-                             strerror(errno));
-        o->stats = NULL;
-    }
-    if (o->biaxial) {
-        if (fclose(o->biaxial) != 0 && s == SD_OK)
-            s = sd_error_set(err, SD_ERR_IO, o->dir, 0, "", "cannot close biaxial.csv: %s", strerror(errno));
-        o->biaxial = NULL;
-    }
-    if (o->walls) {
-        if (fclose(o->walls) != 0 && s == SD_OK)
-            s = sd_error_set(err, SD_ERR_IO, o->dir, 0, "", "cannot close walls.csv: %s", strerror(errno));
-        o->walls = NULL;
-    }
+    sd_output_close_file(o, &o->stats, "stats.csv", &s, err);
+    sd_output_close_file(o, &o->biaxial, "biaxial.csv", &s, err);
+    sd_output_close_file(o, &o->walls, "walls.csv", &s, err);
+    sd_output_close_file(o, &o->dump, "trajectory.dump", &s, err);
     /* The first error is the one reported. */
     sd_error err2;
     sd_error *e2 = (s == SD_OK) ? err : &err2;
@@ -939,6 +986,14 @@ sd_status sd_output_estimate(const sd_output_def *def, const sd_world *w, size_t
         size_t n = sd_world_particle_count(w);
         out->frame_shapes = n ? (double)ftell(fp[0]) * (double)particles / (double)n : 0.0;
     }
+    if (s == SD_OK && def && def->dump) {
+        /* a snapshot of the world as it is, per particle times `particles` */
+        rewind(fp[0]);
+        s = sd_dump_write(fp[0], w, &def->dump_box, err);
+        fflush(fp[0]);
+        size_t n = sd_world_particle_count(w);
+        out->frame_dump = n ? (double)ftell(fp[0]) * (double)particles / (double)n : (double)ftell(fp[0]);
+    }
     if (s == SD_OK && o.csv) {
         o.stats = fp[1];
         o.biaxial = fp[2];
@@ -979,7 +1034,8 @@ sd_status sd_output_estimate(const sd_output_def *def, const sd_world *w, size_t
     if (s != SD_OK)
         return s;
     double nf = o.vtk ? (double)frames : 0.0, nr = o.csv ? (double)rows : 0.0;
-    out->total = nf * (out->frame_particles + out->frame_walls + out->frame_shapes) + out->pvd + out->stats_header +
+    out->total = nf * (out->frame_particles + out->frame_walls + out->frame_shapes) + (double)frames * out->frame_dump +
+                 out->pvd + out->stats_header +
                  nr * out->stats_row + (out->biaxial_row > 0 ? out->biaxial_header + nr * out->biaxial_row : 0.0) +
                  (out->walls_row > 0 ? out->walls_header + nr * out->walls_row : 0.0) +
                  out->summary + (double)sizeof "This directory was written by shapedem" + 160.0;

@@ -4,6 +4,7 @@
  * Invariant: every file is written to a temporary name in the same
  * directory and renamed into place, so an interrupted run never leaves a
  * truncated file; frames.pvd is rewritten the same way after each frame.
+ * trajectory.dump is appended to, a whole snapshot flushed per frame.
  * A directory that is not empty and was not made by shapedem (no
  * .shapedem-output marker) is never written into.
  */
@@ -11,6 +12,7 @@
 #define SD_IO_OUTPUT_H
 
 #include <shapedem/shapedem.h>
+#include "io/dump.h"
 
 typedef struct sd_output sd_output;
 
@@ -21,6 +23,8 @@ typedef struct sd_output_def {
     const char *scene;  /* scene path, recorded in the summary */
     int shapes;         /* with each frame, the true shapes (shapes_NNNNNN.vtp, io/vtk_shapes.c) */
     int shape_resolution; /* directions per turn of curved surfaces (0: 24) */
+    int dump;           /* with each frame, a snapshot appended to trajectory.dump (io/dump.h) */
+    sd_dump_box dump_box; /* its box bounds: the periodic axes */
     long resume_step;   /* > 0: a restart at this step: stats.csv, walls.csv and biaxial.csv keep
                            their rows before it and go on (sd_fs_resume_csv), and the frames
                            (frames.pvd) those before it; 0: a new run */
@@ -59,6 +63,7 @@ sd_status sd_output_stats(sd_output *o, const sd_world *w, sd_error *err);
 typedef struct sd_output_size {
     double frame_particles, frame_walls, pvd;
     double frame_shapes; /* def->shapes: one shapes file, the world's particles scaled to `particles` */
+    double frame_dump;   /* def->dump: one trajectory.dump snapshot, scaled the same way */
     double stats_header, stats_row, biaxial_header, biaxial_row;
     double walls_header, walls_row;   /* walls.csv (0 without walls) */
     double summary, total;

@@ -203,6 +203,8 @@ sd_status sd_run_open(const sd_scene *s, sd_world *w, const char *dir, sd_run **
                             .csv = info.write_stats,
                             .shapes = (s->output.formats & SD_OUT_SHAPES) != 0,
                             .shape_resolution = s->output.shape_resolution,
+                            .dump = (s->output.formats & SD_OUT_DUMP) != 0,
+                            .dump_box = {s->world.periodic, s->world.domain_lo, s->world.domain_hi},
                             .scene = s->path,
                             .resume_step = r->resumed ? r->done : 0};
         sd_status st = sd_output_open(&od, w, &r->out, err);

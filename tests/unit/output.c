@@ -376,7 +376,7 @@ static void test_foreign_directory(const char *root)
     path_join(mine, sizeof mine, dir, "particles_000000.vtu"); /* even under one of our names */
     write_text(mine, "precious user data\n");
 
-    sd_output_def def = {dir, 1, 1, "scene.yaml", 0, 0, 0};
+    sd_output_def def = {.directory = dir, .vtk = 1, .csv = 1, .scene = "scene.yaml"};
     sd_output *o = NULL;
     sd_error err;
     memset(&err, 0, sizeof err);
@@ -399,7 +399,7 @@ static void test_run(const char *root)
     sd_world *w = make_world(8, 1);
     if (!w)
         return;
-    sd_output_def def = {dir, 1, 1, "scene.yaml", 0, 0, 0};
+    sd_output_def def = {.directory = dir, .vtk = 1, .csv = 1, .scene = "scene.yaml"};
     sd_output *o = NULL;
     sd_error err;
     CHECK_OK(sd_output_open(&def, w, &o, &err), err);
