@@ -24,6 +24,9 @@ set -euo pipefail
 # (tests/fuzz). valgrind: the memcheck.run_short test (skipped without it).
 # libmpfr-dev: the correctly rounded oracle of unit.math, which checks the
 # engine's own elementary functions (core/math.h) to 1 ulp.
+# python3-vtk9: VTK's own XML readers (the library ParaView is built on),
+# with which cli.vtk_readers opens a run's frames.pvd, particle, wall and
+# shape files (skipped without it).
 # libcairo2-dev: `shapedem render` (src/render/) draws frames headless into
 # PNG files with cairo's image surfaces (the build leaves render out without it).
 # openmpi-bin, libopenmpi-dev: the MPI decomposition (shapedem-mpi, docs/mpi.md);
@@ -32,7 +35,8 @@ set -euo pipefail
 # CMake takes the serial HDF5, pkg-config's hdf5-serial, for everything else).
 need_pkgs=(build-essential cmake pkg-config libyaml-dev libhdf5-dev libccd-dev libqhull-dev
   python3 python3-matplotlib python3-h5py git clang libclang-rt-dev valgrind libmpfr-dev
-  libcairo2-dev openmpi-bin libopenmpi-dev libhdf5-openmpi-dev)
+  libcairo2-dev openmpi-bin libopenmpi-dev libhdf5-openmpi-dev
+  python3-vtk9)
 if [[ "${SHAPEDEM_WITH_BENCH:-0}" == 1 ]]; then
   need_pkgs+=(liggghts)
 fi
