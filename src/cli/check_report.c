@@ -616,7 +616,8 @@ void sd_check_print_output(FILE *f, const sd_scene *s, const sd_world *w, size_t
                         .shapes = (s->output.formats & SD_OUT_SHAPES) != 0,
                         .shape_resolution = s->output.shape_resolution,
                         .dump = (s->output.formats & SD_OUT_DUMP) != 0,
-                        .dump_box = {s->world.periodic, s->world.domain_lo, s->world.domain_hi}};
+                        .h5md = (s->output.formats & SD_OUT_H5MD) != 0,
+                        .dump_box = {s->world.dimension, s->world.periodic, s->world.domain_lo, s->world.domain_hi}};
     sd_output_size osz;
     sd_error oerr;
     memset(&oerr, 0, sizeof oerr);
@@ -633,6 +634,10 @@ void sd_check_print_output(FILE *f, const sd_scene *s, const sd_world *w, size_t
     if (od.dump) {
         sd_check_format_bytes(osz.frame_dump, fb, sizeof fb);
         fprintf(f, "%s%ld trajectory.dump snapshots x %s", od.vtk || od.csv ? ", " : "", frames, fb);
+    }
+    if (od.h5md) {
+        sd_check_format_bytes(osz.frame_h5md, fb, sizeof fb);
+        fprintf(f, "%s%ld trajectory.h5md frames x %s", od.vtk || od.csv || od.dump ? ", " : "", frames, fb);
     }
     fprintf(f, "\n");
 }

@@ -43,7 +43,7 @@
 
 /* HDF5 prints its error stack unless told not to; SD_HDF5_DEBUG=1 in the
  * environment keeps it (to see why HDF5 refused a file). */
-static void sd_h5_quiet(void)
+void sd_h5_quiet(void)
 {
     /* Before the library's first call (it is this): no HDF5 clean-up at
      * exit. A file whose H5Fclose failed (disk full: the closing flush

@@ -71,4 +71,9 @@ int sd_checkpoint_collective(void);
 sd_status sd_checkpoint_write_collective(const sd_snapshot *s, const sd_ckpt_part *parts, const char *path,
                                          sd_error *err);
 
+/* Before a first HDF5 call: HDF5 prints no error stack (unless SD_HDF5_DEBUG=1
+ * in the environment) and has no exit handler (io/checkpoint.c says why);
+ * the trajectory writer (io/h5md.c) calls it too. */
+void sd_h5_quiet(void);
+
 #endif

@@ -22,8 +22,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* One particle's state as the frames show it. */
-static sd_status sd_dump_particle(const sd_world *w, uint64_t id, sd_particle_state *p, sd_error *err)
+sd_status sd_dump_particle(const sd_world *w, uint64_t id, sd_particle_state *p, sd_error *err)
 {
     size_t i = sd_world_find_particle(w, id);
     if (i == (size_t)-1 || sd_world_get_particle(w, i, p) != SD_OK)

@@ -17,12 +17,18 @@
  * periodic box domain_lo .. domain_hi ("pp"); the others the particles'
  * extent, radii included ("ss", shrink-wrapped in LAMMPS's words). */
 typedef struct sd_dump_box {
+    int dimension; /* the world's: 3, or 2 (the H5MD box, io/h5md.c) */
     unsigned periodic;
     sd_v3d domain_lo, domain_hi; /* m, read on the periodic axes */
 } sd_dump_box;
 
 /* The column names of the ATOMS line, after "ITEM: ATOMS ". */
 #define SD_DUMP_COLUMNS "id type x y z vx vy vz fx fy fz omegax omegay omegaz radius quatw quati quatj quatk shape"
+
+/* The particle of stable id `id` as the frames show it (the position of a
+ * periodic image wrapped into the box); SD_ERR_INTERNAL when it is not
+ * there. */
+sd_status sd_dump_particle(const sd_world *w, uint64_t id, sd_particle_state *p, sd_error *err);
 
 /* Appends one snapshot of w at its step count; SD_ERR_IO on a failed
  * write, SD_ERR_MEMORY when the id list cannot be allocated. */

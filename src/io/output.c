@@ -5,10 +5,10 @@
  * that lacks the .shapedem-output marker; a directory with the marker loses
  * only files whose names shapedem itself writes (particles_<digits>.vtu,
  * walls_<digits>.vtp, shapes_<digits>.vtp, frames.pvd, stats.csv, walls.csv, biaxial.csv,
- * trajectory.dump, summary.txt and their ".<name>.tmp" temporaries); every file except the
- * CSVs and trajectory.dump is replaced atomically; trajectory.dump gets a
- * whole snapshot, flushed, per frame, and a restart keeps its snapshots
- * before its step (sd_dump_keep); stats.csv, walls.csv (worlds with walls) and
+ * trajectory.dump, trajectory.h5md, summary.txt and their ".<name>.tmp" temporaries); every
+ * file except the CSVs and the trajectories is replaced atomically; the
+ * trajectories get a frame, flushed, per frame, and a restart keeps their
+ * frames before its step (sd_dump_keep, io/h5md.c); stats.csv, walls.csv (worlds with walls) and
  * biaxial.csv (2D boxes) are only ever appended to, one flushed row per call,
  * so a crash loses at most the row being written; a restart
  * (sd_output_def.resume_step) keeps their rows before its step and appends.
@@ -23,6 +23,7 @@
 #include "core/error.h"
 #include "world/solver.h"
 #include "io/fsutil.h"
+#include "io/h5md.h"
 #include "io/vtk.h"
 #include <shapedem/process.h>
 
@@ -56,6 +57,7 @@ struct sd_output {
     FILE *dump;           /* trajectory.dump (sd_output_def.dump), else NULL */
     sd_dump_box dump_box;
     long dump_frames;     /* snapshots in trajectory.dump, those a restart kept included */
+    sd_h5md *h5md;        /* trajectory.h5md (sd_output_def.h5md), else NULL */
 };
 
 static char *sd_output_strdup(const char *s)
@@ -127,7 +129,7 @@ static int sd_output_is_ours(const char *name)
             return 1;
     }
     static const char *fixed[] = {"frames.pvd", "stats.csv", "summary.txt", "biaxial.csv", "walls.csv",
-                                  "trajectory.dump"};
+                                  "trajectory.dump", "trajectory.h5md"};
     for (size_t k = 0; k < sizeof fixed / sizeof fixed[0]; ++k)
         if (n == strlen(fixed[k]) && memcmp(s, fixed[k], n) == 0)
             return 1;
@@ -183,7 +185,7 @@ static int sd_output_clean_visit(const char *name, void *ctx)
     if (!sd_output_is_ours(name))
         return 0;
     if (c->resume && (!strcmp(name, "stats.csv") || !strcmp(name, "walls.csv") || !strcmp(name, "biaxial.csv") ||
-                      !strcmp(name, "trajectory.dump")))
+                      !strcmp(name, "trajectory.dump") || !strcmp(name, "trajectory.h5md")))
         return 0;
     long f = sd_output_frame_number(name);
     if ((f >= 0 && f < c->keep_frames) || (c->keep_frames > 0 && !strcmp(name, "frames.pvd")))
@@ -306,6 +308,7 @@ static void sd_output_free(sd_output *o)
 {
     if (o->dump)
         fclose(o->dump);
+    sd_h5md_close(o->h5md, NULL);
     sd_free(o->frame_times);
     sd_vtk_shapes_free(o->shapes);
     sd_free(o->scene);
@@ -352,7 +355,8 @@ static sd_status sd_output_prepare_dir(const char *dir, int resume, long keep_fr
     fprintf(af.fp,
             "This directory was written by shapedem %s.\n"
             "The next run writing here replaces particles_*.vtu, walls_*.vtp, shapes_*.vtp, frames.pvd,\n"
-            "stats.csv, walls.csv, biaxial.csv, trajectory.dump and summary.txt; any other file is left alone.\n",
+            "stats.csv, walls.csv, biaxial.csv, trajectory.dump, trajectory.h5md and summary.txt; any other\n"
+            "file is left alone.\n",
             SD_VERSION_STRING);
     return sd_fs_atomic_commit(&af, err);
 }
@@ -397,6 +401,12 @@ sd_status sd_output_open(const sd_output_def *def, const sd_world *w, sd_output 
     o->dump_box = def->dump_box;
     if (def->dump)
         s = sd_output_open_dump(o, err);
+    if (s == SD_OK && def->h5md) {
+        char *path = sd_fs_join(o->dir, "trajectory.h5md");
+        s = path ? sd_h5md_open(path, w, &def->dump_box, o->resume_step, &o->h5md, err)
+                 : sd_error_set(err, SD_ERR_MEMORY, o->dir, 0, "", "out of memory");
+        sd_free(path);
+    }
     if (s == SD_OK && def->shapes) {
         s = sd_vtk_shapes_make(w, def->shape_resolution ? def->shape_resolution : 24, &o->shapes, err);
     }
@@ -454,7 +464,10 @@ static sd_status sd_output_write_pvd(sd_output *o, sd_error *err)
     return s;
 }
 
-long sd_output_frame_count(const sd_output *o) { return !o ? 0 : o->vtk ? o->frames : o->dump_frames; }
+long sd_output_frame_count(const sd_output *o)
+{
+    return !o ? 0 : o->vtk ? o->frames : o->dump ? o->dump_frames : sd_h5md_frames(o->h5md);
+}
 
 /* One snapshot appended to trajectory.dump, flushed whole. */
 static sd_status sd_output_dump(sd_output *o, const sd_world *w, sd_error *err)
@@ -475,6 +488,11 @@ sd_status sd_output_frame(sd_output *o, const sd_world *w, sd_error *err)
         return sd_error_set(err, SD_ERR_INTERNAL, "", 0, "", "sd_output_frame: NULL argument");
     if (o->dump) {
         sd_status s = sd_output_dump(o, w, err);
+        if (s != SD_OK)
+            return s;
+    }
+    if (o->h5md) {
+        sd_status s = sd_h5md_write(o->h5md, w, err);
         if (s != SD_OK)
             return s;
     }
@@ -918,6 +936,10 @@ sd_status sd_output_close(sd_output *o, const sd_world *w, const sd_run_summary 
     sd_output_close_file(o, &o->biaxial, "biaxial.csv", &s, err);
     sd_output_close_file(o, &o->walls, "walls.csv", &s, err);
     sd_output_close_file(o, &o->dump, "trajectory.dump", &s, err);
+    sd_status sh = sd_h5md_close(o->h5md, s == SD_OK ? err : NULL);
+    o->h5md = NULL;
+    if (s == SD_OK)
+        s = sh;
     /* The first error is the one reported. */
     sd_error err2;
     sd_error *e2 = (s == SD_OK) ? err : &err2;
@@ -994,6 +1016,13 @@ sd_status sd_output_estimate(const sd_output_def *def, const sd_world *w, size_t
         size_t n = sd_world_particle_count(w);
         out->frame_dump = n ? (double)ftell(fp[0]) * (double)particles / (double)n : (double)ftell(fp[0]);
     }
+    if (s == SD_OK && def && def->h5md) {
+        /* the values of a frame: 3 vectors of the dimension, a quaternion, a
+         * spin, the radius (doubles), species, shape (4 bytes), id (8), and
+         * the step and time; HDF5's chunk index adds a little */
+        double d = def->dump_box.dimension == 2 ? 2.0 : 3.0;
+        out->frame_h5md = (double)particles * (8.0 * (3.0 * d + 8.0) + 16.0) + 16.0;
+    }
     if (s == SD_OK && o.csv) {
         o.stats = fp[1];
         o.biaxial = fp[2];
@@ -1034,7 +1063,7 @@ sd_status sd_output_estimate(const sd_output_def *def, const sd_world *w, size_t
     if (s != SD_OK)
         return s;
     double nf = o.vtk ? (double)frames : 0.0, nr = o.csv ? (double)rows : 0.0;
-    out->total = nf * (out->frame_particles + out->frame_walls + out->frame_shapes) + (double)frames * out->frame_dump +
+    out->total = nf * (out->frame_particles + out->frame_walls + out->frame_shapes) + (double)frames * (out->frame_dump + out->frame_h5md) +
                  out->pvd + out->stats_header +
                  nr * out->stats_row + (out->biaxial_row > 0 ? out->biaxial_header + nr * out->biaxial_row : 0.0) +
                  (out->walls_row > 0 ? out->walls_header + nr * out->walls_row : 0.0) +

@@ -4,7 +4,7 @@
  * Invariant: every file is written to a temporary name in the same
  * directory and renamed into place, so an interrupted run never leaves a
  * truncated file; frames.pvd is rewritten the same way after each frame.
- * trajectory.dump is appended to, a whole snapshot flushed per frame.
+ * trajectory.dump and trajectory.h5md are appended to, flushed per frame.
  * A directory that is not empty and was not made by shapedem (no
  * .shapedem-output marker) is never written into.
  */
@@ -24,7 +24,8 @@ typedef struct sd_output_def {
     int shapes;         /* with each frame, the true shapes (shapes_NNNNNN.vtp, io/vtk_shapes.c) */
     int shape_resolution; /* directions per turn of curved surfaces (0: 24) */
     int dump;           /* with each frame, a snapshot appended to trajectory.dump (io/dump.h) */
-    sd_dump_box dump_box; /* its box bounds: the periodic axes */
+    int h5md;           /* with each frame, a frame appended to trajectory.h5md (io/h5md.h) */
+    sd_dump_box dump_box; /* their box: the dimension and the periodic axes */
     long resume_step;   /* > 0: a restart at this step: stats.csv, walls.csv and biaxial.csv keep
                            their rows before it and go on (sd_fs_resume_csv), and the frames
                            (frames.pvd) those before it; 0: a new run */
@@ -64,6 +65,7 @@ typedef struct sd_output_size {
     double frame_particles, frame_walls, pvd;
     double frame_shapes; /* def->shapes: one shapes file, the world's particles scaled to `particles` */
     double frame_dump;   /* def->dump: one trajectory.dump snapshot, scaled the same way */
+    double frame_h5md;   /* def->h5md: one trajectory.h5md frame, its values' bytes */
     double stats_header, stats_row, biaxial_header, biaxial_row;
     double walls_header, walls_row;   /* walls.csv (0 without walls) */
     double summary, total;

@@ -204,7 +204,8 @@ sd_status sd_run_open(const sd_scene *s, sd_world *w, const char *dir, sd_run **
                             .shapes = (s->output.formats & SD_OUT_SHAPES) != 0,
                             .shape_resolution = s->output.shape_resolution,
                             .dump = (s->output.formats & SD_OUT_DUMP) != 0,
-                            .dump_box = {s->world.periodic, s->world.domain_lo, s->world.domain_hi},
+                            .h5md = (s->output.formats & SD_OUT_H5MD) != 0,
+                            .dump_box = {s->world.dimension, s->world.periodic, s->world.domain_lo, s->world.domain_hi},
                             .scene = s->path,
                             .resume_step = r->resumed ? r->done : 0};
         sd_status st = sd_output_open(&od, w, &r->out, err);

@@ -146,7 +146,7 @@ typedef struct sd_scene_wall {
     int drum_open_lo, drum_open_hi; /* end caps left out (caps: keys) */
 } sd_scene_wall;
 
-enum { SD_OUT_VTK = 1 << 0, SD_OUT_CSV = 1 << 1, SD_OUT_SHAPES = 1 << 2, SD_OUT_DUMP = 1 << 3 };
+enum { SD_OUT_VTK = 1 << 0, SD_OUT_CSV = 1 << 1, SD_OUT_SHAPES = 1 << 2, SD_OUT_DUMP = 1 << 3, SD_OUT_H5MD = 1 << 4 };
 
 typedef struct sd_scene_output {
     char directory[SD_SCENE_PATH_MAX]; /* "" = out/<scene file stem> */

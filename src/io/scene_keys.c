@@ -516,10 +516,11 @@ const sd_scene_key sd_scene_keys[] = {
      "steps between frames (the default is at least 1)"},
     {SD_SEC_OUTPUT, "stats_every", SD_KT_INT, SD_KR_ONE, NULL, ALL, 0, "", "every/10",
      "steps between rows of stats.csv (the default is at least 1)"},
-    {SD_SEC_OUTPUT, "formats", SD_KT_ENUM_LIST, SD_KR_ANY, "vtk|csv|shapes|dump", ALL, 0, "", "[vtk, csv]",
+    {SD_SEC_OUTPUT, "formats", SD_KT_ENUM_LIST, SD_KR_ANY, "vtk|csv|shapes|dump|h5md", ALL, 0, "", "[vtk, csv]",
      "what to write: vtk frames, csv statistics, shapes: with each frame the particles' true shapes as "
      "surfaces (shapes_NNNNNN.vtp, implies vtk), dump: with each frame a snapshot appended to "
-     "trajectory.dump, LAMMPS dump text that OVITO and LAMMPS read (docs/output.md)"},
+     "trajectory.dump, LAMMPS dump text, h5md: with each frame a frame appended to trajectory.h5md, the HDF5 "
+     "particle-trajectory standard H5MD (docs/output.md)"},
     {SD_SEC_OUTPUT, "shape_resolution", SD_KT_INT, SD_KR_ONE, NULL, ALL, 0, "", "24",
      "directions per full turn when the shapes files tessellate curved surfaces (8 to 64); flat faces "
      "are drawn exactly"},

@@ -582,7 +582,8 @@ static sd_status sd_parse_output(sd_parse *p, yaml_node_t *root, int line)
                                 : s->output.every / 10;
     if (s->output.stats_every < 1)
         s->output.stats_every = 1;
-    /* The choice order vtk|csv|shapes|dump matches SD_OUT_VTK, SD_OUT_CSV, SD_OUT_SHAPES, SD_OUT_DUMP;
+    /* The choice order vtk|csv|shapes|dump|h5md matches SD_OUT_VTK, SD_OUT_CSV, SD_OUT_SHAPES, SD_OUT_DUMP,
+     * SD_OUT_H5MD;
      * the shapes files go with the frames, so shapes brings vtk. */
     s->output.formats =
         sd_yaml_get(&p->y, out, SD_SEC_OUTPUT, "formats", path, &v) ? v.mask : (SD_OUT_VTK | SD_OUT_CSV);

@@ -2,7 +2,8 @@
 # trajectory_dump.sh — output.formats: [dump] writes trajectory.dump, LAMMPS
 # dump text (docs/output.md), one snapshot per frame:
 # - for plain spheres, convex shapes, composites (periodic in y: bounds
-#   "pp" there), a mesh drum and the planar mode (tests/cli/reader_scenes/),
+#   "pp" there), a mesh drum, the planar mode and spheres inserted during
+#   the run (tests/cli/reader_scenes/),
 #   tests/tools/dump_check.py parses it and finds every snapshot equal to
 #   its particle frame (positions, velocities, spins, radii, orientations);
 # - the same bytes with 1 and 2 threads;
@@ -23,10 +24,10 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 scenes="$root/tests/cli/reader_scenes"
 # scene, time step, periodic axes
-for spec in spheres:1.0e-5: shapes:2.0e-6: composites:1.0e-5:y mesh:7.0e-6: planar:1.0e-5:; do
+for spec in spheres:1.0e-5: shapes:2.0e-6: composites:1.0e-5:y mesh:7.0e-6: planar:1.0e-5: insert:1.0e-5:; do
     IFS=: read -r s dt per <<<"$spec"
     # frames and the dump only; the mesh file (relative to the scene) named from the root
-    sed -e 's/formats: \[vtk, csv, shapes, dump\]/formats: [vtk, dump]/' \
+    sed -e 's/formats: \[[a-z0-9, ]*\]/formats: [vtk, dump]/' \
         -e "s#file: \.\./\.\./\.\./#file: $root/#" "$scenes/$s.yaml" >"$tmp/$s.yaml"
     "$bin" run "$tmp/$s.yaml" --threads 2 --quiet -o "$tmp/$s" >"$tmp/$s.log" 2>&1
     rc=$?

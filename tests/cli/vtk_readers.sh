@@ -3,8 +3,9 @@
 # the library ParaView is built on; scripts/deps.sh), for every kind of
 # scene: plain spheres with a box and a plane, the convex shapes and a
 # polyhedron in a drum, composites with a periodic axis, a turning mesh
-# drum, and the planar mode (tests/cli/reader_scenes/, 20 steps each,
-# frames with true shapes). tests/tools/vtk_readers.py opens frames.pvd and
+# drum, the planar mode and spheres inserted during the run
+# (tests/cli/reader_scenes/, 20 or 40 steps each, frames with true shapes
+# but the last). tests/tools/vtk_readers.py opens frames.pvd and
 # every file it lists, fails on any message VTK gives, and checks counts,
 # arrays and the last frame against the run's checkpoint bit for bit.
 # Skipped (exit 77, ctest's SKIP_RETURN_CODE) where vtk does not import.
@@ -21,7 +22,7 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 scenes="$root/tests/cli/reader_scenes"
 args=()
-for s in spheres shapes composites mesh planar; do
+for s in spheres shapes composites mesh planar insert; do
     "$bin" run "$scenes/$s.yaml" --threads 2 --quiet -o "$tmp/$s" >"$tmp/$s.log" 2>&1
     rc=$?
     check "$s.yaml runs (rc $rc)" "$((rc == 0))" "$(tail -3 "$tmp/$s.log")"
