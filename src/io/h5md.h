@@ -1,6 +1,6 @@
 /* h5md.h — the trajectory as an H5MD file (trajectory.h5md): HDF5 in the
- * layout of H5MD 1.1, the particle-trajectory standard that VMD's and
- * MDAnalysis's H5MD readers and h5py open (docs/output.md).
+ * layout of H5MD 1.1, the particle-trajectory standard (docs/output.md;
+ * cli.trajectory_h5md reads it with h5py).
  *
  * Invariant: every time-dependent element of /particles/all has as many
  * rows as the step and time datasets it shares with the others, one a
