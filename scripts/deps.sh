@@ -27,6 +27,9 @@ set -euo pipefail
 # python3-vtk9: VTK's own XML readers (the library ParaView is built on),
 # with which cli.vtk_readers opens a run's frames.pvd, particle, wall and
 # shape files (skipped without it).
+# python3-dev, python3-numpy, python3-pytest: the Python binding (python/,
+# docs/python.md), built in C against Debian's interpreter and its numpy,
+# and its pytest suite (the python.* tests).
 # libcairo2-dev: `shapedem render` (src/render/) draws frames headless into
 # PNG files with cairo's image surfaces (the build leaves render out without it).
 # openmpi-bin, libopenmpi-dev: the MPI decomposition (shapedem-mpi, docs/mpi.md);
@@ -36,7 +39,7 @@ set -euo pipefail
 need_pkgs=(build-essential cmake pkg-config libyaml-dev libhdf5-dev libccd-dev libqhull-dev
   python3 python3-matplotlib python3-h5py git clang libclang-rt-dev valgrind libmpfr-dev
   libcairo2-dev openmpi-bin libopenmpi-dev libhdf5-openmpi-dev
-  python3-vtk9)
+  python3-vtk9 python3-dev python3-numpy python3-pytest)
 if [[ "${SHAPEDEM_WITH_BENCH:-0}" == 1 ]]; then
   need_pkgs+=(liggghts)
 fi

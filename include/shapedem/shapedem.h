@@ -654,6 +654,41 @@ sd_status sd_world_get_field(const sd_world *w, sd_field field, const uint64_t *
 sd_status sd_world_set_field(sd_world *w, sd_field field, const uint64_t *ids, size_t n, const double *values,
                              size_t values_len, sd_error *err);
 
+/* ---- the particle arrays themselves (zero-copy views) -------------------------
+ * The cells solver's particle arrays in storage order, for a reader that
+ * must not copy (the Python binding's numpy views): pointers to the
+ * owned particles' values (ghosts are not included), valid until the
+ * world's generation changes. The generation counts every change of
+ * where the arrays are or which particle a slot holds: growth, added
+ * particles, each pair-list rebuild (which reorders, so nearly every
+ * sd_world_step and sd_world_prepare), a removal (outlets), a checkpoint
+ * restore. sd_world_set_field writes in place and keeps it. A reader
+ * compares sd_world_generation with the view's before each read and takes
+ * a new view when they differ; the id array beside the values says which
+ * particle each row is. Read only: writes go through sd_world_set_field,
+ * which keeps the engine's invariants. */
+typedef struct sd_state_view {
+    uint64_t generation;      /* sd_world_generation when the view was taken */
+    size_t n;                 /* owned particles: rows of every array below */
+    const double *position;   /* m, 3 per particle */
+    const double *velocity;   /* m/s, 3 */
+    const double *angular_velocity; /* rad/s, 3, world frame */
+    const double *orientation;      /* (w, x, y, z), 4 */
+    const double *force;      /* N, 3, of the last step */
+    const double *torque;     /* N m, 3, of the last step */
+    const double *radius;     /* m, 1 (the bounding radius of a shaped body) */
+    const int32_t *material;  /* material index */
+    const int32_t *shape;     /* template index, -1 for a plain sphere */
+    const uint64_t *id;       /* stable id */
+} sd_state_view;
+
+/* The generation of the world's particle arrays (0 for a NULL world). */
+uint64_t sd_world_generation(const sd_world *w);
+/* Fills *out (zeroed on failure). SD_ERR_INPUT for the grid solver, whose
+ * particles live in its grid (use sd_world_get_field), and for a build
+ * with single-precision reals. The pointers are NULL when n is 0. */
+sd_status sd_world_state_view(const sd_world *w, sd_state_view *out, sd_error *err);
+
 typedef struct sd_stats {
     double time;              /* s */
     long step;

@@ -119,6 +119,7 @@ static size_t sd_rows_keep(sd_particles *p, size_t first, const int *dest, int r
         ++keep;
     }
     p->n = keep;
+    ++p->generation;
     return keep;
 }
 

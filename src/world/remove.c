@@ -135,6 +135,7 @@ sd_status sd_world_remove_particles(sd_world *w, const uint8_t *mark, sd_remove_
         w->ghost_shift[gn] = w->ghost_shift[g];
     }
     p->n = n_new;
+    ++p->generation;
     w->n_ghost = ng_new;
     sd_remove_compact_pairs(&w->pairs, map);
     sd_remove_compact_wall_pairs(&w->wpairs, map);

@@ -330,6 +330,7 @@ sd_status sd_cells_state(sd_world *w, sd_state_table *t, sd_error *err)
             return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory for %zu mesh triangles", ntri);
         wl->tri_n = ntri;
         p->n = n;
+        ++p->generation;
         w->n_ghost = ng;
         l->n = np;
         wl->n = nwp;

@@ -117,6 +117,7 @@ sd_status sd_particles_reserve(sd_particles *p, size_t cap)
     SD_PARTICLE_FIELDS(SD_X_GROW)
 #undef SD_X_GROW
     p->cap = cap;
+    ++p->generation;
     return SD_OK;
 }
 
@@ -125,7 +126,9 @@ void sd_particles_free(sd_particles *p)
 #define SD_X_FREE(type, name, ...) sd_free(p->name);
     SD_PARTICLE_FIELDS(SD_X_FREE)
 #undef SD_X_FREE
+    uint64_t generation = p->generation + 1;
     memset(p, 0, sizeof *p);
+    p->generation = generation;
 }
 
 void sd_particles_init(sd_particles *p, size_t e, uint64_t id)
@@ -134,6 +137,7 @@ void sd_particles_init(sd_particles *p, size_t e, uint64_t id)
     SD_PARTICLE_FIELDS(SD_X_INIT)
 #undef SD_X_INIT
     p->id[e] = id;
+    ++p->generation;
 }
 
 void sd_particles_permute(sd_particles *p, const uint32_t *perm, void *scratch, int threads, int parallel)
@@ -148,6 +152,7 @@ void sd_particles_permute(sd_particles *p, const uint32_t *perm, void *scratch, 
     }
     SD_PARTICLE_FIELDS(SD_X_PERMUTE)
 #undef SD_X_PERMUTE
+    ++p->generation;
 }
 
 /* ---- world ------------------------------------------------------------------------ */

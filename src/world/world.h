@@ -49,6 +49,11 @@
 
 typedef struct sd_particles {
     size_t n, cap;
+    /* counts every change of where the arrays are or what slot holds whom:
+     * growth (realloc), an added slot, the rebuild's permutation, a removal,
+     * a restore, an MPI migration; never reset (sd_particles_free keeps it),
+     * so a zero-copy view (sd_world_state_view) knows it went stale */
+    uint64_t generation;
 #define SD_X_FIELD(type, name, ...) type *name;
     SD_PARTICLE_FIELDS(SD_X_FIELD)
 #undef SD_X_FIELD

@@ -4,7 +4,8 @@
 # spaces outside ``` fences) are read in order; a block of C (lines ending
 # in ; { or }) or the layout listing (first word a directory) is not a
 # command block; any other line must start with a command this test knows
-# (bash, build/shapedem, python3, mpirun, cc, cmake, make, bench/run), so a
+# (bash, build/shapedem, python3, PYTHONPATH=build/python python3, mpirun,
+# cc, cmake, make, bench/run), so a
 # new README line cannot slip past it. They run in a temporary directory
 # with copies of examples/ and scripts/ (the analysis scripts write their
 # pictures into ../docs/examples/ beside themselves: here an empty folder,
@@ -117,7 +118,7 @@ while IFS=$'\t' read -r no line; do
         ((rc == 0)) || tail -5 "$tmp/out"
         check "$name: exits 0 (got $rc)" "$((rc == 0))"
         ;;
-    bash | build/shapedem | python3 | cc)
+    bash | build/shapedem | python3 | cc | PYTHONPATH=build/python)
         run_line "$line"
         rc=$?
         if [[ $steps != full && $line == "python3 examples/hopper-grid-analyse.py "* ]]; then

@@ -461,6 +461,12 @@ static void exercise(sd_world *w, const char *state, int grid)
     FAILS(sd_world_get_field(w, SD_FIELD_RADIUS, &absent, 1, vals, 1, &e));
     free(ids);
     free(vals);
+    /* the zero-copy view: the cells solver's arrays, the grid's refused */
+    sd_state_view sv;
+    sd_status vs = API(sd_world_state_view)(w, &sv, &e);
+    CHECK(grid ? vs == SD_ERR_INPUT && sv.n == 0 : vs == SD_OK && sv.n == np);
+    CHECK(grid || sv.generation == API(sd_world_generation)(w));
+    FAILS(sd_world_state_view(w, NULL, &e));
 
     /* the checkpoint calls with no file to write or read */
     FAILS(API(sd_checkpoint_write)(w, NULL, &e));
@@ -608,6 +614,10 @@ static void null_handles(void)
     FAILS(sd_world_get_ids(NULL, ids, 0, &e));
     FAILS(sd_world_get_field(NULL, SD_FIELD_POSITION, NULL, 0, vals, 0, &e));
     FAILS(sd_world_set_field(NULL, SD_FIELD_POSITION, NULL, 0, vals, 0, &e));
+    sd_state_view sv;
+    FAILS(sd_world_state_view(NULL, &sv, &e));
+    CHECK(sv.n == 0 && sv.position == NULL);
+    CHECK(sd_world_generation(NULL) == 0);
 
     /* process and analysis */
     sd_insert_def ins = sd_insert_def_default();
