@@ -821,8 +821,9 @@ SD_HD static SD_INLINE void sd_item_mesh_scale(sd_pair_result *r, sd_real w, sd_
  * delta (m), gives way (returns 1) when some group Y across a convex edge
  * of X's near triangles tl (nt) holds the body less deep (ties: the
  * lower group index keeps it). Y makes that contact itself: it is within
- * reach, since its edge is. Depths are the support depths of c under each
- * plane (contact/'s plane contact). */
+ * reach, since its edge is (and the centre is in front of it, where its
+ * part is closed: sd_mesh_front). Depths are the support depths of c under
+ * each plane (contact/'s plane contact). */
 SD_HD static SD_INLINE int sd_item_mesh_ridge_yields(const sd_mesh_view *m, const sd_wall_geom *wg, uint32_t gr,
                                                      const uint32_t *tl, uint32_t nt, const sd_convex *c,
                                                      sd_real delta)
@@ -845,6 +846,9 @@ SD_HD static SD_INLINE int sd_item_mesh_ridge_yields(const sd_mesh_view *m, cons
                 continue;
             if (ns < SEEN)
                 seen[ns++] = gy;
+            /* Y makes no contact with a centre behind it on a closed part (the thin-wall rule) */
+            if (!sd_mesh_front_at(m, wg, gy, &nb, 1, c->x))
+                continue;
             sd_vec3 p0, nw;
             sd_mesh_group_plane(m, wg, gy, &p0, &nw);
             sd_contact_geom g;
@@ -887,8 +891,9 @@ SD_HD static SD_INLINE int sd_item_wall_element_geom(const sd_step_view *v, cons
         sd_mesh_group_plane(m, &wl->g, o->sub[e], p0, nw);
         *has_plane = 1;
         sd_narrow_count ns;
-        if (!sd_convex_wall_geom(c, *p0, *nw, g, &ns))
-            return 0;
+        if (!sd_mesh_front_at(m, &wl->g, o->sub[e], o->tri + o->tstart[e], o->tcount[e], c->x) ||
+            !sd_convex_wall_geom(c, *p0, *nw, g, &ns))
+            return 0; /* behind a closed part's face (the thin-wall rule), or apart */
         /* the rim rule for elements as for whole bodies (issue 30): beyond
          * a free edge, the edge's contact and its tangent plane */
         if (sd_mesh_beyond_rim(m, &wl->g, o->sub[e], o->tri + o->tstart[e], o->tcount[e], c)) {
@@ -953,8 +958,11 @@ SD_HD static SD_INLINE int sd_item_wall_element_volume_geom(const sd_step_view *
         return 1;
     }
     if (wl->g.kind == SD_WALL_MESH) {
-        /* the ridge rule on the support depths, as sd_item_mesh_poly_volume */
+        /* the thin-wall rule, then the ridge rule on the support depths, as
+         * sd_item_mesh_poly_volume */
         const sd_mesh_view *m = &v->meshes[wl->g.mesh];
+        if (!sd_mesh_front_at(m, &wl->g, o->sub[e], o->tri + o->tstart[e], o->tcount[e], c->x))
+            return 0;
         sd_contact_geom gx;
         sd_narrow_count cnt;
         if (sd_convex_wall_geom(c, p0, nw, &gx, &cnt) &&
@@ -1210,7 +1218,8 @@ SD_HD static SD_INLINE void sd_item_mesh_convex(const sd_step_view *v, sd_wall_p
     sd_narrow_count ns;
     sd_real req = v->shape_req[v->shape[i]];
     sd_real arm = SD_R(0.0);
-    int touching = sd_convex_wall_geom_twist(&c, p0, nw, &g, &ns, &arm);
+    int touching = sd_mesh_front_at(m, &wl->g, o->sub[e], o->tri + o->tstart[e], o->tcount[e], a.x) &&
+                   sd_convex_wall_geom_twist(&c, p0, nw, &g, &ns, &arm);
     sd_real wgt = SD_R(0.0);
     sd_vec3 shift = sd_v3_zero();
     const uint32_t *tl = o->tri + o->tstart[e];
@@ -1251,8 +1260,9 @@ SD_HD static SD_INLINE void sd_item_mesh_poly_volume(const sd_step_view *v, sd_w
     int s = v->shape[i];
     sd_vec3 point = a.x;
     sd_pair_result r;
-    if (s < 0 || !sd_shape_is_sharp_polyhedron(&v->shapes[s])) {
-        r = sd_pair_none(&o->ds[e]);
+    if (s < 0 || !sd_shape_is_sharp_polyhedron(&v->shapes[s]) ||
+        !sd_mesh_front_at(m, &wl->g, o->sub[e], o->tri + o->tstart[e], o->tcount[e], a.x)) {
+        r = sd_pair_none(&o->ds[e]); /* (or behind a closed part's face: the thin-wall rule) */
     } else {
         sd_vec3 p0, nw;
         sd_mesh_group_plane(m, &wl->g, o->sub[e], &p0, &nw);
@@ -1316,7 +1326,7 @@ SD_HD static SD_INLINE void sd_item_mesh_convex2d(const sd_step_view *v, sd_wall
     sd_real nl = sd_sqrt(nw.x * nw.x + nw.y * nw.y);
     sd_contact_geom g;
     int touching = 0;
-    if (nl > SD_R(1e-9)) {
+    if (nl > SD_R(1e-9) && sd_mesh_front_at(m, &wl->g, o->sub[e], o->tri + o->tstart[e], o->tcount[e], a.x)) {
         sd_vec2 n2 = sd_v2(nw.x / nl, nw.y / nl);
         /* the point of the plane's trace nearest the origin's foot: n . x = n . p0 at z = 0 */
         sd_real off = sd_v3_dot(nw, p0) / nl;

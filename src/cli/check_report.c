@@ -653,6 +653,27 @@ int sd_check_print_dt(FILE *f, const sd_world *w)
     int n = 0;
     if (isfinite(r.recommended))
         fprintf(f, "dt limit     the recommended step is set by: %s\n", r.limit);
+    if (r.mesh_radius > 0) {
+        /* the thin-wall rule (docs/mesh-walls.md): a closed mesh part of any
+         * thickness holds a particle while its centre stays in front of the
+         * face it entered, i.e. its overlap below its radius */
+        double pct = 100 * r.mesh_depth / r.mesh_radius, lim = r.guard > 0 && r.guard < 1 ? r.guard : 1;
+        fprintf(f,
+                "mesh walls   an impact at %.3g m/s (the speed of the contact estimate) sinks a particle of radius %.3g m by %.3g m, "
+                "%.0f %% of its radius (elastic): a closed mesh part of any thickness holds it while that stays "
+                "below 100 %%%s\n",
+                r.speed, r.mesh_radius, r.mesh_depth, pct,
+                r.guard > 0 ? "; the overlap guard stops a run deeper than simulation.max_overlap" : "");
+        if (pct >= 100 * lim) {
+            fprintf(f,
+                    "warning      an impact at %.3g m/s overlaps a particle by %.0f %% of its radius on a mesh wall, "
+                    "beyond %s: %s; raise the stiffness or lower the speed\n",
+                    r.speed, pct, r.guard > 0 && r.guard < 1 ? "the overlap guard's limit" : "its radius",
+                    r.guard > 0 && r.guard < 1 ? "the run will stop there"
+                                               : "it may pass through a mesh part thinner than its size");
+            n++;
+        }
+    }
     if (r.volume_skipped) {
         fprintf(f, "warning      out of memory: the volume-law time-step estimates were not made, so the "
                    "recommended step leaves out the sharp polyhedra's face contacts\n");

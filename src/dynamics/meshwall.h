@@ -34,7 +34,7 @@ typedef struct sd_mesh_view {
     const sd_vec3 *verts;          /* m, mesh frame */
     const uint32_t (*tris)[3];
     const uint32_t *group;         /* plane group of each triangle */
-    const uint8_t *flags;          /* SD_TRIMESH_EDGE(k), SD_TRIMESH_CORNER(k) of geom/trimesh.h */
+    const uint8_t *flags;          /* SD_TRIMESH_EDGE(k), SD_TRIMESH_CORNER(k), SD_TRIMESH_CLOSED of geom/trimesh.h */
     const uint32_t (*nbr)[3];      /* triangle across edge k, UINT32_MAX: none (boundary, non-manifold) */
     const sd_vec3 *group_normal;   /* unit, mesh frame, towards the particle side */
     const sd_real *group_offset;   /* m: n . x = offset */
@@ -50,6 +50,7 @@ typedef struct sd_mesh_view {
  * (the marks of geom/trimesh.h, repeated so device code needs no host header). */
 #define SD_MESH_EDGE_BIT(k) (1u << (k))
 #define SD_MESH_CORNER_BIT(k) (1u << (3 + (k)))
+#define SD_MESH_CLOSED_BIT (1u << 6) /* the triangle's part is closed (SD_TRIMESH_CLOSED) */
 
 SD_HD static SD_INLINE sd_vec3 sd_mesh_to_frame(sd_quat q, sd_vec3 trans, sd_vec3 x)
 {

@@ -462,6 +462,8 @@ sd_status sd_trimesh_build_side(const sd_v3d *v, size_t nv, const uint32_t (*t)[
         if ((vol > 0.0) != (side == SD_TRIMESH_OUTSIDE))
             for (size_t q = 0; q < qt; ++q)
                 flip[queue[q]] ^= 2; /* the global turn, not counted */
+        for (size_t q = 0; q < qt; ++q)
+            flip[queue[q]] |= 4; /* a closed part (SD_TRIMESH_CLOSED below; not a turn) */
     }
     for (size_t j = 0; j < n; ++j) {
         int f = (flip[j] & 1) ^ ((flip[j] >> 1) & 1);
@@ -598,6 +600,9 @@ sd_status sd_trimesh_build_side(const sd_v3d *v, size_t nv, const uint32_t (*t)[
         }
         s = r;
     }
+    for (size_t j = 0; j < n; ++j)
+        if (flip[j] & 4)
+            out->flags[j] |= (uint8_t)SD_TRIMESH_CLOSED;
     for (size_t j = 0; j < n; ++j)
         for (int k = 0; k < 3; ++k)
             if (vactive[tri[j][k]] == 1) {

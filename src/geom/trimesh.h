@@ -39,7 +39,10 @@
  *       concave surroundings), when it is inactive on all of them.
  *     An inactive edge or corner must not make a contact of its own: the
  *     facet faces next to it do, so a body crossing a flat or concave seam
- *     feels the forces of the faces only.
+ *     feels the forces of the faces only;
+ *  6. the triangles of closed parts are marked SD_TRIMESH_CLOSED: behind
+ *     each lies the part's solid, so a particle whose centre is behind one
+ *     came through the part (the thin-wall rule, geom/mesh_contact.h).
  *
  * Invariant: on SD_OK every output array is allocated (sd_malloc), every
  * index is < vertex_count, every triangle has three distinct vertices and
@@ -60,6 +63,7 @@
 
 #define SD_TRIMESH_EDGE(k)   (1u << (k))       /* edge corner k -> k+1 (mod 3) active on this triangle */
 #define SD_TRIMESH_CORNER(k) (1u << (3 + (k))) /* corner k active on this triangle */
+#define SD_TRIMESH_CLOSED    (1u << 6)         /* the triangle's part is closed: behind it lies the part's solid */
 
 /* The side particles are on, for closed parts of a mesh. */
 enum { SD_TRIMESH_INSIDE = 1, SD_TRIMESH_OUTSIDE = -1 };
@@ -72,7 +76,7 @@ typedef struct sd_trimesh {
     uint32_t (*triangles)[3];
     /* plane group of each triangle: connected (through shared edges) coplanar facets */
     uint32_t *group;
-    /* per triangle: SD_TRIMESH_EDGE(k), SD_TRIMESH_CORNER(k) */
+    /* per triangle: SD_TRIMESH_EDGE(k), SD_TRIMESH_CORNER(k), SD_TRIMESH_CLOSED */
     uint8_t *flags;
     /* unit normal of each plane group (the particle side; closed meshes: inward by default) */
     sd_vec3 *group_normal;

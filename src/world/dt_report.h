@@ -29,6 +29,10 @@ typedef struct sd_dt_report {
     int rest_inside;       /* the resting face sits inside the regularised range at the world's dt */
     int volume_skipped;    /* out of memory: the volume-law estimates were not made (the fields
                               above and the recommended step leave them out) */
+    double mesh_depth;     /* m, the deepest overlap of an elastic impact at `speed` on a mesh wall (the
+                              smallest particle of each material, Hertz or linear law; 0: none) */
+    double mesh_radius;    /* m, that particle's radius (bounding radius for shapes) */
+    double guard;          /* simulation.max_overlap: the overlap guard's fraction of the radius (0: off) */
 } sd_dt_report;
 void sd_world_dt_report(const sd_world *w, sd_dt_report *r);
 

@@ -409,6 +409,20 @@ static double sd_contact_duration(const sd_pair_params *p, double m_star, double
     return 2.87 * pow(m_star * m_star / (r_star * y * y * v), 0.2);
 }
 
+/* The deepest overlap (m) of a body of mass m, radius r landing at speed v
+ * on a flat wall, elastic (damping only makes it shallower): the work of
+ * the normal force equals m v^2 / 2, Hertz (8/15) Y* sqrt(r) d^(5/2) or
+ * linear k_n d^2 / 2. 0 for the volume laws (their landing is above). */
+static double sd_impact_depth(const sd_pair_params *p, double m, double r, double v)
+{
+    unsigned t = sd_law_traits(p->law);
+    if (t & SD_LAW_IS_LINEAR)
+        return v * sqrt(m / (double)p->kn);
+    if (t & SD_LAW_IS_HERTZ)
+        return pow(15.0 * m * v * v / (16.0 * (double)p->y_star * sqrt(r)), 0.4);
+    return 0.0;
+}
+
 /* Keeps the smaller of *best and t, and what it is. */
 static void sd_dt_keep(double *best, const char **what, double t, const char *name)
 {
@@ -424,6 +438,7 @@ void sd_world_dt_report(const sd_world *w, sd_dt_report *r)
     r->recommended = r->contact = INFINITY;
     r->limit = "no contact can form";
     r->onset_depth = r->rest_dt = r->seed_impact = INFINITY;
+    r->guard = w->def.max_overlap;
     const sd_particles *p = &w->p;
     size_t nm = w->material_count;
     double tc_min = INFINITY, rayleigh_min = INFINITY;
@@ -570,9 +585,11 @@ void sd_world_dt_report(const sd_world *w, sd_dt_report *r)
                 continue;
             if (sd_law_traits(pp->law) & SD_LAW_IS_VOLUME)
                 continue; /* above */
-            int wall_b = 0;
-            for (size_t k = 0; k < w->wall_count; ++k)
+            int wall_b = 0, mesh_b = 0;
+            for (size_t k = 0; k < w->wall_count; ++k) {
                 wall_b |= w->walls[k].material == (int)b;
+                mesh_b |= w->walls[k].material == (int)b && w->walls[k].kind == SD_WALL_MESH;
+            }
             if (isfinite(rmin[b])) {
                 double ms = mmin[a] * mmin[b] / (mmin[a] + mmin[b]);
                 double rs = rmin[a] * rmin[b] / (rmin[a] + rmin[b]);
@@ -580,6 +597,14 @@ void sd_world_dt_report(const sd_world *w, sd_dt_report *r)
             }
             if (wall_b)
                 tc_min = fmin(tc_min, sd_contact_duration(pp, mmin[a], rmin[a], v));
+            if (mesh_b && isfinite(mmin[a])) {
+                /* the thin-wall rule's margin (geom/mesh_contact.h, sd_mesh_front) */
+                double d = sd_impact_depth(pp, mmin[a], rmin[a], v);
+                if (r->mesh_radius == 0 || d / rmin[a] > r->mesh_depth / r->mesh_radius) {
+                    r->mesh_depth = d;
+                    r->mesh_radius = rmin[a];
+                }
+            }
         }
     }
     r->contact = tc_min;

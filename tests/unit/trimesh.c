@@ -96,6 +96,8 @@ static void sd_test_weld(void)
     sd_count(&m, &e, &c);
     CHECK(e == 4 && c == 4); /* the diagonal is inside the group; 4 boundary edges, 4 corners */
     CHECK(fabs(m.group_normal[0].z - 1.0) < 1e-15 && fabs(m.group_offset[0]) < 1e-15);
+    /* an open sheet: no facet marked closed (the thin-wall rule leaves it alone) */
+    CHECK(!(m.flags[0] & SD_TRIMESH_CLOSED) && !(m.flags[1] & SD_TRIMESH_CLOSED));
     sd_trimesh_free(&m);
     /* a gap of 1e-3 with a weld tolerance of 1e-4: not welded, the two facets apart */
     v[4] = sd_test_v(1, 1 + 1e-3, 0);
@@ -207,6 +209,7 @@ static void sd_test_cube(void)
         CHECK(sd_v3_dot(n, sd_v3_sub(sd_v3(0.5, 0.5, 0.5), a)) > 0.49);
         sd_vec3 g = m.group_normal[m.group[j]];
         CHECK(sd_v3_dot(g, n) > 1.0 - 1e-15 && fabs(sd_v3_dot(g, a) - m.group_offset[m.group[j]]) < 1e-15);
+        CHECK(m.flags[j] & SD_TRIMESH_CLOSED); /* behind every facet: the part's solid */
     }
     sd_trimesh_free(&m);
     /* as an obstacle: particles outside; 12 convex edges active once, 8 corners once */
