@@ -39,7 +39,8 @@
       "diameter length, one on the axis and 8 on a ring touching the mantle (overlapping: lattice)")          \
     X(SD_COMP_SPHERES54, "spheres54",                                                                          \
       "glued-sphere cylinder of seed 004 Fig. 10, diameter and length: two layers of 27 spheres of "          \
-      "diameter length/2 (1 on the axis, rings of 8 and 18, the outer touching the mantle; lattice)")
+      "radius 0.264 length flush with the ends (1 on the axis, rings of 8 and 18, the outer touching the "      \
+      "mantle; lattice)")
 
 typedef enum sd_comp_preset {
 #define SD_X_ENUM(e, name, doc) e,

@@ -29,8 +29,9 @@
  *     At 0 and 90 deg a face or a line lands flat, where eqs. 22-23's
  *     single rim point does not apply (validation.cylinder_impact says
  *     why): both rebound at e_n V within 0.5 % without spin (1e-9 rad/s).
- *  3. glued-sphere cylinders of 9 and 54 spheres (Fig. 10, Table 2): run
- *     and their deviation from the true cylinder printed, not asserted
+ *  3. glued-sphere cylinders of 9 and 54 spheres (Fig. 10, Table 2: the
+ *     spheres9 and spheres54 presets): run and their deviation from the
+ *     true cylinder printed, not asserted
  *     (seed 004 finds them "markedly off" away from 0 and 90 deg).
  */
 #include <stdlib.h>
@@ -52,48 +53,6 @@ typedef struct model {
     int n;              /* slices, or spheres (9 or 54) */
     int multi_contact;  /* SD_MULTI_CONTACT_* */
 } model;
-
-/* Glued-sphere cylinders in the spirit of seed 004 Fig. 10 (our own
- * layouts: the paper gives counts, not positions), all flush with the end
- * faces and the rim. 9: three layers of three mutually touching spheres of
- * radius r (2 sqrt 3 - 3), the layers overlapping; 54: three layers of 18
- * spheres of radius L/6 (a centre one, a ring of 6, a ring of 11 at the
- * rim). Overlaps go to the lattice of the composite's mass properties.
- * Writes the elements, returns their count and the radius in *radius. */
-static size_t sphere_layout(int n, int shape, sd_composite_element *el, double *radius)
-{
-    size_t k = 0;
-    double h = 0.5 * L, r = 0.5 * D;
-    if (n == 9) {
-        double a = r * (2 * sqrt(3.0) - 3);
-        *radius = a;
-        for (int lz = 0; lz < 3; ++lz)
-            for (int t = 0; t < 3; ++t) {
-                double ang = 2 * PI * t / 3.0, rr = r - a;
-                memset(&el[k], 0, sizeof el[k]);
-                el[k].shape = shape;
-                el[k].position = sd_test_v(rr * cos(ang), rr * sin(ang), (lz - 1) * (h - a));
-                ++k;
-            }
-        return k;
-    }
-    double a = L / 6.0;
-    *radius = a;
-    for (int lz = 0; lz < 3; ++lz) {
-        double z = (lz - 1) * 2 * a;
-        static const int ring[3] = {1, 6, 11};
-        double rad[3] = {0, 2 * a, r - a};
-        for (int g = 0; g < 3; ++g)
-            for (int t = 0; t < ring[g]; ++t) {
-                double ang = 2 * PI * t / ring[g];
-                memset(&el[k], 0, sizeof el[k]);
-                el[k].shape = shape;
-                el[k].position = sd_test_v(rad[g] * cos(ang), rad[g] * sin(ang), z);
-                ++k;
-            }
-    }
-    return k;
-}
 
 static outcome simulate(double theta, model md)
 {
@@ -134,17 +93,13 @@ static outcome simulate(double theta, model md)
         cd.element_count = (size_t)md.n;
         shape = sd_world_add_composite(w, "glued", &cd, &err);
     } else {
-        s.kind = "sphere";
-        s.size = sd_test_v(md.n == 9 ? 0.5 * D * (2 * sqrt(3.0) - 3) : L / 6.0, 0, 0);
-        int sph = sd_world_add_shape(w, "ball", &s, &err);
-        sd_test_require(sph >= 0, "sphere element", &err);
-        sd_composite_element el[64];
-        double radius;
-        size_t n = sphere_layout(md.n, sph, el, &radius);
-        sd_composite_desc cd = sd_composite_desc_default();
-        cd.elements = el;
-        cd.element_count = n;
-        shape = sd_world_add_composite(w, "glued-spheres", &cd, &err);
+        /* the presets of seed 004 Fig. 10 (shape/complib.c; their volumes
+         * against Table 2: unit.composite) */
+        sd_composite_preset_def pd = sd_composite_preset_def_default();
+        pd.preset = md.n == 9 ? "spheres9" : "spheres54";
+        pd.diameter = D;
+        pd.length = L;
+        shape = sd_world_add_composite_preset(w, "glued-spheres", &pd, &err);
     }
     sd_test_require(shape >= 0, "shape", &err);
     sd_world_add_plane(w, "wall", sd_test_v(0, 0, 0), sd_test_v(0, 0, 1), mat, &err);
