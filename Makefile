@@ -12,7 +12,7 @@ FUZZ_TARGETS ?=
 SAN_BUILD    ?= build-asan
 CTEST_FLAGS  ?=
 
-.PHONY: all deps configure build test demo bench clean docs format fuzz test-sanitize
+.PHONY: all deps configure build test demo bench clean docs format fuzz test-sanitize validate
 
 all: build
 
@@ -27,6 +27,15 @@ build: configure
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+# `make validate`: the long tier (docs/validation/README.md), hours on 2
+# cores; CASES="packing_six hopper_dead_zone" picks cases, QUICK=1 runs
+# their short forms (minutes), which write nothing into docs/.
+CASES ?=
+QUICK ?=
+validate: configure
+	cmake --build $(BUILD) -j $(JOBS) --target shapedem
+	bash validate/run $(BUILD) $(if $(QUICK),--quick) $(CASES)
 
 fuzz: deps
 	cmake -S . -B $(FUZZ_BUILD) -DCMAKE_C_COMPILER=clang -DCMAKE_BUILD_TYPE=RelWithDebInfo \

@@ -18,17 +18,7 @@ root="$2"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 scene="$tmp/hopper-short.yaml"
-sed -e 's/dt: 5.0e-6 .*/dt: 4.0e-5/' \
-    -e 's/duration: 14.0 .*/duration: 6.0/' \
-    -e 's/max: \[0.20, 0.04, 0.40\]/max: [0.10, 0.0135, 0.25]/' \
-    -e 's/fill_height: 0.36 .*/fill_height: 0.15/' \
-    -e 's/height: 0.392 .*/height: 0.22/' \
-    -e 's/min: \[0.08, 0.0\] .*/min: [0.035, 0.0]/' \
-    -e 's/max: \[0.12, 0.04\]/max: [0.065, 0.0135]/' \
-    -e 's/open_at: 6.5 .*/open_at: 3.2/' \
-    -e 's/every: 100000 .*/every: 150000/' \
-    -e 's/stats_every: 2000 .*/stats_every: 250/' \
-    "$root/examples/hopper-grid.yaml" >"$scene"
+sed -f "$root/validate/cases/hopper_dead_zone/slice.sed" "$root/examples/hopper-grid.yaml" >"$scene"
 # the edits above must all have applied (the example changed otherwise)
 for want in "dt: 4.0e-5" "duration: 6.0" "0.10, 0.0135, 0.25" "fill_height: 0.15" "height: 0.22" \
     "0.035, 0.0" "0.065, 0.0135" "open_at: 3.2" "every: 150000" "stats_every: 250"; do
