@@ -49,6 +49,7 @@
 #include "contact/pair_poly.h"
 #include "dynamics/walls.h"
 #include "geom/mesh_contact.h"
+#include "geom/mesh_contact2d.h"
 
 /* ---- views of one particle ----------------------------------------------- */
 
@@ -828,34 +829,19 @@ SD_HD static SD_INLINE int sd_item_mesh_ridge_yields(const sd_mesh_view *m, cons
                                                      const uint32_t *tl, uint32_t nt, const sd_convex *c,
                                                      sd_real delta)
 {
-    if (!m->nbr)
-        return 0;
-    enum { SEEN = 8 };
-    uint32_t seen[SEEN];
-    int ns = 0;
-    for (uint32_t k = 0; k < nt; ++k)
-        for (int q = 0; q < 3; ++q) {
-            uint32_t nb = m->nbr[tl[k]][q];
-            if (nb == UINT32_MAX || m->group[nb] == gr)
-                continue;
-            uint32_t gy = m->group[nb];
-            int dup = 0;
-            for (int s = 0; s < ns; ++s)
-                dup |= seen[s] == gy;
-            if (dup || !sd_mesh_edge_convex(m, tl[k], q, nb))
-                continue;
-            if (ns < SEEN)
-                seen[ns++] = gy;
-            /* Y makes no contact with a centre behind it on a closed part (the thin-wall rule) */
-            if (!sd_mesh_front_at(m, wg, gy, &nb, 1, c->x))
-                continue;
-            sd_vec3 p0, nw;
-            sd_mesh_group_plane(m, wg, gy, &p0, &nw);
-            sd_contact_geom g;
-            sd_narrow_count cnt;
-            if (sd_convex_wall_geom(c, p0, nw, &g, &cnt) && (g.delta < delta || (g.delta == delta && gy < gr)))
-                return 1;
-        }
+    sd_mesh_ridge_walk rw;
+    sd_mesh_ridge_start(&rw);
+    for (uint32_t gy; (gy = sd_mesh_ridge_next(m, gr, tl, nt, &rw)) != UINT32_MAX;) {
+        /* Y makes no contact with a centre behind it on a closed part (the thin-wall rule) */
+        if (!sd_mesh_front_at(m, wg, gy, &rw.nb, 1, c->x))
+            continue;
+        sd_vec3 p0, nw;
+        sd_mesh_group_plane(m, wg, gy, &p0, &nw);
+        sd_contact_geom g;
+        sd_narrow_count cnt;
+        if (sd_convex_wall_geom(c, p0, nw, &g, &cnt) && (g.delta < delta || (g.delta == delta && gy < gr)))
+            return 1;
+    }
     return 0;
 }
 
@@ -1308,42 +1294,54 @@ SD_HD static SD_INLINE void sd_item_mesh_poly_volume(const sd_step_view *v, sd_w
     sd_item_wall_store(o, e, point, &r);
 }
 
+/* The ridge rule of the planar mode (issue 30): the contact of body c with
+ * group gr, depth delta (m), gives way (1) when some group across a
+ * convex edge of gr's near triangles tl (nt) has a line the body sinks
+ * less deep into (ties: the lower group index keeps it). */
+SD_HD static SD_INLINE int sd_item_mesh2d_ridge_yields(const sd_mesh_view *m, const sd_wall_geom *wg, uint32_t gr,
+                                                       const uint32_t *tl, uint32_t nt, const sd_convex2d *c,
+                                                       sd_real delta)
+{
+    sd_mesh_ridge_walk rw;
+    sd_mesh_ridge_start(&rw);
+    for (uint32_t gy; (gy = sd_mesh_ridge_next(m, gr, tl, nt, &rw)) != UINT32_MAX;) {
+        sd_vec2 l0, n2;
+        sd_contact_geom g;
+        if (sd_mesh2d_group_line(m, wg, gy, &l0, &n2) && sd_convex2d_wall_geom(c, l0, n2, &g) &&
+            (g.delta < delta || (g.delta == delta && gy < gr)))
+            return 1;
+    }
+    return 0;
+}
+
 /* SD_WALL_PAIR_MESH_CONVEX2D: a 2D shape against a plane group cut by the
- * plane z = 0 (the planar mode): the group's plane meets z = 0 in a line,
- * the 2D wall-line contact is made against it, and kept when its contact
- * point lies on one of the group's near triangles (the 2D counterpart of
- * the clipped area: the cut of a triangle by z = 0 is a segment of the
- * line, so the weight is 1 on it and 0 off it). A group parallel to z = 0
- * makes no line. */
+ * plane z = 0 (the planar mode; geom/mesh_contact2d.h): the group's plane
+ * meets z = 0 in a line, the 2D wall-line contact is made against it,
+ * weighted by the share of the body's chord on the cuts of the group's
+ * near triangles (1 when its whole width lies on them), and it gives way
+ * at a convex edge to a group whose line the body sinks less deep into
+ * (the ridge rule). A group parallel to z = 0 makes no line. */
 SD_HD static SD_INLINE void sd_item_mesh_convex2d(const sd_step_view *v, sd_wall_pair_out *o, size_t e)
 {
     uint32_t i = o->i[e];
     const sd_wall_view *wl = &v->walls[o->wall[e]];
     const sd_mesh_view *m = &v->meshes[wl->g.mesh];
+    const uint32_t *tl = o->tri + o->tstart[e];
     sd_body a = sd_item_body(v, i);
-    sd_vec3 p0, nw;
-    sd_mesh_group_plane(m, &wl->g, o->sub[e], &p0, &nw);
-    sd_real nl = sd_sqrt(nw.x * nw.x + nw.y * nw.y);
+    sd_vec2 l0, n2;
     sd_contact_geom g;
+    sd_real wgt = SD_R(1.0);
+    sd_vec3 shift = sd_v3_zero();
     int touching = 0;
-    if (nl > SD_R(1e-9) && sd_mesh_front_at(m, &wl->g, o->sub[e], o->tri + o->tstart[e], o->tcount[e], a.x)) {
-        sd_vec2 n2 = sd_v2(nw.x / nl, nw.y / nl);
-        /* the point of the plane's trace nearest the origin's foot: n . x = n . p0 at z = 0 */
-        sd_real off = sd_v3_dot(nw, p0) / nl;
-        sd_vec2 l0 = sd_v2(n2.x * off, n2.y * off);
+    if (sd_mesh2d_group_line(m, &wl->g, o->sub[e], &l0, &n2) &&
+        sd_mesh_front_at(m, &wl->g, o->sub[e], o->tri + o->tstart[e], o->tcount[e], a.x)) {
         sd_shape2d tmp;
         sd_convex2d c = sd_item_convex2d_of(v, i, &tmp);
-        touching = sd_convex2d_wall_geom(&c, l0, n2, &g);
+        touching = sd_convex2d_wall_geom(&c, l0, n2, &g) &&
+                   !sd_item_mesh2d_ridge_yields(m, &wl->g, o->sub[e], tl, o->tcount[e], &c, g.delta);
         if (touching) {
-            sd_vec3 pm = sd_mesh_to_frame(wl->g.q, wl->g.trans, g.point);
-            sd_vec3 nm = m->group_normal[o->sub[e]];
-            pm = sd_v3_sub(pm, sd_v3_scale(nm, sd_v3_dot(nm, pm) - m->group_offset[o->sub[e]]));
-            sd_vec3 e1, e2;
-            sd_clip_basis(nm, &e1, &e2);
-            sd_vec2 q = sd_v2(sd_v3_dot(pm, e1), sd_v3_dot(pm, e2));
-            sd_vec3 shift;
-            touching = sd_mesh_clip_weight(m, &wl->g, o->tri + o->tstart[e], o->tcount[e], e1, e2, NULL, 0, q,
-                                           &shift) > 0;
+            wgt = sd_mesh2d_weight(m, &wl->g, tl, o->tcount[e], &c, l0, n2, &shift);
+            touching = wgt > 0;
         }
         if (touching)
             a.v = sd_v3_sub(a.v, sd_item_wall_velocity_at(wl, g.point));
@@ -1351,7 +1349,10 @@ SD_HD static SD_INLINE void sd_item_mesh_convex2d(const sd_step_view *v, sd_wall
     const sd_pair_params *prm = sd_item_params(v, v->material[i], wl->material);
     sd_real req = v->shape[i] >= 0 ? v->shapes2d[v->shape[i]].eq_radius : v->radius[i];
     sd_pair_result r = sd_pair_wall(prm, &a, &g, touching, req, &o->ds[e], v->dt);
-    sd_item_wall_store(o, e, touching ? g.point : a.x, &r);
+    int part = touching && wgt < SD_R(1.0); /* at the group's end: the supported share */
+    if (part)
+        sd_item_mesh_scale(&r, wgt, shift);
+    sd_item_wall_store(o, e, touching ? (part ? sd_v3_add(g.point, shift) : g.point) : a.x, &r);
 }
 
 #endif

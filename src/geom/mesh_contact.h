@@ -361,6 +361,53 @@ SD_HD static SD_INLINE int sd_mesh_edge_convex(const sd_mesh_view *m, uint32_t t
     return sd_v3_dot(m->group_normal[m->group[t]], d) < -SD_MESH_SEAM_TOL * sd_v3_norm(d);
 }
 
+/* The ridge rule's candidates (backend/items.h): the groups across the
+ * convex edges of group gr's near triangles tl (nt), walked in the order
+ * of the triangles and their edges, each given once (the first
+ * SD_MESH_RIDGE_SEEN distinct ones are remembered; past them a group may
+ * come again, which changes no answer). */
+#define SD_MESH_RIDGE_SEEN 8
+
+typedef struct sd_mesh_ridge_walk {
+    uint32_t k;  /* the near triangle */
+    int q, ns;   /* its next edge; groups remembered */
+    uint32_t nb; /* the triangle across the edge of the group last given */
+    uint32_t seen[SD_MESH_RIDGE_SEEN];
+} sd_mesh_ridge_walk;
+
+SD_HD static SD_INLINE void sd_mesh_ridge_start(sd_mesh_ridge_walk *w)
+{
+    w->k = 0;
+    w->q = 0;
+    w->ns = 0;
+}
+
+/* The next group of the walk, UINT32_MAX when done (or without neighbours). */
+SD_HD static SD_INLINE uint32_t sd_mesh_ridge_next(const sd_mesh_view *m, uint32_t gr, const uint32_t *tl, uint32_t nt,
+                                                   sd_mesh_ridge_walk *w)
+{
+    if (!m->nbr)
+        return UINT32_MAX;
+    for (; w->k < nt; ++w->k, w->q = 0)
+        while (w->q < 3) {
+            int q = w->q++;
+            uint32_t nb = m->nbr[tl[w->k]][q];
+            if (nb == UINT32_MAX || m->group[nb] == gr)
+                continue;
+            uint32_t gy = m->group[nb];
+            int dup = 0;
+            for (int s = 0; s < w->ns; ++s)
+                dup |= w->seen[s] == gy;
+            if (dup || !sd_mesh_edge_convex(m, tl[w->k], q, nb))
+                continue;
+            if (w->ns < SD_MESH_RIDGE_SEEN)
+                w->seen[w->ns++] = gy;
+            w->nb = nb;
+            return gy;
+        }
+    return UINT32_MAX;
+}
+
 /* Directions of the support-point section of a body without vertices
  * (sd_mesh_convex_section): a disc's area comes out (24/2pi) sin(2pi/24)
  * = 0.9886 of the true one, the same factor for its clipped part, so the
