@@ -122,12 +122,12 @@ sd_status sd_bins_sort(sd_bins *b, const sd_bins_input *in, const uint32_t **per
  * carrying the history of the previous lists by key. */
 sd_status sd_bins_build(sd_bins *b, const sd_bins_input *in, sd_pair_list *l, sd_wall_pair_list *wl);
 void sd_bins_free(sd_bins *b);
-/* The canonical order of a decomposed run (broad/canonical.c): every pair
+/* The canonical order of every run (broad/canonical.c): every pair
  * evaluated with the lower stable id as i (flip 0), and each owned
  * particle's gather entries sorted by (partner id, own sub-index, partner
  * sub-index), so that its force sum depends on its neighbours' ids only,
- * never on storage order, cells or ranks. The serial run keeps the order of
- * the search (its state hashes). */
+ * never on storage order, cells, threads or ranks: the serial run and
+ * mpirun -np N give the same bits. */
 sd_status sd_pairs_canonical(const sd_bins_input *in, sd_pair_list *l);
 
 /* The kinds of a pair and of a wall pair, from the classes and whether the

@@ -1,10 +1,10 @@
-/* canonical.c — the pair order of a decomposed run (bins.h,
- * sd_pairs_canonical).
+/* canonical.c — the pair order of every run, serial, threaded or
+ * decomposed (bins.h, sd_pairs_canonical).
  *
  * Why: the search's order follows storage (the cell sort of the particles a
  * rank holds, ghosts after the owned ones), so a particle's force sum, a
  * floating-point sum whose bits depend on its order, would change with the
- * rank count. Here the order is made from stable ids alone: each pair is
+ * rank count, and the serial run would differ from mpirun's (issue 29). Here the order is made from stable ids alone: each pair is
  * evaluated with the body of lower id as i (the pair items are not
  * symmetric to the bit: contact point, lever arms), and each owned
  * particle's contributions are summed in the order of its partners' ids.

@@ -414,8 +414,10 @@ sd_status sd_world_rebuild(sd_world *w, sd_error *err)
             in.ghost_owner = w->ghost_owner;
             if (st == SD_OK)
                 st = sd_bins_build(&w->bins, &in, &w->pairs, &w->wpairs);
-            /* a decomposed run sums in the order of stable ids (bins.h) */
-            if (st == SD_OK && w->comm)
+            /* every run, serial, threaded or decomposed, sums in the order
+             * of stable ids (bins.h), so that mpirun -np N writes the
+             * plain run's bits */
+            if (st == SD_OK)
                 st = sd_pairs_canonical(&in, &w->pairs);
         }
         sd_rebuild_tables_free(&tables);

@@ -6,9 +6,10 @@
 # summary.txt names the ranks and the split; a run rebalanced every 50
 # steps, and one split 2 x 2 x 1 by simulation.mpi_split, write the same
 # bytes; a split whose product is not the rank count is refused (exit 2,
-# nothing written); `check --ranks 4` prints the grid and each rank's box. The plain serial program sums
-# in another order (docs/architecture.md, "MPI decomposition"), so it is
-# compared within a tolerance. Then the failures: bad input on every rank,
+# nothing written); `check --ranks 4` prints the grid and each rank's box. The plain serial program gives
+# the same particle bits (mpi.serial_bits) but sums stats.csv's totals over
+# its particles in storage order, the ranks' view in stable-id order, so it
+# is compared within a tolerance here. Then the failures: bad input on every rank,
 # on some ranks only, and ranks that built different worlds end the job
 # with one message and exit 2, never a hang (each run under `timeout`; a
 # guard tripped on one rank inside a step: cli_fail.sh).

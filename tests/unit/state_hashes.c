@@ -29,16 +29,16 @@ typedef struct hash_case {
 } hash_case;
 
 static const hash_case cases[] = {
-    {"examples/settle-spheres.yaml", 5500, 100, 0x51f5c4b36663cd68ull},
+{"examples/settle-spheres.yaml", 5500, 100, 0x699180ead3985a3cull},
     {"examples/mixed-shapes.yaml", 14000, 20, 0xb8c09af496bc696full},
-    {"examples/polyhedra-pour.yaml", 20000, 12, 0x760923edeb296fb4ull},
+    {"examples/polyhedra-pour.yaml", 20000, 12, 0xde409d2ffc603954ull},
     {"examples/biaxial-2d.yaml", 5000, 40, 0x94b639b7bf1cca23ull},
     {"examples/hopper-grid.yaml", 3000, 0, 0xed59cf1690b88852ull},
-    {"bench/scenes/convex-settle.yaml", 300, 40, 0xfe406e01c526eaacull},
-    {"bench/scenes/sharp-cubes-settle.yaml", 8000, 20, 0x727d042665e1c630ull},
-    {"bench/scenes/spheres-settle-8000.yaml", 400, 40, 0xacc94b96dc686adbull},
+    {"bench/scenes/convex-settle.yaml", 300, 40, 0x6caa7cf763c45cffull},
+    {"bench/scenes/sharp-cubes-settle.yaml", 8000, 20, 0xb5e477a988b80d8aull},
+    {"bench/scenes/spheres-settle-8000.yaml", 400, 40, 0xc31ffbdc5b99be6eull},
     {"tests/validation/scenes/mixed-packing.yaml", 14000, 20, 0xeecac5d823edad29ull},
-    {"tests/unit/scenes/restart-composites.yaml", 8000, 10, 0x3cdcf00bbb0869dcull},
+    {"tests/unit/scenes/restart-composites.yaml", 8000, 10, 0xa3c2cf7d89f42f50ull},
 };
 
 static void mix(uint64_t *h, const void *data, size_t size)
