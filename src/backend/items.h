@@ -695,30 +695,40 @@ SD_HD static SD_INLINE void sd_item_drum_relative(const sd_wall_view *wl, sd_bod
 }
 
 /* SD_WALL_PAIR_SPHERE: a plain sphere (or disc) against a plane, a box
- * face or a drum feature; in the planar mode a box has no z faces. */
+ * face or a drum feature; in the planar mode a box has no z faces. The
+ * geometry needs only the centre and the radius, so a pair that is apart
+ * (most of a box's pairs: every particle near a face, each step) writes
+ * its empty result without loading the rest of the body or the law
+ * (issue 29: the same slots as sd_pair_wall's, apart). */
 SD_HD static SD_HOT void sd_item_wall_sphere(const sd_step_view *v, sd_wall_pair_out *o, size_t e)
 {
     uint32_t i = o->i[e];
     const sd_wall_view *wl = &v->walls[o->wall[e]];
-    sd_body a = sd_item_wall_body(v, wl, i);
+    sd_vec3 x = v->x[i];
+    sd_real radius = v->radius[i];
     sd_contact_geom g;
     int touching = 0;
     if (wl->g.kind == SD_WALL_PLANE) {
-        touching = sd_sphere_plane(a.x, a.radius, wl->g.point, wl->g.normal, &g);
+        touching = sd_sphere_plane(x, radius, wl->g.point, wl->g.normal, &g);
     } else if (wl->g.kind == SD_WALL_DRUM) {
         /* the tangent plane at the radial projection: exact for a sphere */
         sd_vec3 p0, nw;
-        touching = sd_wall_feature_plane(&wl->g, (int)o->sub[e], a.x, &p0, &nw) &&
-                   sd_sphere_plane(a.x, a.radius, p0, nw, &g);
-        if (touching)
-            sd_item_drum_relative(wl, &a);
+        touching = sd_wall_feature_plane(&wl->g, (int)o->sub[e], x, &p0, &nw) && sd_sphere_plane(x, radius, p0, nw, &g);
     } else if (!v->dim2 || o->sub[e] < 4) { /* the plane has no z faces */
         sd_wall_face f = sd_wall_box_face_of(wl->g.lo, wl->g.hi, o->sub[e]);
-        touching = sd_sphere_box_face(a.x, a.radius, f.axis, f.value, f.dir, wl->g.lo, wl->g.hi, &g);
+        touching = sd_sphere_box_face(x, radius, f.axis, f.value, f.dir, wl->g.lo, wl->g.hi, &g);
     }
+    if (!touching) {
+        sd_pair_result none = sd_pair_none(&o->ds[e]);
+        sd_item_wall_store(o, e, x, &none);
+        return;
+    }
+    sd_body a = sd_item_wall_body(v, wl, i);
+    if (wl->g.kind == SD_WALL_DRUM)
+        sd_item_drum_relative(wl, &a);
     const sd_pair_params *prm = sd_item_params(v, v->material[i], wl->material);
-    sd_pair_result r = sd_pair_wall(prm, &a, &g, touching, a.radius, &o->ds[e], v->dt);
-    sd_item_wall_store(o, e, touching ? g.point : a.x, &r);
+    sd_pair_result r = sd_pair_wall(prm, &a, &g, 1, a.radius, &o->ds[e], v->dt);
+    sd_item_wall_store(o, e, g.point, &r);
 }
 
 /* SD_WALL_PAIR_CONVEX: a 3D shape's support point against the plane of the

@@ -142,6 +142,11 @@ typedef struct sd_stage {
     sd_wall_view *walls;           /* the copies v.walls points at */
     sd_vec3 *wall_force, *wall_torque; /* N, N m: per wall, summed by the wall totals stage */
     size_t wall_cap;
+    /* the CPU's skin test, made in the drift pass that moved the particles
+     * (backend/cpu/particles.c): skin_used holds its answer while
+     * skin_known; a rebuild (the views refilled) and an upload (the host may
+     * have moved particles between calls) make it unknown */
+    int skin_used, skin_known;
     struct sd_cuda_state *device;  /* the CUDA backend's device copies (backend/cuda/), NULL on the CPU */
     int device_index;              /* the CUDA device they live on (world/backend.c: sd_world_def.device
                                     * mod the devices present); 0 on the CPU */

@@ -76,6 +76,7 @@ sd_status sd_world_views(sd_world *w)
     sd_stage *s = &w->stage;
     sd_step_view *v = &s->v;
     const sd_particles *p = &w->p;
+    s->skin_known = 0; /* a rebuild set x_ref = x: the next drift tests the skin again */
     v->n_owned = p->n;
     v->n_total = p->n + w->n_ghost;
     v->ghost_owner = w->ghost_owner;

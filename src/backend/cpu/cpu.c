@@ -1,7 +1,7 @@
 /* cpu.c — the CPU backend as a table of stages (backend/backend.h).
  *
  * Invariant: the CPU works on the host's own arrays, so the copy stages
- * (upload, read back) do nothing; every other stage is one OpenMP loop of
+ * (upload, read back) copy nothing (an upload forgets the last skin test); every other stage is one OpenMP loop of
  * particles.c, pairs.c or walls.c, and the rebuild is the host broad phase
  * (world/rebuild.c, broad/bins.c).
  */
@@ -20,6 +20,14 @@ static void sd_cpu_rows_nothing(sd_stage *s, size_t first, size_t end)
     (void)end;
 }
 
+/* The host's arrays are the state; between calls the host may have moved
+ * particles (setters, a restore, insertions), so the skin test of the last
+ * drift no longer holds. */
+static void sd_cpu_upload(sd_stage *s)
+{
+    s->skin_known = 0;
+}
+
 /* the CPU's stages cannot fail */
 static sd_status sd_cpu_status(sd_stage *s, sd_error *err)
 {
@@ -30,7 +38,7 @@ static sd_status sd_cpu_status(sd_stage *s, sd_error *err)
 
 const sd_backend sd_backend_cpu = {
     .name = "cpu",
-    .upload = sd_cpu_nothing,
+    .upload = sd_cpu_upload,
     .upload_walls = sd_cpu_nothing,
     .kick_drift = sd_cpu_kick_drift,
     .needs_rebuild = sd_cpu_needs_rebuild,

@@ -18,6 +18,10 @@
 #include "backend/cpu/parallel.h"
 #include "backend/particle_items.h"
 
+/* The drift passes test the skin of each particle they have just moved
+ * (sd_item_skin_used), so that the rebuild stage's question costs no pass
+ * of its own over x and x_ref: the same answer, read while the particle is
+ * in cache (issue 29). */
 void sd_cpu_kick_drift(sd_stage *s)
 {
     const sd_step_view *v = &s->v;
@@ -26,7 +30,11 @@ void sd_cpu_kick_drift(sd_stage *s)
     sd_vec3 g = v->gravity;
     int mode = sd_item_kick_mode(v);
     sd_real alpha = v->damping;
-    SD_CPU_EACH(s->exec, k, 0, n, sd_item_kick_drift(mode, alpha, v, k, g, h, dt));
+    int used = 0;
+    SD_CPU_ANY(s->exec, used, k, 0, n, sd_item_kick_drift(mode, alpha, v, k, g, h, dt);
+               used |= sd_item_skin_used(v, k));
+    s->skin_used = used;
+    s->skin_known = 1;
 }
 
 void sd_cpu_gather(sd_stage *s)
@@ -48,11 +56,16 @@ void sd_cpu_gather_kick_drift(sd_stage *s)
     sd_vec3 g = v->gravity;
     int mode = sd_item_kick_mode(v);
     sd_real alpha = v->damping;
+    int used = 0;
     if (mode == SD_KICK_PLAIN) { /* the common case, with the mode a constant */
-        SD_CPU_EACH(s->exec, k, 0, n, sd_item_gather_kick_drift(l, wl, SD_KICK_PLAIN, SD_R(0.0), v, k, g, h, dt));
+        SD_CPU_ANY(s->exec, used, k, 0, n, sd_item_gather_kick_drift(l, wl, SD_KICK_PLAIN, SD_R(0.0), v, k, g, h, dt);
+                   used |= sd_item_skin_used(v, k));
     } else {
-        SD_CPU_EACH(s->exec, k, 0, n, sd_item_gather_kick_drift(l, wl, mode, alpha, v, k, g, h, dt));
+        SD_CPU_ANY(s->exec, used, k, 0, n, sd_item_gather_kick_drift(l, wl, mode, alpha, v, k, g, h, dt);
+                   used |= sd_item_skin_used(v, k));
     }
+    s->skin_used = used;
+    s->skin_known = 1;
 }
 
 void sd_cpu_gather_kick(sd_stage *s)
@@ -68,9 +81,12 @@ void sd_cpu_gather_kick(sd_stage *s)
     SD_CPU_EACH(s->exec, k, 0, n, sd_item_gather(l, wl, k, &v->f[k], &v->t[k]); sd_item_kick(mode, alpha, v, k, g, h));
 }
 
-/* The skin test (backend/particle_items.h). */
+/* The skin test (backend/particle_items.h): the last drift pass's answer
+ * when it still holds, else a pass of its own. */
 int sd_cpu_needs_rebuild(sd_stage *s)
 {
+    if (s->skin_known)
+        return s->skin_used;
     const sd_step_view *v = &s->v;
     size_t n = v->n_owned;
     int need = 0;
