@@ -1,9 +1,10 @@
 # Writes a LIGGGHTS data file (atom_style granular) for the spheres-settle case:
 # spheres of diameter 2 mm, density 2500 kg/m^3 on a simple cubic lattice of
-# spacing 2.2 mm, 20 x 20 per layer, first centre at (1.1, 1.1, 1.1) mm, with
-# each velocity component uniform in [-0.05, 0.05] m/s from a fixed seed.
+# spacing 2.2 mm, side x side per layer (default 20 x 20), first centre at
+# (1.1, 1.1, 1.1) mm, with each velocity component uniform in [-0.05, 0.05] m/s
+# from a fixed seed; the box is side x 2.2 mm wide.
 #
-# Usage: awk -v n=8000 -v seed=42 -v zmax=0.5 -f gen-data.awk > spheres.data
+# Usage: awk -v n=8000 -v seed=42 -v zmax=0.5 [-v side=20] -f gen-data.awk > spheres.data
 #
 # The random numbers come from the Park-Miller "minimal standard" generator so
 # that every awk (mawk, gawk, busybox) writes the same file; they are not the
@@ -13,16 +14,17 @@ function uniform() {
     return state / 2147483647
 }
 BEGIN {
-    if (n == "" || n % 400 != 0) { print "gen-data.awk: n must be a multiple of 400" > "/dev/stderr"; exit 1 }
+    if (side == "") side = 20
+    if (n == "" || n % (side * side) != 0) { print "gen-data.awk: n must be a multiple of side^2" > "/dev/stderr"; exit 1 }
     if (seed == "") seed = 42
     if (zmax == "") zmax = 0.5
     state = seed % 2147483647
     if (state <= 0) state = 1
-    spacing = 0.0022; origin = 0.0011; per_side = 20; jitter = 0.05
+    spacing = 0.0022; origin = 0.0011; per_side = side; jitter = 0.05
     layers = n / (per_side * per_side)
     printf "LIGGGHTS data file: shapedem spheres-settle, %d spheres, seed %d\n\n", n, seed
     printf "%d atoms\n1 atom types\n\n", n
-    printf "0 0.044 xlo xhi\n0 0.044 ylo yhi\n0 %.6g zlo zhi\n\n", zmax
+    printf "0 %.6g xlo xhi\n0 %.6g ylo yhi\n0 %.6g zlo zhi\n\n", side * spacing, side * spacing, zmax
     printf "Atoms\n\n"
     id = 0
     for (k = 0; k < layers; k++)

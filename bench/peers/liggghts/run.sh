@@ -6,11 +6,12 @@
 # psps = particles * steps / wall_s; peak_rss_mib is the sum over the P processes
 # of each one's peak resident set. On failure it prints a line with "error".
 #
-# Usage: bench/peers/liggghts/run.sh N STEPS PROCS [WORKDIR]
-#   N      number of spheres, a multiple of 400 (20 x 20 per layer)
+# Usage: bench/peers/liggghts/run.sh N STEPS PROCS [WORKDIR [SIDE]]
+#   N      number of spheres, a multiple of SIDE^2 (SIDE x SIDE per layer)
 #   STEPS  time steps to run
 #   PROCS  MPI processes (1 runs the binary directly, more go through mpirun)
 #   WORKDIR where the data file and the log go (default: bench/out/liggghts)
+#   SIDE   spheres along x and y in a layer (default 20: a 44 mm box)
 # Environment: SHAPEDEM_LIGGGHTS (binary, default liggghts),
 #              SHAPEDEM_MPIRUN (launcher, default mpirun).
 set -u
@@ -20,6 +21,7 @@ n=${1:?usage: run.sh N STEPS PROCS [WORKDIR]}
 steps=${2:?usage: run.sh N STEPS PROCS [WORKDIR]}
 procs=${3:?usage: run.sh N STEPS PROCS [WORKDIR]}
 work=${4:-$here/../../out/liggghts}
+side=${5:-20}
 case_name="spheres-settle-$n"
 lmp=${SHAPEDEM_LIGGGHTS:-liggghts}
 mpirun_bin=${SHAPEDEM_MPIRUN:-mpirun}
@@ -40,7 +42,7 @@ log="$work/$case_name-np$procs.log"
 
 # Written afresh each time (under a second, outside the timed loop), so that it
 # always matches gen-data.awk.
-{ awk -v n="$n" -v seed=42 -v zmax=0.5 -f "$here/gen-data.awk" >"$data.tmp" &&
+{ awk -v n="$n" -v seed=42 -v zmax=0.5 -v side="$side" -f "$here/gen-data.awk" >"$data.tmp" &&
   mv "$data.tmp" "$data"; } || fail "cannot write the data file"
 
 # Peak RSS: meter.sh writes one file per process into $rss_dir.
@@ -61,7 +63,8 @@ load1=$(cut -d' ' -f1 /proc/loadavg 2>/dev/null || echo null)
 # Run inside $work so that any file LIGGGHTS might write lands there; -log none
 # keeps it from writing log.liggghts, and the script writes no dumps.
 (cd "$work" && "${launcher[@]}" bash "$here/meter.sh" "$rss_dir" "$lmp" -in "$here/in.spheres-settle" \
-  -var data "$data" -var steps "$steps" -log none -echo none) >"$log" 2>&1
+  -var data "$data" -var steps "$steps" -var width "$(awk -v s="$side" 'BEGIN {printf "%.6g", s * 0.0022}')" \
+  -log none -echo none) >"$log" 2>&1
 rc=$?
 
 loop=$(grep -m1 '^Loop time of' "$log")
