@@ -56,11 +56,14 @@ static void compare(sd_world *w, int strict, const char *label)
     int dup = 0, bad_order = 0;
     for (size_t e = 0; e < l->n; ++e) {
         size_t i = l->i[e], j = l->j[e];
-        if (i >= j)
+        /* the canonical order (broad/canonical.c): i is the body of lower
+         * stable id, whatever the storage order */
+        if (i == j || p->id[i] >= p->id[j])
             bad_order++;
-        if (mark[i * n + j])
+        size_t a = i < j ? i : j, b = i < j ? j : i;
+        if (mark[a * n + b])
             dup++;
-        mark[i * n + j] = 1;
+        mark[a * n + b] = 1;
     }
     long missing = 0, extra = 0, expected = 0;
     for (size_t i = 0; i < n; ++i)
