@@ -38,7 +38,7 @@ static const hash_case cases[] = {
     {"bench/scenes/sharp-cubes-settle.yaml", 8000, 20, 0xb5e477a988b80d8aull},
     {"bench/scenes/spheres-settle-8000.yaml", 400, 40, 0xc31ffbdc5b99be6eull},
     {"tests/validation/scenes/mixed-packing.yaml", 14000, 20, 0xeecac5d823edad29ull},
-    {"tests/unit/scenes/restart-composites.yaml", 8000, 10, 0xa3c2cf7d89f42f50ull},
+    {"tests/unit/scenes/restart-composites.yaml", 8000, 5, 0xa3c2cf7d89f42f50ull},
 };
 
 static void mix(uint64_t *h, const void *data, size_t size)
