@@ -132,7 +132,10 @@ sd_status sd_run_open(const sd_scene *s, sd_world *w, const char *dir, sd_run **
  * steps, writing each frame and stats.csv row as it falls due. The first
  * call writes the step-0 frame and row first (so sd_run_advance(run, 0)
  * writes only those). On a stepping or writing error the run stops where
- * it is; sd_run_close still writes the summary. */
+ * it is; sd_run_close still writes the summary. SD_ERR_INTERRUPTED
+ * (sd_world_request_interrupt) is no error of the run: it stopped between
+ * two steps, before the output due next, and may be advanced again or
+ * checkpointed there (sd_run_checkpoint), as `shapedem run` does. */
 sd_status sd_run_advance(sd_run *r, long steps, sd_error *err);
 
 /* Writes a checkpoint of the run's world now (between steps), as

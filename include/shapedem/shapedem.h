@@ -43,7 +43,9 @@ typedef enum sd_status {
     SD_ERR_IO,       /* file could not be read or written */
     SD_ERR_MEMORY,   /* an allocation failed */
     SD_ERR_PHYSICS,  /* the state became invalid (NaN, runaway) */
-    SD_ERR_INTERNAL  /* a broken invariant: a bug in shapedem */
+    SD_ERR_INTERNAL, /* a broken invariant: a bug in shapedem */
+    SD_ERR_INTERRUPTED /* sd_world_request_interrupt stopped the call; the world is
+                        * consistent and may be stepped or checkpointed: CLI exit 130 */
 } sd_status;
 
 typedef struct sd_error {
@@ -566,6 +568,18 @@ int sd_world_get_pour(const sd_world *w, sd_pour_def *out);
  * called before. Fails on bad parameters (e.g. a linear law with no stiffness). */
 sd_status sd_world_prepare(sd_world *w, sd_error *err);
 sd_status sd_world_step(sd_world *w, long nsteps, sd_error *err);
+/* Asks the sd_world_step in progress (or the next one) to stop soon. It
+ * only stores a flag, so it may be called from a signal handler or another
+ * thread. The cells solver looks at it after each step and before each
+ * particle an insertion places (one insertion may try 10^5 positions for
+ * each of 10^6 particles: minutes in one call); it then stops with the
+ * world between two steps, the particles placed so far in it and the rest
+ * of the insertion left to the next call (or to a restart from a
+ * checkpoint written now), and returns SD_ERR_INTERRUPTED, which clears
+ * the request. The grid solver and a decomposed (MPI) world, whose ranks
+ * must take every step together, look at it only between calls: there it
+ * stays set until a cells world's step takes it. NULL is ignored. */
+void sd_world_request_interrupt(sd_world *w);
 
 /* ---- queries ------------------------------------------------------------ */
 

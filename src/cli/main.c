@@ -35,6 +35,10 @@
 #define SD_XSTR(x) SD_STR(x) /* a macro's value as a string literal */
 
 volatile sig_atomic_t sd_cli_interrupted;
+/* The world `run` steps: the first signal also asks it to stop
+ * (sd_world_request_interrupt, one flag store), so that a long insertion
+ * inside one step call stops within a particle, not at its end. */
+static sd_world *volatile sd_cli_world;
 
 /* The first SIGINT/SIGTERM asks the run to stop after the step in
  * progress (with a final checkpoint); a second one, for a run that does
@@ -49,6 +53,7 @@ void sd_cli_on_signal(int sig)
         return;
     }
     sd_cli_interrupted = 1;
+    sd_world_request_interrupt(sd_cli_world);
 }
 
 static size_t sd_peak_rss(void)
@@ -115,8 +120,9 @@ static void sd_usage_run_options(FILE *f, int run)
             "  --bench NAME    write no files; print one JSON line of timings for case NAME\n"
             "  --profile       print the wall time of each stage of the step at the end\n"
             "\n"
-            "  SIGINT/SIGTERM (Ctrl-C) stop the run after the step in progress, write a final checkpoint\n"
-            "  and print the command that continues it; exit status 130.\n");
+            "  SIGINT/SIGTERM (Ctrl-C) stop the run after the step in progress (or before the next particle\n"
+            "  of an insertion), write a final checkpoint and print the command that continues it; exit\n"
+            "  status 130.\n");
 }
 
 /* `shapedem COMMAND --help`: that command's usage, on stdout. */
@@ -521,6 +527,7 @@ static int sd_cmd_run(const sd_cli *c)
 #ifdef SHAPEDEM_CLI_MPI
     sd_cli_mpi_run(mp, run);
 #endif
+    sd_cli_world = w;
     signal(SIGINT, sd_cli_on_signal);
     signal(SIGTERM, sd_cli_on_signal);
 
@@ -532,7 +539,8 @@ static int sd_cmd_run(const sd_cli *c)
     size_t n = sd_world_particle_count(w);
     double last_print = 0;
     sd_run_progress pr;
-    int failed = sd_run_advance(run, 0, &err) != SD_OK; /* the frame and the stats row of step 0 */
+    sd_status ast = sd_run_advance(run, 0, &err); /* the frame and the stats row of step 0 */
+    int failed = ast != SD_OK;
     sd_run_get_progress(run, &pr);
     /* steps per advance: up to the next output, but no longer than about
      * 0.1-0.4 s of stepping at the rate so far, so that an interrupt is acted
@@ -544,7 +552,8 @@ static int sd_cmd_run(const sd_cli *c)
             chunk = chunk_max;
         double wall0 = pr.wall_seconds;
         long done0 = pr.done;
-        failed = sd_run_advance(run, chunk, &err) != SD_OK;
+        ast = sd_run_advance(run, chunk, &err);
+        failed = ast != SD_OK && ast != SD_ERR_INTERRUPTED; /* interrupted: stopped between steps */
         sd_run_get_progress(run, &pr);
         double took = pr.wall_seconds - wall0;
         if (pr.done > done0 && took < 0.1 && chunk == chunk_max && chunk_max < LONG_MAX / 2)
@@ -652,6 +661,7 @@ static int sd_cmd_run(const sd_cli *c)
 #ifdef SHAPEDEM_CLI_MPI
     sd_cli_mpi_free(mp); /* rank 0's part (w is the gathered world) */
 #endif
+    sd_cli_world = NULL;
     sd_world_destroy(w);
     sd_scene_free(scene);
     if (sd_cli_interrupted) {

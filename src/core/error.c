@@ -112,6 +112,7 @@ const char *sd_status_name(sd_status s)
     case SD_ERR_MEMORY: return "out of memory";
     case SD_ERR_PHYSICS: return "invalid physical state";
     case SD_ERR_INTERNAL: return "internal error";
+    case SD_ERR_INTERRUPTED: return "interrupted";
     }
     return "unknown status";
 }

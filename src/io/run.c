@@ -352,6 +352,16 @@ sd_status sd_run_advance(sd_run *r, long steps, sd_error *err)
         double t0 = sd_run_now();
         size_t n_before = sd_world_particle_count(r->w);
         st = r->stepper ? r->stepper(r->stepper_ctx, next - r->done, err) : sd_world_step(r->w, next - r->done, err);
+        if (st == SD_ERR_INTERRUPTED) {
+            /* stopped between two steps before the next output (or inside
+             * an insertion at this step): the run goes on from there, or
+             * writes its checkpoint there (sd_run_checkpoint) */
+            long at = sd_world_step_count(r->w);
+            r->stepping += sd_run_now() - t0;
+            r->psteps += (double)sd_world_particle_count(r->w) * (double)(at - r->done);
+            r->done = at;
+            return st;
+        }
         if (st != SD_OK) {
             r->failed = 1;
             sd_run_failed_state(r, err);

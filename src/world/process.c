@@ -1432,6 +1432,25 @@ static int sd_scaled_class(const sd_insertion *ins, int e, double u)
     return k * per + (j < per ? (j < 0 ? 0 : j) : per - 1);
 }
 
+/* After a batch that added particles to a prepared world (added): the new
+ * particles touch nothing, so the prepared state holds (see the note at
+ * the top); the views take the new count, and a world prepared empty gets
+ * the skin prepare would have given it (rmin_new: the smallest new radius). */
+static sd_status sd_insert_settle(sd_world *w, int added, double rmin_new, sd_error *err)
+{
+    if (!added)
+        return SD_OK;
+    w->prepared = 1;
+    if (w->skin == 0 && !(w->def.skin > 0))
+        w->skin = (sd_real)(0.2 * rmin_new);
+    sd_status st = sd_world_check_params(w, err);
+    if (st != SD_OK)
+        return st;
+    if (sd_world_views(w) != SD_OK)
+        return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory for the views");
+    return SD_OK;
+}
+
 /* Places what insertion ins owes now; records why some did not fit. */
 static sd_status sd_insert_run(sd_world *w, sd_insertion *ins, sd_error *err)
 {
@@ -1470,10 +1489,18 @@ static sd_status sd_insert_run(sd_world *w, sd_insertion *ins, sd_error *err)
     double rmin_new = HUGE_VAL;
     size_t failed = 0, before = ins->inserted;
     int in_a_row = 0; /* consecutive particles that found no spot */
+    int interrupted = 0;
     for (;;) {
         size_t due = sd_insert_due(w, ins, w->step);
         if (ins->inserted + failed >= due)
             break;
+        /* sd_world_request_interrupt: stop before this particle; the
+         * placed ones stay, the rest are tried at this step on the next
+         * call, from the stream where it stopped */
+        if (sd_world_interrupt_due(w)) {
+            interrupted = 1;
+            break;
+        }
         /* all at once: a region that refused SD_INSERT_GIVE_UP particles in
          * a row is full; trying the rest (10^6 of them, each `attempts`
          * times) would only take time */
@@ -1585,6 +1612,12 @@ static sd_status sd_insert_run(sd_world *w, sd_insertion *ins, sd_error *err)
             break;
     }
     sd_place_grid_free(&g);
+    if (interrupted) {
+        ins->asked = ins->inserted + failed; /* so far (a checkpoint now holds inserted <= asked) */
+        ins->next_step = w->step;
+        st = sd_insert_settle(w, ins->inserted > before && was_prepared, rmin_new, err);
+        return st != SD_OK ? st : sd_world_interrupted(w, err);
+    }
     /* a decomposed run: every rank drew, checked and added the same
      * particles, with the same ids; each keeps its own (collective: every
      * rank runs the same insertion at the same step) */
@@ -1614,20 +1647,7 @@ static sd_status sd_insert_run(sd_world *w, sd_insertion *ins, sd_error *err)
             sn = w->step + 1 + (long)ceil(ins->mass / fmax(1.0, (double)ins->inserted) / d->mass_rate / (double)w->dt);
         ins->next_step = sn > w->step ? sn : w->step + 1;
     }
-    if (ins->inserted > before && was_prepared) {
-        /* the new particles touch nothing: the prepared state holds (see
-         * the note at the top); the views take the new count, and a world
-         * prepared empty gets the skin prepare would have given it */
-        w->prepared = 1;
-        if (w->skin == 0 && !(w->def.skin > 0))
-            w->skin = (sd_real)(0.2 * rmin_new);
-        st = sd_world_check_params(w, err);
-        if (st != SD_OK)
-            return st;
-        if (sd_world_views(w) != SD_OK)
-            return sd_error_set(err, SD_ERR_MEMORY, "", 0, "", "out of memory for the views");
-    }
-    return SD_OK;
+    return sd_insert_settle(w, ins->inserted > before && was_prepared, rmin_new, err);
 }
 
 /* ---- the drum wall (dynamics/walls.h, SD_WALL_DRUM) ------------------------------ */

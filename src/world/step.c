@@ -14,6 +14,9 @@
  * drift that start the next run as one pass over the particles (the same
  * operations in the same order, so the same bits as separate passes: a run
  * cut into calls of any length gives the same state).
+ * sd_world_request_interrupt ends a call early, after a step: that step's
+ * kick is then not fused with the next drift, as at any call's end, so an
+ * interrupted run continued gives the same bits (tests/unit/interrupt.c).
  *
  * Velocity Verlet (seed 004 eq. 9): forces at the start of a step are the
  * ones computed at the end of the previous step, so sd_world_prepare
@@ -214,12 +217,14 @@ sd_status sd_cells_step(sd_world *w, long nsteps, sd_error *err)
             return st;
         sd_profile_lap(w, SD_PROFILE_INTEGRATION, &t, 0);
     }
-    for (long k = 0; k < nsteps; ++k) {
+    int stop = 0; /* sd_world_request_interrupt: this step is the last (its kick not fused with the next drift) */
+    for (long k = 0; k < nsteps && !stop; ++k) {
         sd_status st = sd_stage_forces(w, be, err);         /* per pair, at t + dt */
         if (st != SD_OK)
             return st;
         t = sd_profile_now();
-        if (k + 1 < nsteps) {
+        stop = k + 1 < nsteps && sd_world_interrupt_due(w);
+        if (k + 1 < nsteps && !stop) {
             be->gather_kick_drift(s);                       /* F, v(t + dt); next v(t + 3dt/2), x(t + 2dt) */
             st = sd_stage_walls_drift(w, be, w->time + (double)w->dt, err);
             if (st != SD_OK)
@@ -233,5 +238,6 @@ sd_status sd_cells_step(sd_world *w, long nsteps, sd_error *err)
         sd_profile_lap(w, SD_PROFILE_INTEGRATION, &t, 1);
     }
     /* the finite check reads the state back: output and queries see it */
-    return sd_stage_check_finite(w, be, err);
+    sd_status st = sd_stage_check_finite(w, be, err);
+    return st == SD_OK && stop ? sd_world_interrupted(w, err) : st;
 }

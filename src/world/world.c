@@ -495,6 +495,22 @@ sd_status sd_world_step(sd_world *w, long nsteps, sd_error *err)
     sd_status st = nsteps > 0 ? sd_world_check_dt(w, err) : SD_OK;
     return st != SD_OK ? st : w->solver->step(w, nsteps, err);
 }
+/* Async-signal-safe: one store to a volatile sig_atomic_t. */
+void sd_world_request_interrupt(sd_world *w)
+{
+    if (w)
+        w->interrupt = 1;
+}
+
+int sd_world_interrupt_due(const sd_world *w) { return w->interrupt && !w->comm; }
+
+sd_status sd_world_interrupted(sd_world *w, sd_error *err)
+{
+    w->interrupt = 0;
+    return sd_error_set(err, SD_ERR_INTERRUPTED, "", 0, "", "interrupted at step %ld (sd_world_request_interrupt)",
+                        w->step);
+}
+
 size_t sd_world_particle_count(const sd_world *w) { return w ? w->solver->count(w) : 0; }
 sd_status sd_world_get_particle(const sd_world *w, size_t k, sd_particle_state *out)
 {

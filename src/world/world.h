@@ -10,6 +10,8 @@
 #ifndef SD_WORLD_WORLD_H
 #define SD_WORLD_WORLD_H
 
+#include <signal.h>
+
 #include <shapedem/shapedem.h>
 
 #include "backend/view.h"
@@ -207,6 +209,7 @@ struct sd_world {
     struct sd_process *process; /* insertions and outlets (world/process.h), NULL when none */
     struct sd_region_meshes *region_meshes; /* insertions' mesh regions (world/process.h), NULL when none */
     int prepared;
+    volatile sig_atomic_t interrupt; /* sd_world_request_interrupt: the step stops at its next look */
     int dirty;                /* particles added since the last rebuild */
     double dt_checked;        /* s, the time step sd_world_check_dt last passed (guards.c), 0 none */
     size_t dt_checked_n;      /* particles at that check */
@@ -318,5 +321,12 @@ sd_status sd_world_check_params(const sd_world *w, sd_error *err);
  * the rebound of their 1D model (for tests). */
 void sd_volume_zeta_table(double e, sd_real zeta[SD_VOLUME_ZETA_N]);
 double sd_volume_rebound_model(double p, double zeta);
+
+/* sd_world_request_interrupt's request, for the loops that look at it:
+ * due when set on a world that is not decomposed (the ranks of an MPI run
+ * must all stop at the same point, which a signal to one cannot give);
+ * sd_world_interrupted clears it and returns SD_ERR_INTERRUPTED. */
+int sd_world_interrupt_due(const sd_world *w);
+sd_status sd_world_interrupted(sd_world *w, sd_error *err);
 
 #endif

@@ -582,6 +582,7 @@ static void null_handles(void)
     CHECK(sd_world_get_pour(NULL, &got) == 0);
     FAILS(API(sd_world_prepare)(NULL, &e));
     FAILS(API(sd_world_step)(NULL, 1, &e));
+    API(sd_world_request_interrupt)(NULL);
     CHECK(sd_world_particle_count(NULL) == 0);
     CHECK(sd_world_wall_count(NULL) == 0);
     CHECK(sd_world_step_count(NULL) == 0);
@@ -845,6 +846,14 @@ static void world_states(void)
     CHECK(sd_world_recommended_dt(w, &tc) > 0);
     exercise(w, "a material added after steps", 0);
     CHECK(sd_world_step(w, 1, &e) == SD_OK);
+    /* an interrupt asked for between calls stops the next after its first
+     * step, with a message, and is then cleared */
+    long at = sd_world_step_count(w);
+    sd_world_request_interrupt(w);
+    memset(&e, 0, sizeof e);
+    CHECK(sd_world_step(w, 5, &e) == SD_ERR_INTERRUPTED && e.msg[0] && sd_world_step_count(w) == at + 1);
+    CHECK(sd_world_step(w, 2, &e) == SD_OK && sd_world_step_count(w) == at + 3);
+    exercise(w, "after an interrupted step", 0);
     sd_world_destroy(w);
 
     /* a failed call: the linear law with no stiffness fails at prepare */
