@@ -8,6 +8,16 @@
 #include "io/scene_analysis.h"
 #include "io/scene_process.h"
 
+/* Mesh-frame point x placed at the start: x' = q x q* + t, q = (w, x, y, z). */
+static void sd_check_mesh_place(const sd_mesh_info *mi, const double *x, double out[3])
+{
+    const double *q = mi->rotation, *t = mi->translation;
+    double uv[3] = {q[2] * x[2] - q[3] * x[1], q[3] * x[0] - q[1] * x[2], q[1] * x[1] - q[2] * x[0]};
+    double uuv[3] = {q[2] * uv[2] - q[3] * uv[1], q[3] * uv[0] - q[1] * uv[2], q[1] * uv[1] - q[2] * uv[0]};
+    for (int a = 0; a < 3; ++a)
+        out[a] = x[a] + 2.0 * (q[0] * uv[a] + uuv[a]) + t[a];
+}
+
 int sd_check_print_meshes(FILE *f, const sd_world *w, double rmin, double rmax)
 {
     int warnings = 0;
@@ -19,16 +29,12 @@ int sd_check_print_meshes(FILE *f, const sd_world *w, double rmin, double rmax)
         const char *name = sd_world_get_wall(w, k, &wi) == SD_OK && wi.name ? wi.name : "?";
         double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
         /* the box as placed at the start (rotation and translation of the pose) */
-        const double *q = mi.rotation, *t = mi.translation;
         for (size_t v = 0; v < mi.vertex_count; ++v) {
-            const double *x = mi.vertices + 3 * v;
-            /* x' = q x q* + t, q = (w, x, y, z) */
-            double uv[3] = {q[2] * x[2] - q[3] * x[1], q[3] * x[0] - q[1] * x[2], q[1] * x[1] - q[2] * x[0]};
-            double uuv[3] = {q[2] * uv[2] - q[3] * uv[1], q[3] * uv[0] - q[1] * uv[2], q[1] * uv[1] - q[2] * uv[0]};
+            double c[3];
+            sd_check_mesh_place(&mi, mi.vertices + 3 * v, c);
             for (int a = 0; a < 3; ++a) {
-                double c = x[a] + 2.0 * (q[0] * uv[a] + uuv[a]) + t[a];
-                lo[a] = fmin(lo[a], c);
-                hi[a] = fmax(hi[a], c);
+                lo[a] = fmin(lo[a], c[a]);
+                hi[a] = fmax(hi[a], c[a]);
             }
         }
         double size = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));
@@ -69,6 +75,70 @@ int sd_check_print_analysis_size(FILE *f, const sd_scene *s, long steps)
         return 1;
     }
     return 0;
+}
+
+/* 1 when triangle v (3 corners, 9 numbers) and the box [lo, hi] meet: no
+ * separating axis among the box's 3 normals, the triangle's normal and the
+ * 9 products of an edge with a box axis (Akenine-Moeller's test, 2001). */
+static int sd_tri_box_meet(const double v[9], const double lo[3], const double hi[3])
+{
+    double c[3], h[3], p[3][3], e[3][3];
+    for (int a = 0; a < 3; ++a) {
+        c[a] = 0.5 * (lo[a] + hi[a]);
+        h[a] = 0.5 * (hi[a] - lo[a]);
+        for (int k = 0; k < 3; ++k)
+            p[k][a] = v[3 * k + a] - c[a];
+    }
+    for (int k = 0; k < 3; ++k)
+        for (int a = 0; a < 3; ++a)
+            e[k][a] = p[(k + 1) % 3][a] - p[k][a];
+    double axes[13][3];
+    int n = 0;
+    for (int a = 0; a < 3; ++a, ++n)
+        for (int b = 0; b < 3; ++b)
+            axes[n][b] = a == b;
+    axes[n][0] = e[0][1] * e[1][2] - e[0][2] * e[1][1];
+    axes[n][1] = e[0][2] * e[1][0] - e[0][0] * e[1][2];
+    axes[n][2] = e[0][0] * e[1][1] - e[0][1] * e[1][0];
+    ++n;
+    for (int k = 0; k < 3; ++k)
+        for (int a = 0; a < 3; ++a, ++n) { /* e_k x unit axis a */
+            double u[3] = {0, 0, 0};
+            u[a] = 1;
+            axes[n][0] = e[k][1] * u[2] - e[k][2] * u[1];
+            axes[n][1] = e[k][2] * u[0] - e[k][0] * u[2];
+            axes[n][2] = e[k][0] * u[1] - e[k][1] * u[0];
+        }
+    for (int q = 0; q < n; ++q) {
+        const double *ax = axes[q];
+        double r = h[0] * fabs(ax[0]) + h[1] * fabs(ax[1]) + h[2] * fabs(ax[2]);
+        double t0 = ax[0] * p[0][0] + ax[1] * p[0][1] + ax[2] * p[0][2], tmin = t0, tmax = t0;
+        for (int k = 1; k < 3; ++k) {
+            double t = ax[0] * p[k][0] + ax[1] * p[k][1] + ax[2] * p[k][2];
+            tmin = fmin(tmin, t);
+            tmax = fmax(tmax, t);
+        }
+        if (tmin > r || tmax < -r)
+            return 0;
+    }
+    return 1;
+}
+
+/* The facets of mesh wall `wall` (placed at the start) that meet the box
+ * [lo, hi]; -1 when the wall is no mesh. */
+static long sd_check_mesh_crossing(const sd_world *w, size_t wall, const double lo[3], const double hi[3])
+{
+    sd_mesh_info mi;
+    if (sd_world_get_mesh(w, (int)wall, &mi) != SD_OK || mi.vertex_count == 0)
+        return -1;
+    long count = 0;
+    for (size_t t = 0; t < mi.triangle_count; ++t) {
+        double v[9];
+        for (int k = 0; k < 3; ++k)
+            sd_check_mesh_place(&mi, mi.vertices + 3 * mi.triangles[t][k], v + 3 * k);
+        count += sd_tri_box_meet(v, lo, hi);
+    }
+    return count;
 }
 
 int sd_check_print_regions(FILE *f, const sd_scene *s, const sd_world *w)
@@ -120,7 +190,19 @@ int sd_check_print_regions(FILE *f, const sd_scene *s, const sd_world *w)
                     }
                 }
             } else {
-                continue; /* drums and meshes: the run's placement checks drums; meshes are not checked */
+                /* a mesh: its facets inside the region's box; the placement
+                 * keeps particles clear of them (and inside a closed
+                 * container, outside a closed obstacle: world/mesh_clear.c) */
+                long crossing = sd_check_mesh_crossing(w, k, lo, hi);
+                if (crossing > 0) {
+                    fprintf(f,
+                            "warning      insertion %s: its region crosses mesh wall '%s' (%ld facet%s inside its "
+                            "box): particles are placed only clear of the facets and on the particles' side of "
+                            "the mesh, so part of the region is not used\n",
+                            name, wi.name ? wi.name : "?", crossing, crossing > 1 ? "s" : "");
+                    warnings++;
+                }
+                continue; /* drums: the run's placement checks them */
             }
             if (!(beyond > 0))
                 continue;

@@ -3,7 +3,7 @@
  * particles', with a warning when the two differ by so much that the
  * units are likely wrong (a mesh left in millimetres, a scale: meant for
  * another file); the analysis files' size; insertion regions that reach
- * outside the walls' box.
+ * outside the walls' box or cross a mesh wall.
  */
 #ifndef SD_CLI_CHECK_BOUNDS_H
 #define SD_CLI_CHECK_BOUNDS_H
@@ -31,9 +31,10 @@ int sd_check_print_meshes(FILE *f, const sd_world *w, double rmin, double rmax);
 int sd_check_print_analysis_size(FILE *f, const sd_scene *s, long steps);
 
 /* Warns for each insertion whose region's box reaches beyond a closed face
- * of a box wall or behind a plane wall of w (the run places particles only
- * inside the walls: such a region is used in part, or not at all).
- * Returns the number of warnings. */
+ * of a box wall or behind a plane wall of w, or holds facets of a mesh
+ * wall (the run places particles only inside the walls and clear of a
+ * mesh's facets: such a region is used in part, or not at all). Returns
+ * the number of warnings. */
 int sd_check_print_regions(FILE *f, const sd_scene *s, const sd_world *w);
 
 #endif

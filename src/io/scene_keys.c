@@ -602,7 +602,7 @@ const sd_scene_key sd_scene_keys[] = {
      "positions tried per particle (at most 100000) before it waits for the next insertion time (or, "
      "all at once, is given up; after 1000 given up in a row the rest are not tried: the region is "
      "full; [Rakotonirina 2019] §4.1); a position must hold the particle's bounding sphere inside the "
-     "plane, box and drum walls"},
+     "plane, box and drum walls, clear of the mesh walls' facets and inside a closed mesh container"},
 
     {SD_SEC_INSERT_MIX, "material", SD_KT_STRING, SD_KR_NONEMPTY, NULL, ALL, ALL, "", "required",
      "material name"},

@@ -131,6 +131,7 @@ int sd_world_add_mesh(sd_world *w, const char *name, const sd_mesh_def *def, sd_
     }
     s->bb_lo = lo;
     s->bb_hi = hi;
+    s->closed_side = rep.closed ? (def->outside ? SD_TRIMESH_OUTSIDE : SD_TRIMESH_INSIDE) : 0;
     s->motion = sd_mesh_motion_def_default();
     s->ref0 = sd_v3_scale(sd_v3_add(lo, hi), SD_R(0.5));
     s->extent = SD_R(0.5) * sd_v3_norm(sd_v3_sub(hi, lo));

@@ -20,6 +20,8 @@ typedef struct sd_mesh_store {
     sd_trimesh m;              /* mesh frame = world frame at t = 0 */
     double *vertices_d;        /* m, the welded vertices as doubles (sd_world_get_mesh) */
     sd_vec3 bb_lo, bb_hi;      /* m, mesh frame bounding box */
+    int closed_side;           /* closed meshes: SD_TRIMESH_INSIDE (a container) or SD_TRIMESH_OUTSIDE (an
+                                * obstacle), the side particles are on; 0 for a mesh with open edges */
     /* facet bins (dynamics/meshwall.h) */
     sd_real h;                 /* m, cell edge, 0 before the first rebuild */
     int coarse;                /* 1: h was made coarser than asked (key range, entry cap) */
@@ -53,5 +55,9 @@ void sd_world_meshes_mark(struct sd_world *w);
  * the order the saved run did; SD_ERR_MEMORY when out of memory. */
 sd_status sd_world_meshes_resumed(struct sd_world *w);
 void sd_world_meshes_free(struct sd_world *w);
+/* 1 when a sphere of radius b (m) at x (m, world) may be placed among the
+ * mesh walls at their present pose: it overlaps no facet, and lies inside
+ * every closed container and outside every closed obstacle (world/mesh_clear.c). */
+int sd_world_meshes_clear(const struct sd_world *w, sd_v3d x, double b);
 
 #endif

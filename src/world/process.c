@@ -45,6 +45,8 @@
 
 #include "core/alloc.h"
 #include "core/error.h"
+#include "geom/solid_angle.h"
+#include "world/mesh.h"
 #include "world/remove.h"
 #include "world/view.h"
 #include "world/world.h"
@@ -247,8 +249,8 @@ static sd_status sd_region_mesh_store(sd_world *w, int slot, const sd_region_def
     return SD_OK;
 }
 
-/* Winding number of the closed mesh about p (van Oosterom and Strackee's
- * solid angle of each triangle, summed): about +-1 inside, 0 outside. */
+/* Winding number of the closed mesh about p (geom/solid_angle.h): about
+ * +-1 inside, 0 outside. */
 static double sd_region_mesh_winding(const sd_region_mesh *m, const double p[3])
 {
     double sum = 0;
@@ -260,13 +262,7 @@ static double sd_region_mesh_winding(const sd_region_mesh *m, const double p[3])
             b[k] = c[3 + k] - p[k];
             d[k] = c[6 + k] - p[k];
         }
-        double la = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]), lb = sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
-        double ld = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-        double det = a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) +
-                     a[2] * (b[0] * d[1] - b[1] * d[0]);
-        double ab = a[0] * b[0] + a[1] * b[1] + a[2] * b[2], ad = a[0] * d[0] + a[1] * d[1] + a[2] * d[2];
-        double bd = b[0] * d[0] + b[1] * d[1] + b[2] * d[2];
-        sum += 2 * atan2(det, la * lb * ld + ab * ld + ad * lb + bd * la);
+        sum += sd_solid_angle(a, b, d);
     }
     return sum / (4 * sd_pi);
 }
@@ -1221,7 +1217,8 @@ static int sd_place_push(sd_place_grid *g, sd_v3d x, double r)
  * region that crosses the walls gets its particles inside them only (a
  * particle placed across a wall would start deep in it: the overlap guard
  * stops the run, or the wall kicks it); one outside them places none.
- * Meshes are not checked (a mesh has no inside that is cheap to test). */
+ * Mesh walls: clear of every facet, inside a closed container and outside
+ * a closed obstacle (world/mesh_clear.c). */
 static int sd_place_inside_walls(const sd_world *w, sd_v3d x, double b, int dim2)
 {
     const sd_vec3 c = sd_v3((sd_real)x.x, (sd_real)x.y, (sd_real)x.z);
@@ -1246,7 +1243,7 @@ static int sd_place_inside_walls(const sd_world *w, sd_v3d x, double b, int dim2
                 return 0;
         }
     }
-    return 1;
+    return w->mesh_count == 0 || sd_world_meshes_clear(w, x, b);
 }
 
 static int sd_place_free_spot(const sd_place_grid *g, sd_v3d x, double r)
