@@ -268,6 +268,27 @@ double sd_check_pour_bytes(size_t poured)
     return per * (1.25 * (double)poured + 64.0);
 }
 
+sd_world *sd_check_world(const sd_scene *s)
+{
+    sd_error err;
+    memset(&err, 0, sizeof err);
+    sd_world *w = NULL;
+    int ok = sd_world_create(&s->world, &w, &err) == SD_OK;
+    for (size_t i = 0; ok && i < s->material_count; ++i) {
+        sd_material_def md = s->materials[i].def;
+        md.name = s->materials[i].name;
+        ok = sd_world_add_material(w, &md, &err) >= 0;
+    }
+    for (size_t i = 0; ok && i < s->interaction_count; ++i)
+        ok = sd_world_set_interaction(w, s->interactions[i].mat_a, s->interactions[i].mat_b,
+                                      &s->interactions[i].def, &err) == SD_OK;
+    if (!ok) {
+        sd_world_destroy(w);
+        return NULL;
+    }
+    return w;
+}
+
 /* A bed of the pour's spheres resting on the floor of the scene's box
  * walls: simple cubic, 2 r apart, up to `want` spheres. NULL when the box
  * holds none or the world refuses it. */
@@ -316,15 +337,8 @@ static sd_world *sd_check_bed(const sd_scene *s, size_t want, size_t *count)
                 d[m].material = s->pour.material;
                 ++m;
             }
-    int ok = sd_world_create(&s->world, &w, &err) == SD_OK;
-    for (size_t i = 0; ok && i < s->material_count; ++i) {
-        sd_material_def md = s->materials[i].def;
-        md.name = s->materials[i].name;
-        ok = sd_world_add_material(w, &md, &err) >= 0;
-    }
-    for (size_t i = 0; ok && i < s->interaction_count; ++i)
-        ok = sd_world_set_interaction(w, s->interactions[i].mat_a, s->interactions[i].mat_b,
-                                      &s->interactions[i].def, &err) == SD_OK;
+    w = sd_check_world(s);
+    int ok = w != NULL;
     for (size_t i = 0; ok && i < s->wall_count; ++i) {
         const sd_scene_wall *wl = &s->walls[i];
         ok = (wl->kind == 0 ? sd_world_add_plane(w, wl->name, wl->point, wl->normal, wl->material, &err)
@@ -403,6 +417,25 @@ void sd_check_time(const sd_scene *s, sd_world *w, size_t total, long steps, sd_
         t->estimate = t->seconds / psteps * (double)total * (double)steps;
     else if (t->steps > 0)
         t->estimate = t->seconds / (double)t->steps * (double)steps;
+    /* the mesh walls: what they add to the particles against their facets
+     * (cli/check_mesh.c); the probes take the largest particle and its material */
+    double r = 0;
+    int mat = 0;
+    for (size_t k = 0; k < sd_world_particle_count(tw); ++k) {
+        sd_particle_state ps;
+        if (sd_world_get_particle(tw, k, &ps) == SD_OK && ps.radius > r) {
+            r = ps.radius;
+            mat = ps.material;
+        }
+    }
+    if (!(r > 0) && s->pour.given) {
+        r = s->pour.radius;
+        mat = s->pour.material;
+    }
+    sd_check_mesh_time(s, r, mat, &t->mesh);
+    sd_check_mesh_part(&t->mesh, r, total, steps);
+    if (t->mesh.ok)
+        t->estimate += t->mesh.seconds;
     if (tw != w)
         sd_world_destroy(tw);
 }
@@ -420,7 +453,19 @@ int sd_check_print_time(FILE *f, const sd_world *w, const sd_check_trial *t, siz
     if (t->insert_steps) /* placement is paid once per particle, not per step */
         fprintf(f, "; %ld of its steps placed inserted particles, in %.3g s, counted once", t->insert_steps,
                 t->insert_seconds);
+    if (t->mesh.ok)
+        fprintf(f, "; the particles against mesh walls timed apart, below");
     fprintf(f, "; rough, within a factor of 2-3)\n");
+    if (t->mesh.ok) {
+        char part[32];
+        sd_duration_format(t->mesh.seconds, part, sizeof part);
+        fprintf(f,
+                "mesh walls   %s of it: %zu particles against the facets of %zu mesh wall%s (their %.4g m^2 over a "
+                "particle's footprint (2 r)^2, at most all), %.3g s a particle-step more, timed on %zu spheres resting "
+                "on the facets against the same spheres alone for %ld steps\n",
+                part, t->mesh.against, t->mesh.meshes, t->mesh.meshes == 1 ? "" : "s", t->mesh.area,
+                t->mesh.seconds_per_pstep, t->mesh.probes, t->mesh.steps);
+    }
     /* what the first steps cannot see: the particles added later, the
      * contacts of a bed that settles, mesh walls reached later */
     size_t meshes = 0;
@@ -429,6 +474,8 @@ int sd_check_print_time(FILE *f, const sd_world *w, const sd_check_trial *t, siz
         meshes += sd_world_get_mesh(w, (int)k, &mi) == SD_OK;
     }
     int fewer = !t->bed && t->particles < total, loose = (double)t->contacts < 0.5 * (double)t->particles;
+    if (t->mesh.ok)
+        meshes = 0; /* timed apart above */
     if (t->steps < steps && (fewer || loose || meshes)) { /* else the trial was the whole run */
         fprintf(f, "untimed      the trial ran the first %ld steps with %zu", t->steps, t->particles);
         if (fewer)

@@ -11,6 +11,8 @@
 #include <shapedem/scene.h>
 #include <shapedem/shapedem.h>
 
+#include "cli/check_mesh.h"
+
 typedef struct sd_check_counts {
     size_t now;            /* particles in the world at the start */
     size_t bodies;         /* of which shaped bodies */
@@ -48,6 +50,10 @@ void sd_check_insertions(const sd_scene *s, sd_check_insert *ci);
 /* Bytes the grid solver holds per poured sphere, head room included. */
 double sd_check_pour_bytes(size_t poured);
 
+/* A world with the scene's definition, materials and interactions and
+ * nothing else (the trials' worlds); NULL when the world refuses them. */
+sd_world *sd_check_world(const sd_scene *s);
+
 typedef struct sd_check_trial {
     int ok;                /* 0: the trial run failed (msg says why) */
     char msg[512];
@@ -58,14 +64,17 @@ typedef struct sd_check_trial {
     long insert_steps;     /* of those, steps that inserted particles (their placement timed apart) */
     double insert_seconds; /* s, the wall time of those steps */
     long contacts;         /* particle and wall contacts at the trial's end */
-    double estimate;       /* s, the whole run */
+    double estimate;       /* s, the whole run (the mesh walls' part included) */
     int threads;
+    sd_check_mesh_trial mesh; /* the particles against mesh walls, timed apart (cli/check_mesh.h) */
 } sd_check_trial;
 
 /* Times a few steps (about 0.25 s of work, at least 2 steps) of w, or of
  * a bed of the pour's spheres in the scene's walls when the scene pours,
  * and scales the time per particle-step to the run: `total` particles for
- * `steps` steps. Steps that insert particles are timed apart: their
+ * `steps` steps. With mesh walls, what they add to the particles taken to
+ * lie against them is timed apart (sd_check_mesh_time: spheres resting on
+ * the facets against the same spheres alone) and added. Steps that insert particles are timed apart: their
  * placement is a cost of the particles inserted, not of every step, so it
  * is added once rather than scaled. w is stepped (the caller only destroys
  * it afterwards). */
