@@ -21,7 +21,7 @@ seconds=${2:?usage: run.sh BUILD SECONDS [NAME...]}
 shift 2
 names=("$@")
 if [[ ${#names[@]} -eq 0 ]]; then
-  names=(scene mesh outline csv checkpoint frame)
+  names=(scene mesh outline csv checkpoint frame motion)
 fi
 # The targets write each input to a file: on tmpfs when there is one.
 if [[ -z ${TMPDIR:-} && -d /dev/shm && -w /dev/shm ]]; then
