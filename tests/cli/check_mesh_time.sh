@@ -44,6 +44,6 @@ check "the run time line says the particles against mesh walls were timed apart"
 check "no 'not timed ... mesh-wall contacts'" "$(grep -q "mesh-wall contacts" mesh.out && echo 0 || echo 1)"
 "$bin" check plane.yaml --threads 1 >plane.out 2>&1
 rc=$?
-check "the plane-floored box: exit 0 (got $rc), no mesh walls line" \
+check "the plane-floored box: exit 0 [rc $rc], no mesh walls line" \
     "$([[ $rc == 0 ]] && ! grep -q "^mesh walls" plane.out && echo 1 || echo 0)"
 finish
