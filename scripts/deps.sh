@@ -26,10 +26,13 @@ set -euo pipefail
 # engine's own elementary functions (core/math.h) to 1 ulp.
 # python3-vtk9: VTK's own XML readers (the library ParaView is built on),
 # with which cli.vtk_readers opens a run's frames.pvd, particle, wall and
-# shape files (skipped without it).
+# shape files (skipped without it); its Python modules are named vtkmodules
+# (no python3-vtkmodules package exists: this is the one).
 # python3-dev, python3-numpy, python3-pytest: the Python binding (python/,
 # docs/python.md), built in C against Debian's interpreter and its numpy,
-# and its pytest suite (the python.* tests).
+# and its pytest suite (the python.* tests). Two modules those tests import
+# come from no package: shapedem is the project's own (built into
+# build/python) and conftest is the suite's own tests/python/conftest.py.
 # libcairo2-dev: `shapedem render` (src/render/) draws frames headless into
 # PNG files with cairo's image surfaces (the build leaves render out without it).
 # openmpi-bin, libopenmpi-dev: the MPI decomposition (shapedem-mpi, docs/mpi.md);
